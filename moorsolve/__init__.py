@@ -1,0 +1,17 @@
+"""moorsolve: static equilibrium of moored floating bodies on elastic-catenary legs.
+
+>>> import moorsolve
+>>> case = moorsolve.load_case("cases/floating_dock.yaml")
+>>> result = moorsolve.solve(case)
+>>> result.to_dict()["body"]
+"""
+
+from .errors import CaseError, ConvergenceError, MoorsolveError
+from .io import load_case
+from .model import Case
+from .solve import Certificate, LegResult, Result, solve
+
+__version__ = "0.1.0"
+
+__all__ = ["load_case", "solve", "Case", "Result", "LegResult", "Certificate",
+           "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

@@ -1,0 +1,11 @@
+"""Physical constants and defaults: the only place such numbers live."""
+
+STANDARD_GRAVITY = 9.80665          # [m/s^2], also defines the kilogram-force and tonne-force
+SEAWATER_DENSITY = 1025.0           # [kg/m^3]
+AIR_DENSITY = 1.225                 # [kg/m^3], ISA sea level
+
+# Hu & Tang (2004, seed 001 section 3) write densities in the technical unit kgf s^2/m^4
+# and give results in kN; their empirical formulas keep these numbers inside them.
+HU_TANG_AIR_DENSITY_TECH = 0.124    # [kgf s^2/m^4]
+HU_TANG_WATER_DENSITY_TECH = 104.61  # [kgf s^2/m^4]
+HU_TANG_GRAVITY = 9.8               # [m/s^2] as printed in the drift formula

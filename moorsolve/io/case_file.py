@@ -1,0 +1,663 @@
+"""Read and validate a case file (YAML) or case dictionary into a :class:`~moorsolve.model.Case`.
+
+Validation is strict: every problem raises :class:`~moorsolve.errors.CaseError` whose
+``field`` is the dotted path of the offending value (``legs[3].segments[0].length``) and
+whose message names the value and what is allowed (``-5 m must be > 0``). Unknown keys are
+errors; there are no aliases. Quantities may be given with units (see
+:mod:`moorsolve.io.units`) and are converted to SI here, once.
+
+A key whose absence means "none" (``ea``, ``body``, ``environment.wind``, a load model, ...)
+may also be given as null with the same meaning. A key with a default value may not be null.
+
+Schema (SI units, ``[...]`` lists)::
+
+    name: str                                  optional, default the file stem or "case"
+    environment:                               required
+      depth: length > 0                        required
+      water_density: > 0 [kg/m^3]              default 1025
+      air_density: > 0 [kg/m^3]                default 1.225
+      gravity: > 0 [m/s^2]                     default 9.80665
+      seabed: {friction: >= 0}                 default 0
+      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise
+      waves: {hs: >= 0 [m], toward_deg}        optional
+    line_types:                                required, at least one
+      NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
+             sealed: bool}
+    body:                                      optional; absent = fairleads fixed in space
+      free: [surge, sway, yaw]                 any subset, default all three
+      loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
+              current: {model: drag | hu_tang, ...},
+              wave_drift: {model: hu_tang | coefficient, ...}}
+    legs:                                      required, non-empty
+      - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
+         segments: [{type: NAME, length: > 0}]}
+    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+import reprlib
+from collections.abc import Mapping
+from os import PathLike
+from pathlib import Path
+
+import yaml
+
+from ..errors import CaseError
+from ..model import (
+    DEGREES_OF_FREEDOM,
+    Body,
+    BodyLoads,
+    Case,
+    DragLoad,
+    DriftCoefficient,
+    Environment,
+    Flow,
+    HuTangCurrent,
+    HuTangDrift,
+    HuTangWind,
+    Leg,
+    LineType,
+    Seabed,
+    Segment,
+    SolverOptions,
+    Waves,
+)
+from .units import describe, format_si, to_si, weight_per_length_to_si
+
+__all__ = ["load_case", "FAIRLEAD_Z_MAX"]
+
+#: Highest fairlead allowed [m above still water]; catches a unit slip (mm for m) early.
+FAIRLEAD_Z_MAX = 1000.0
+
+#: Largest ``solver.max_iter``: IPOPT takes it as a C int.
+MAX_ITER_LIMIT = 2**31 - 1
+
+_IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+_REPR = reprlib.Repr()
+_REPR.maxstring = 60
+_REPR.maxother = 60
+_REPR.maxlist = 6
+_REPR.maxdict = 6
+
+
+# ---- small helpers ----------------------------------------------------------------------
+
+
+def _show(raw) -> str:
+    """A short, never-failing repr of a user value for error messages."""
+    try:
+        return _REPR.repr(raw)
+    except Exception:  # a user object with a broken __repr__ must not escape as itself
+        return f"<{type(raw).__name__}>"
+
+
+def _join(path: str, key) -> str:
+    """Extend a dotted path by a mapping key (str) or a list index (int)."""
+    if isinstance(key, int):
+        return f"{path}[{key}]"
+    if isinstance(key, str) and _IDENTIFIER.match(key):
+        return f"{path}.{key}" if path else key
+    return f"{path}[{_show(key)}]"
+
+
+def _mapping(raw, path: str, required=(), optional=()) -> dict:
+    """Check that ``raw`` is a mapping with string keys, all known and the required present."""
+    allowed = tuple(required) + tuple(optional)
+    where = path or "the case"
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{_show(raw)} is not a mapping; {where} takes the keys "
+                              f"{', '.join(allowed)}")
+    for key in raw:
+        if not isinstance(key, str):
+            raise CaseError(path, f"key {_show(key)} is not a string; allowed keys: "
+                                  f"{', '.join(allowed)}")
+        if key not in allowed:
+            raise CaseError(_join(path, key), f"unknown key {key!r} in {where}; allowed keys: "
+                                              f"{', '.join(allowed)}")
+    for key in required:
+        if key not in raw:
+            raise CaseError(_join(path, key), f"required key {key!r} is missing from {where}")
+    return dict(raw)
+
+
+def _sequence(raw, path: str, what: str) -> list:
+    """Check that ``raw`` is a list (or tuple) and return it as a list."""
+    if isinstance(raw, (list, tuple)):
+        return list(raw)
+    raise CaseError(path, f"{_show(raw)} is not a list; {path or 'this'} must be {what}")
+
+
+def _check_bounds(raw, value: float, kind: str, path: str, *, gt=None, ge=None, lt=None,
+                  le=None) -> float:
+    def bound(b):
+        return "0" if b == 0 else format_si(b, kind)
+
+    if gt is not None and not value > gt:
+        raise CaseError(path, f"{describe(raw, value, kind)} must be > {bound(gt)}")
+    if ge is not None and not value >= ge:
+        raise CaseError(path, f"{describe(raw, value, kind)} must be >= {bound(ge)}")
+    if lt is not None and not value < lt:
+        raise CaseError(path, f"{describe(raw, value, kind)} must be < {bound(lt)}")
+    if le is not None and not value <= le:
+        raise CaseError(path, f"{describe(raw, value, kind)} must be <= {bound(le)}")
+    return value
+
+
+def _quantity(raw, path: str, kind: str, **bounds) -> float:
+    """Convert a quantity to SI and check its bounds (gt, ge, lt, le, in SI)."""
+    return _check_bounds(raw, to_si(raw, kind, path), kind, path, **bounds)
+
+
+def _field(m: dict, path: str, key: str, kind: str, default, **bounds) -> float:
+    """A quantity with a default: absent -> default, present -> converted and checked."""
+    if key not in m:
+        return default
+    return _quantity(m[key], _join(path, key), kind, **bounds)
+
+
+def _nullable(m: dict, path: str, key: str, kind: str, **bounds):
+    """A quantity whose absence (or null) means None."""
+    if m.get(key) is None:
+        return None
+    return _quantity(m[key], _join(path, key), kind, **bounds)
+
+
+def _name(raw, path: str, what: str) -> str:
+    if not isinstance(raw, str) or not raw.strip():
+        raise CaseError(path, f"{_show(raw)} is not a valid {what}; give a non-empty string")
+    return raw
+
+
+def _point(raw, path: str, sizes: tuple) -> tuple:
+    """A list of lengths [m] with one of the allowed ``sizes``."""
+    shape = " or ".join({2: "[x, y]", 3: "[x, y, z]"}[n] for n in sizes)
+    items = _sequence(raw, path, f"a list {shape} of lengths [m]")
+    if len(items) not in sizes:
+        raise CaseError(path, f"{_show(raw)} has {len(items)} values; it must be {shape}")
+    return tuple(_quantity(v, _join(path, i), "length") for i, v in enumerate(items))
+
+
+def _centre(m: dict, path: str) -> tuple:
+    if "centre" not in m:
+        return (0.0, 0.0)
+    return _point(m["centre"], _join(path, "centre"), (2,))
+
+
+# ---- environment ------------------------------------------------------------------------
+
+
+def _flow(raw, path: str) -> Flow:
+    m = _mapping(raw, path, required=("speed",), optional=("toward_deg",))
+    speed = _quantity(m["speed"], _join(path, "speed"), "speed", ge=0)
+    toward = _field(m, path, "toward_deg", "angle", 0.0)
+    return Flow(speed=speed, toward_deg=toward)
+
+
+def _waves(raw, path: str) -> Waves:
+    m = _mapping(raw, path, required=("hs",), optional=("toward_deg",))
+    hs = _quantity(m["hs"], _join(path, "hs"), "length", ge=0)
+    toward = _field(m, path, "toward_deg", "angle", 0.0)
+    return Waves(hs=hs, toward_deg=toward)
+
+
+def _environment(raw, path: str) -> Environment:
+    m = _mapping(raw, path, required=("depth",),
+                 optional=("water_density", "air_density", "gravity", "seabed", "wind",
+                           "current", "waves"))
+    defaults = Environment(depth=1.0)
+    depth = _quantity(m["depth"], _join(path, "depth"), "length", gt=0)
+    water_density = _field(m, path, "water_density", "density", defaults.water_density, gt=0)
+    air_density = _field(m, path, "air_density", "density", defaults.air_density, gt=0)
+    gravity = _field(m, path, "gravity", "acceleration", defaults.gravity, gt=0)
+    seabed = Seabed()
+    if "seabed" in m:
+        sub = _join(path, "seabed")
+        s = _mapping(m["seabed"], sub, optional=("friction",))
+        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0))
+    wind = None if m.get("wind") is None else _flow(m["wind"], _join(path, "wind"))
+    current = None if m.get("current") is None else _flow(m["current"], _join(path, "current"))
+    waves = None if m.get("waves") is None else _waves(m["waves"], _join(path, "waves"))
+    return Environment(depth=depth, water_density=water_density, air_density=air_density,
+                       gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves)
+
+
+# ---- line types -------------------------------------------------------------------------
+
+
+def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
+    m = _mapping(raw, path, required=("weight_in_water",),
+                 optional=("ea", "mbl", "diameter", "sealed"))
+    weight = weight_per_length_to_si(m["weight_in_water"], gravity,
+                                     _join(path, "weight_in_water"))
+    ea = _nullable(m, path, "ea", "force", gt=0)
+    mbl = _nullable(m, path, "mbl", "force", gt=0)
+    diameter = _nullable(m, path, "diameter", "length", gt=0)
+    sealed = False
+    if "sealed" in m:
+        sealed = m["sealed"]
+        if not isinstance(sealed, bool):
+            raise CaseError(_join(path, "sealed"), f"{_show(sealed)} is not true or false")
+    if sealed and diameter is None:
+        raise CaseError(_join(path, "diameter"),
+                        "sealed line needs a diameter (its wall tension depends on the outer "
+                        "area); give diameter > 0 [m]")
+    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
+                    sealed=sealed)
+
+
+def _line_types(raw, path: str, gravity: float) -> dict:
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{_show(raw)} is not a mapping; line_types maps each line type "
+                              "name to its properties")
+    if not raw:
+        raise CaseError(path, "no line types; at least one is required")
+    types = {}
+    for name, spec in raw.items():
+        if not isinstance(name, str) or not name.strip():
+            raise CaseError(path, f"line type name {_show(name)} is not a non-empty string")
+        types[name] = _line_type(name, spec, _join(path, name), gravity)
+    return types
+
+
+# ---- body -------------------------------------------------------------------------------
+
+
+def _table(raw, path: str) -> tuple:
+    rows = _sequence(raw, path, "a list of rows [heading_deg, cx, cy, cmz]")
+    if len(rows) < 2:
+        raise CaseError(path, f"{len(rows)} row(s); a coefficient table needs at least 2 rows "
+                              "[heading_deg, cx, cy, cmz]")
+    table = []
+    for i, row_raw in enumerate(rows):
+        rpath = _join(path, i)
+        row = _sequence(row_raw, rpath, "a row [heading_deg, cx, cy, cmz]")
+        if len(row) != 4:
+            raise CaseError(rpath, f"{_show(row_raw)} has {len(row)} values; a row is "
+                                   "[heading_deg, cx, cy, cmz]")
+        heading = _quantity(row[0], _join(rpath, 0), "angle", ge=-180.0, lt=360.0)
+        coefficients = tuple(_quantity(v, _join(rpath, j), "dimensionless")
+                             for j, v in enumerate(row[1:], start=1))
+        if table and not heading > table[-1][0]:
+            raise CaseError(_join(rpath, 0), f"heading {heading:.6g} deg must be greater than "
+                                             f"the previous row's {table[-1][0]:.6g} deg "
+                                             "(headings strictly increasing)")
+        table.append((heading,) + coefficients)
+    span = table[-1][0] - table[0][0]
+    if span >= 360.0:
+        # The table is interpolated periodically, so it may cover at most one turn.
+        raise CaseError(_join(_join(path, len(table) - 1), 0),
+                        f"headings span {span:.6g} deg; a periodic table must span < 360 deg")
+    return tuple(table)
+
+
+def _drag(m: dict, path: str) -> DragLoad:
+    m = _mapping(m, path, required=("model", "area_x", "area_y"),
+                 optional=("cx", "cy", "table", "length", "centre"))
+    area_x = _quantity(m["area_x"], _join(path, "area_x"), "area", ge=0)
+    area_y = _quantity(m["area_y"], _join(path, "area_y"), "area", ge=0)
+    table = None if m.get("table") is None else _table(m["table"], _join(path, "table"))
+    if table is not None:
+        for key in ("cx", "cy"):
+            if key in m:
+                raise CaseError(_join(path, key),
+                                f"{key} is not used with a table (the table's coefficients "
+                                "replace it); give either cx/cy or a table")
+    cx = _field(m, path, "cx", "dimensionless", 1.0, ge=0)
+    cy = _field(m, path, "cy", "dimensionless", 1.0, ge=0)
+    length = _field(m, path, "length", "length", 0.0, ge=0)
+    if table is not None and length == 0.0 and any(row[3] != 0.0 for row in table):
+        raise CaseError(_join(path, "length"),
+                        f"{format_si(length, 'length')}: a table with a non-zero cmz needs a "
+                        "reference length > 0")
+    return DragLoad(area_x=area_x, area_y=area_y, cx=cx, cy=cy, table=table, length=length,
+                    centre=_centre(m, path))
+
+
+def _hu_tang_wind(m: dict, path: str) -> HuTangWind:
+    m = _mapping(m, path, required=("model", "superstructure_area", "hull_area"),
+                 optional=("superstructure_area_lateral", "hull_area_lateral", "centre"))
+    superstructure = _quantity(m["superstructure_area"], _join(path, "superstructure_area"),
+                               "area", ge=0)
+    hull = _quantity(m["hull_area"], _join(path, "hull_area"), "area", ge=0)
+    superstructure_lat = _nullable(m, path, "superstructure_area_lateral", "area", ge=0)
+    hull_lat = _nullable(m, path, "hull_area_lateral", "area", ge=0)
+    if (superstructure_lat is None) != (hull_lat is None):
+        missing = "hull_area_lateral" if hull_lat is None else "superstructure_area_lateral"
+        raise CaseError(_join(path, missing),
+                        "superstructure_area_lateral and hull_area_lateral go together; give "
+                        "both or neither")
+    return HuTangWind(superstructure_area=superstructure, hull_area=hull,
+                      superstructure_area_lateral=superstructure_lat,
+                      hull_area_lateral=hull_lat, centre=_centre(m, path))
+
+
+def _hu_tang_current(m: dict, path: str) -> HuTangCurrent:
+    m = _mapping(m, path, required=("model", "wetted_area"), optional=("coefficient", "centre"))
+    area = _quantity(m["wetted_area"], _join(path, "wetted_area"), "area", gt=0)
+    coefficient = _field(m, path, "coefficient", "dimensionless", 0.18, gt=0)
+    return HuTangCurrent(wetted_area=area, coefficient=coefficient, centre=_centre(m, path))
+
+
+def _hu_tang_drift(m: dict, path: str) -> HuTangDrift:
+    m = _mapping(m, path, required=("model", "beam"), optional=("length", "k", "centre"))
+    beam = _quantity(m["beam"], _join(path, "beam"), "length", gt=0)
+    length = _nullable(m, path, "length", "length", gt=0)
+    k = _field(m, path, "k", "dimensionless", 0.7, gt=0)
+    return HuTangDrift(beam=beam, length=length, k=k, centre=_centre(m, path))
+
+
+def _drift_coefficient(m: dict, path: str) -> DriftCoefficient:
+    m = _mapping(m, path, required=("model", "length_x", "length_y"),
+                 optional=("cx", "cy", "centre"))
+    length_x = _quantity(m["length_x"], _join(path, "length_x"), "length", ge=0)
+    length_y = _quantity(m["length_y"], _join(path, "length_y"), "length", ge=0)
+    cx = _field(m, path, "cx", "dimensionless", 1.0, ge=0)
+    cy = _field(m, path, "cy", "dimensionless", 1.0, ge=0)
+    return DriftCoefficient(length_x=length_x, length_y=length_y, cx=cx, cy=cy,
+                            centre=_centre(m, path))
+
+
+_LOAD_MODELS = {
+    "wind": {"drag": _drag, "hu_tang": _hu_tang_wind},
+    "current": {"drag": _drag, "hu_tang": _hu_tang_current},
+    "wave_drift": {"hu_tang": _hu_tang_drift, "coefficient": _drift_coefficient},
+}
+
+
+def _load_model(raw, path: str, models: dict):
+    """Dispatch on the required ``model`` key, then validate that model's keys."""
+    allowed = ", ".join(models)
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{_show(raw)} is not a mapping; give {{model: ...}} with model "
+                              f"one of {allowed}")
+    if "model" not in raw:
+        raise CaseError(_join(path, "model"), f"required key 'model' is missing; allowed "
+                                              f"models: {allowed}")
+    model = raw["model"]
+    if not isinstance(model, str) or model not in models:
+        raise CaseError(_join(path, "model"), f"unknown model {_show(model)}; allowed models: "
+                                              f"{allowed}")
+    return models[model](raw, path)
+
+
+def _force(raw, path: str) -> tuple:
+    items = _sequence(raw, path, "[Fx N, Fy N, Mz N m]")
+    if len(items) != 3:
+        raise CaseError(path, f"{_show(raw)} has {len(items)} values; it must be "
+                              "[Fx N, Fy N, Mz N m]")
+    kinds = ("force", "force", "moment")
+    return tuple(_quantity(v, _join(path, i), k) for i, (v, k) in enumerate(zip(items, kinds)))
+
+
+def _loads(raw, path: str) -> BodyLoads:
+    m = _mapping(raw, path, optional=("force",) + tuple(_LOAD_MODELS))
+    force = None if m.get("force") is None else _force(m["force"], _join(path, "force"))
+    models = {key: (None if m.get(key) is None
+                    else _load_model(m[key], _join(path, key), _LOAD_MODELS[key]))
+              for key in _LOAD_MODELS}
+    return BodyLoads(force=force, **models)
+
+
+def _free(raw, path: str) -> tuple:
+    items = _sequence(raw, path, f"a list drawn from {', '.join(DEGREES_OF_FREEDOM)}")
+    seen = set()
+    for i, item in enumerate(items):
+        if not isinstance(item, str) or item not in DEGREES_OF_FREEDOM:
+            raise CaseError(_join(path, i), f"unknown degree of freedom {_show(item)}; allowed: "
+                                            f"{', '.join(DEGREES_OF_FREEDOM)}")
+        if item in seen:
+            raise CaseError(_join(path, i), f"{item!r} is listed twice")
+        seen.add(item)
+    # Canonical order, so that downstream code never depends on how the user listed them.
+    return tuple(dof for dof in DEGREES_OF_FREEDOM if dof in seen)
+
+
+def _body(raw, path: str) -> Body:
+    m = _mapping(raw, path, optional=("free", "loads"))
+    free = DEGREES_OF_FREEDOM if "free" not in m else _free(m["free"], _join(path, "free"))
+    loads = BodyLoads() if m.get("loads") is None else _loads(m["loads"], _join(path, "loads"))
+    return Body(free=free, loads=loads)
+
+
+# ---- legs -------------------------------------------------------------------------------
+
+
+def _segment(raw, path: str, line_types: dict) -> Segment:
+    m = _mapping(raw, path, required=("type", "length"))
+    type_name = m["type"]
+    if not isinstance(type_name, str) or type_name not in line_types:
+        raise CaseError(_join(path, "type"), f"unknown line type {_show(type_name)}; known line "
+                                             f"types: {', '.join(map(str, line_types))}")
+    length = _quantity(m["length"], _join(path, "length"), "length", gt=0)
+    return Segment(line_type=line_types[type_name], length=length)
+
+
+def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
+    m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"))
+    name = _name(m["name"], _join(path, "name"), "leg name")
+    depth = environment.depth
+    seabed_tol = 1e-9 * max(depth, 1.0)  # unit conversions may leave the seabed z a few ulp off
+
+    fpath = _join(path, "fairlead")
+    fairlead = _point(m["fairlead"], fpath, (3,))
+    fz = fairlead[2]
+    if not fz > -depth + seabed_tol:
+        raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is not above "
+                                         f"the seabed (z = {format_si(-depth, 'length')}); it "
+                                         "must be > -depth")
+    if fz > FAIRLEAD_Z_MAX:
+        raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} must be <= "
+                                         f"{format_si(FAIRLEAD_Z_MAX, 'length')}")
+
+    apath = _join(path, "anchor")
+    anchor = _point(m["anchor"], apath, (2, 3))
+    if len(anchor) == 2:
+        anchor = anchor + (-depth,)
+    else:
+        az = anchor[2]
+        if az < -depth - seabed_tol:
+            raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is below the "
+                                             f"seabed (z = {format_si(-depth, 'length')}); it "
+                                             "must be >= -depth")
+        if az < -depth:
+            anchor = anchor[:2] + (-depth,)
+        if not anchor[2] < fz:
+            raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is not below "
+                                             f"the fairlead (z = {format_si(fz, 'length')}); the "
+                                             "anchor must be lower than its fairlead")
+
+    spath = _join(path, "segments")
+    items = _sequence(m["segments"], spath, "a list of {type, length}")
+    if not items:
+        raise CaseError(spath, "no segments; a leg needs one segment {type, length}")
+    segments = tuple(_segment(s, _join(spath, j), line_types) for j, s in enumerate(items))
+    if len(segments) > 1:
+        raise CaseError(spath, f"{len(segments)} segments: multi-segment legs are not supported "
+                               "yet (issue: lines beyond one catenary); give one segment")
+
+    segment = segments[0]
+    if segment.line_type.ea is None:
+        # Body at zero offset: the body-frame fairlead is its global position.
+        distance = math.dist(anchor, fairlead)
+        if distance > segment.length:
+            raise CaseError(spath, f"the line ({format_si(segment.length, 'length')}) cannot "
+                                   f"reach from anchor to fairlead (distance "
+                                   f"{format_si(distance, 'length')}); an inextensible line "
+                                   "must be at least that long")
+    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments)
+
+
+def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
+    items = _sequence(raw, path, "a list of legs {name, anchor, fairlead, segments}")
+    if not items:
+        raise CaseError(path, "no legs; at least one leg is required")
+    legs = []
+    first_index = {}
+    for i, item in enumerate(items):
+        leg = _leg(item, _join(path, i), environment, line_types)
+        if leg.name in first_index:
+            raise CaseError(_join(_join(path, i), "name"),
+                            f"duplicate leg name {leg.name!r} (already used by "
+                            f"legs[{first_index[leg.name]}]); leg names must be unique")
+        first_index[leg.name] = i
+        legs.append(leg)
+    return tuple(legs)
+
+
+# ---- solver -----------------------------------------------------------------------------
+
+
+def _solver(raw, path: str) -> SolverOptions:
+    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s"))
+    defaults = SolverOptions()
+    tol = _field(m, path, "tol", "dimensionless", defaults.tol, gt=0, lt=1)
+    max_iter = defaults.max_iter
+    if "max_iter" in m:
+        raw_iter = m["max_iter"]
+        ipath = _join(path, "max_iter")
+        if isinstance(raw_iter, bool) or not isinstance(raw_iter, numbers.Integral):
+            raise CaseError(ipath, f"{_show(raw_iter)} is not an integer; max_iter must be an "
+                                   f"integer from 1 to {MAX_ITER_LIMIT}")
+        max_iter = int(raw_iter)
+        if not 1 <= max_iter <= MAX_ITER_LIMIT:
+            raise CaseError(ipath, f"{max_iter} must be an integer from 1 to {MAX_ITER_LIMIT}")
+    max_time = _field(m, path, "max_time_s", "time", defaults.max_time_s, gt=0)
+    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time)
+
+
+# ---- the case ---------------------------------------------------------------------------
+
+
+def _build_case(data, default_name: str) -> Case:
+    m = _mapping(data, "", required=("environment", "line_types", "legs"),
+                 optional=("name", "body", "solver"))
+    name = default_name if "name" not in m else _name(m["name"], "name", "case name")
+    # Environment first: gravity converts weights given as mass per length, and depth
+    # places anchors given as [x, y].
+    environment = _environment(m["environment"], "environment")
+    line_types = _line_types(m["line_types"], "line_types", environment.gravity)
+    body = None if m.get("body") is None else _body(m["body"], "body")
+    legs = _legs(m["legs"], "legs", environment, line_types)
+    solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
+    return Case(name=name, environment=environment, line_types=line_types, legs=legs,
+                body=body, solver=solver)
+
+
+class _StrictLoader(yaml.SafeLoader):
+    """A safe YAML loader that rejects duplicate mapping keys instead of keeping the last."""
+
+
+def _construct_strict_mapping(loader, node):
+    seen = set()
+    for key_node, _ in node.value:
+        if key_node.tag == "tag:yaml.org,2002:merge":
+            continue
+        key = loader.construct_object(key_node, deep=True)
+        try:
+            duplicate = key in seen
+        except TypeError:
+            raise yaml.constructor.ConstructorError(
+                "while constructing a mapping", node.start_mark, "found an unhashable key",
+                key_node.start_mark) from None
+        if duplicate:
+            raise yaml.constructor.ConstructorError(
+                "while constructing a mapping", node.start_mark,
+                f"found duplicate key {key!r}", key_node.start_mark)
+        seen.add(key)
+    return loader.construct_mapping(node, deep=True)
+
+
+_StrictLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG,
+                              _construct_strict_mapping)
+
+
+def _yaml_message(exc: Exception) -> str:
+    mark = getattr(exc, "problem_mark", None)
+    problem = getattr(exc, "problem", None)
+    if mark is not None and problem:
+        return f"invalid YAML at line {mark.line + 1}, column {mark.column + 1}: {problem}"
+    return "invalid YAML: " + " ".join(str(exc).split())
+
+
+def _read_yaml(path: Path):
+    label = str(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise CaseError(label, "case file not found") from None
+    except IsADirectoryError:
+        raise CaseError(label, "is a directory, not a case file") from None
+    except UnicodeDecodeError as exc:
+        raise CaseError(label, f"is not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    except (OSError, ValueError) as exc:
+        raise CaseError(label, f"cannot read the case file: {exc}") from None
+    try:
+        data = yaml.load(text, Loader=_StrictLoader)
+    except RecursionError:
+        raise CaseError(label, "invalid YAML: nested too deeply") from None
+    except Exception as exc:  # YAMLError, and ValueError from e.g. a date like 2020-13-45
+        raise CaseError(label, _yaml_message(exc)) from None
+    if not isinstance(data, Mapping):
+        raise CaseError(label, f"the file holds {type(data).__name__}, not a mapping; a case "
+                               "file has the keys environment, line_types, legs (and optionally "
+                               "name, body, solver)")
+    return data
+
+
+def load_case(source) -> Case:
+    """Load and validate a mooring case.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path or mapping
+        Path to a YAML case file, or a dictionary of the same shape.
+
+    Returns
+    -------
+    moorsolve.model.Case
+        The validated case, in SI units. Its name defaults to the file stem (or ``"case"``
+        for a dictionary).
+
+    Raises
+    ------
+    CaseError
+        For any problem with the input; ``field`` is the dotted path of the offending value
+        (``legs[3].segments[0].length``), or the file name for a file that cannot be read or
+        parsed. No other exception escapes.
+
+    Notes
+    -----
+    Checks beyond the schema: anchors lie on or above the seabed and below their fairlead;
+    fairleads lie above the seabed and at most :data:`FAIRLEAD_Z_MAX` above still water; an
+    inextensible line is at least as long as the straight distance from its anchor to its
+    fairlead at the case-file position (body at zero offset); leg names are unique; each leg
+    has exactly one segment (the core model's limit).
+
+    Examples
+    --------
+    >>> case = load_case("cases/floating_dock.yaml")  # doctest: +SKIP
+    >>> case.legs[0].anchor  # doctest: +SKIP
+    (-240.0, -120.0, -20.85)
+    """
+    if isinstance(source, (str, PathLike)):
+        try:
+            path = Path(source)
+        except TypeError:
+            raise CaseError("", f"{_show(source)} is not a usable path") from None
+        data = _read_yaml(path)
+        default_name = path.stem or "case"
+    elif isinstance(source, Mapping):
+        data, default_name = source, "case"
+    else:
+        raise CaseError("", f"{_show(source)} is not a case: give a path to a YAML file or a "
+                            "dict")
+    try:
+        return _build_case(data, default_name)
+    except RecursionError:
+        # A self-referencing or absurdly nested dict; report it as bad input.
+        raise CaseError("", "the case is nested too deeply") from None

@@ -1,0 +1,251 @@
+"""Quantities with units in case files, converted to SI once at load time.
+
+A quantity in a case file is either a plain number, taken as SI (m, N, kg, s, N/m, m/s,
+kg/m^3, m^2; degrees for angles), or a string holding a number and a unit such as
+``"0.13 t/m"``, ``"372 kN"``, ``"81 mm"`` or ``"20 kn"``. Units are read by one module-level
+pint registry; nothing outside ``moorsolve.io`` sees pint.
+
+Every failure raises :class:`moorsolve.errors.CaseError` naming the field.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+
+import pint
+
+from ..errors import CaseError
+
+__all__ = ["UREG", "KINDS", "to_si", "weight_per_length_to_si", "format_si", "describe"]
+
+#: The one unit registry of moorsolve. In pint ``t`` is the metric tonne, ``tf`` the
+#: tonne-force, ``kgf`` the kilogram-force and ``kn`` / ``kt`` the knot.
+UREG = pint.UnitRegistry()
+
+#: kind -> (SI unit as pint reads it, SI symbol shown in messages, noun for messages)
+KINDS = {
+    "length": ("m", "m", "a length"),
+    "area": ("m**2", "m^2", "an area"),
+    "force": ("N", "N", "a force"),
+    "moment": ("N*m", "N m", "a moment (force x length)"),
+    "force_per_length": ("N/m", "N/m", "a force per length"),
+    "mass_per_length": ("kg/m", "kg/m", "a mass per length"),
+    "speed": ("m/s", "m/s", "a speed"),
+    "density": ("kg/m**3", "kg/m^3", "a density"),
+    "acceleration": ("m/s**2", "m/s^2", "an acceleration"),
+    "time": ("s", "s", "a time"),
+    "angle": ("degree", "deg", "an angle"),
+    "dimensionless": ("", "", "a plain number"),
+}
+
+# Example strings for the hint in error messages.
+_EXAMPLES = {
+    "length": "'81 mm'",
+    "area": "'120 m^2'",
+    "force": "'372 kN'",
+    "moment": "'50 kN*m'",
+    "force_per_length": "'1.27 kN/m' or '0.13 t/m'",
+    "mass_per_length": "'130 kg/m'",
+    "speed": "'20 kn'",
+    "density": "'1.2 kg/m^3'",
+    "acceleration": "'9.81 m/s^2'",
+    "time": "'5 s'",
+    "angle": "'30 deg'",
+    "dimensionless": "'0.5'",
+}
+
+# Units accepted for an angle; radian-based dimensionless ratios like "m/m" are not angles.
+_ANGLE_UNITS = frozenset({"degree", "radian", "arcminute", "arcsecond", "turn"})
+
+_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+# One unit name with an optional small integer power. The grammar is deliberately narrow
+# so that pint's expression evaluator never sees arithmetic such as "9**9**9**9".
+_UNIT = r"[A-Za-z_]+(?:\s*(?:\^|\*\*)\s*[+-]?\d{1,2})?"
+_UNIT_EXPR = rf"{_UNIT}(?:\s*[*/]\s*{_UNIT}|\s+{_UNIT})*"
+_QUANTITY_RE = re.compile(rf"^\s*({_NUMBER})\s*({_UNIT_EXPR})?\s*$")
+
+_DIMENSIONALITY = {kind: UREG.parse_units(unit).dimensionality
+                   for kind, (unit, _, _) in KINDS.items() if kind not in ("angle", "dimensionless")}
+
+
+def format_si(value: float, kind: str) -> str:
+    """Format an SI value with its unit symbol, e.g. ``-5 m``.
+
+    Parameters
+    ----------
+    value : float
+        The value in SI units.
+    kind : str
+        A key of :data:`KINDS`.
+
+    Returns
+    -------
+    str
+    """
+    symbol = KINDS[kind][1]
+    return f"{value:.6g} {symbol}" if symbol else f"{value:.6g}"
+
+
+def describe(raw, value: float, kind: str) -> str:
+    """Show a value as the user gave it and, for a unit string, its SI value.
+
+    Parameters
+    ----------
+    raw : number or str
+        The value as written in the case.
+    value : float
+        The same value in SI units.
+    kind : str
+        A key of :data:`KINDS`.
+
+    Returns
+    -------
+    str
+        ``-5 m`` for a number, ``'-5 mm' (-0.005 m)`` for a string.
+    """
+    if isinstance(raw, str):
+        return f"{raw!r} ({format_si(value, kind)})"
+    return format_si(value, kind)
+
+
+def _short_repr(raw) -> str:
+    text = repr(raw)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _not_a(raw, kind: str, field: str) -> CaseError:
+    noun = KINDS[kind][2]
+    symbol = KINDS[kind][1]
+    if kind == "dimensionless":
+        hint = "give a number"
+    else:
+        hint = f"give a number in {symbol} or a string with a unit like {_EXAMPLES[kind]}"
+    return CaseError(field, f"{_short_repr(raw)} is not {noun} ({hint})")
+
+
+def _finite(value: float, raw, field: str) -> float:
+    if not math.isfinite(value):
+        raise CaseError(field, f"{_short_repr(raw)} is not finite; a finite number is required")
+    return value
+
+
+def _real_to_float(number, raw, field: str) -> float:
+    try:
+        value = float(number)
+    except (OverflowError, ValueError, TypeError):
+        raise CaseError(field, f"{_short_repr(raw)} is too large or not a number") from None
+    return _finite(value, raw, field)
+
+
+def _parse_units(text: str, raw, field: str):
+    try:
+        return UREG.parse_units(text)
+    except Exception:  # pint raises many exception types; each one means "not a unit"
+        raise CaseError(field, f"{_short_repr(raw)}: {text!r} is not a known unit") from None
+
+
+def _split(raw: str, kind: str, field: str):
+    """Split a quantity string into its number and its unit text ('' if none)."""
+    match = _QUANTITY_RE.match(raw)
+    if match is None:
+        raise _not_a(raw, kind, field)
+    number = _real_to_float(match.group(1), raw, field)
+    return number, (match.group(2) or "")
+
+
+def _string_to_si(raw: str, kinds: tuple, field: str):
+    """Convert a quantity string to SI, trying each kind in turn; return (value, kind)."""
+    number, unit_text = _split(raw, kinds[0], field)
+    if not unit_text:
+        # A bare numeric string is read as SI: PyYAML loads "1e-9" as a string.
+        return number, kinds[0]
+    units = _parse_units(unit_text, raw, field)
+    for kind in kinds:
+        if kind == "dimensionless":
+            continue
+        if kind == "angle":
+            if str(units) not in _ANGLE_UNITS:
+                continue
+        elif units.dimensionality != _DIMENSIONALITY[kind]:
+            continue
+        try:
+            value = UREG.Quantity(number, units).to(KINDS[kind][0]).magnitude
+        except Exception:  # an offset or logarithmic unit: not a plain quantity
+            raise _not_a(raw, kind, field) from None
+        return _finite(float(value), raw, field), kind
+    if kinds[0] == "dimensionless":
+        raise CaseError(field, f"{_short_repr(raw)} must be a plain number without a unit")
+    raise _not_a(raw, kinds[0], field)
+
+
+def to_si(raw, kind: str, field: str) -> float:
+    """Convert a case-file quantity to a finite SI float.
+
+    Parameters
+    ----------
+    raw : object
+        A real number (not a bool), taken as SI (degrees for ``kind="angle"``), or a string
+        with a number and an optional unit, e.g. ``"81 mm"``.
+    kind : str
+        The expected kind of quantity, a key of :data:`KINDS`.
+    field : str
+        Dotted path of the field, used in error messages.
+
+    Returns
+    -------
+    float
+        The value in SI units [m, N, N m, N/m, kg/m, m/s, kg/m^3, m/s^2, s], in degrees for
+        an angle, or the plain number for ``"dimensionless"``.
+
+    Raises
+    ------
+    CaseError
+        If the value is not a number or quantity string, has the wrong dimension, an
+        unknown unit, or is NaN or infinite.
+    """
+    if kind not in KINDS:
+        raise ValueError(f"unknown quantity kind {kind!r}")
+    if isinstance(raw, bool):
+        raise _not_a(raw, kind, field)
+    if isinstance(raw, numbers.Real):
+        return _real_to_float(raw, raw, field)
+    if isinstance(raw, str):
+        return _string_to_si(raw, (kind,), field)[0]
+    raise _not_a(raw, kind, field)
+
+
+def weight_per_length_to_si(raw, gravity: float, field: str) -> float:
+    """Convert a submerged weight per length to SI [N/m].
+
+    A force per length (``"1.27 kN/m"``, ``"130 kgf/m"``, a plain number in N/m) is taken
+    as is. A mass per length (``"0.13 t/m"``, ``"22 kg/m"``) is read as the weight of that
+    mass, i.e. multiplied by ``gravity``: engineers quote submerged chain weight in t/m
+    meaning tonne-force per metre.
+
+    Parameters
+    ----------
+    raw : object
+        The value as written in the case.
+    gravity : float
+        Acceleration of gravity of the case [m/s^2].
+    field : str
+        Dotted path of the field, used in error messages.
+
+    Returns
+    -------
+    float
+        Weight per length [N/m]; any finite sign.
+
+    Raises
+    ------
+    CaseError
+        If the value is not a force or mass per length, or is not finite.
+    """
+    if isinstance(raw, str):
+        value, kind = _string_to_si(raw, ("force_per_length", "mass_per_length"), field)
+        if kind == "mass_per_length":
+            value = _finite(value * gravity, raw, field)
+        return value
+    return to_si(raw, "force_per_length", field)

@@ -1,0 +1,273 @@
+"""The validated description of a mooring scene.
+
+Frozen dataclasses, SI units throughout, degrees only in names ending ``_deg``. A
+:class:`Case` is what every other part of moorsolve consumes; ``moorsolve.io`` builds one
+from a case file and checks it. Nothing here imports CasADi.
+
+Coordinates: x, y horizontal, z up, z = 0 at the still-water level, flat seabed at
+z = -depth. ``toward_deg`` is the direction a wind, current or wave train travels toward,
+counter-clockwise from +x.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+from .constants import AIR_DENSITY, SEAWATER_DENSITY, STANDARD_GRAVITY
+
+DEGREES_OF_FREEDOM = ("surge", "sway", "yaw")
+
+
+@dataclass(frozen=True)
+class LineType:
+    """Properties of one kind of line.
+
+    Attributes
+    ----------
+    name : str
+    weight_in_water : float
+        Submerged weight per unit unstretched length [N/m]; negative for a buoyant line,
+        zero for a neutrally buoyant one.
+    ea : float or None
+        Axial stiffness [N]; None for an inextensible line.
+    mbl : float or None
+        Minimum breaking load [N].
+    diameter : float or None
+        Outer (hydrodynamic) diameter [m]; needed for wall tension and line drag.
+    sealed : bool
+        True for a line whose wall keeps water out of its cross-section (cable, pipe,
+        sheathed rope). Its wall tension differs from the effective tension by the
+        hydrostatic pressure on the outer area (REFERENCE.md section 2); a chain is not sealed.
+    """
+
+    name: str
+    weight_in_water: float
+    ea: Optional[float] = None
+    mbl: Optional[float] = None
+    diameter: Optional[float] = None
+    sealed: bool = False
+
+    @property
+    def elastic(self) -> bool:
+        return self.ea is not None
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A length of one line type [m, unstretched]."""
+
+    line_type: LineType
+    length: float
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One mooring leg from its anchor (end A) to its fairlead (end F).
+
+    Attributes
+    ----------
+    name : str
+    anchor : tuple of 3 floats
+        Global position [m]. An anchor on the seabed has z = -depth; one above it (a pile
+        head, a mid-water point) gives its own z and is modelled without seabed contact.
+    fairlead : tuple of 3 floats
+        Position [m] in the body frame, or global when the case has no body.
+    segments : tuple of Segment
+        From anchor to fairlead. The core model takes one segment per leg.
+    """
+
+    name: str
+    anchor: tuple
+    fairlead: tuple
+    segments: tuple
+
+    @property
+    def line_type(self) -> LineType:
+        return self.segments[0].line_type
+
+    @property
+    def length(self) -> float:
+        return sum(s.length for s in self.segments)
+
+
+@dataclass(frozen=True)
+class Flow:
+    """A uniform wind or current: speed [m/s] toward ``toward_deg``."""
+
+    speed: float
+    toward_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Waves:
+    """An irregular sea: significant height ``hs`` [m] travelling toward ``toward_deg``."""
+
+    hs: float
+    toward_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Seabed:
+    """Seabed contact. ``friction`` is the Coulomb coefficient for line on seabed (0 = none)."""
+
+    friction: float = 0.0
+
+
+@dataclass(frozen=True)
+class Environment:
+    depth: float
+    water_density: float = SEAWATER_DENSITY
+    air_density: float = AIR_DENSITY
+    gravity: float = STANDARD_GRAVITY
+    seabed: Seabed = field(default_factory=Seabed)
+    wind: Optional[Flow] = None
+    current: Optional[Flow] = None
+    waves: Optional[Waves] = None
+
+
+# ---- body load models ---------------------------------------------------------------
+# Each model acts at ``centre`` (body frame [x, y], m), which sets its yaw moment. The
+# flow heading relative to the body, theta = toward_deg - yaw, is taken in the body frame.
+
+
+@dataclass(frozen=True)
+class DragLoad:
+    """General quadratic drag ``0.5 rho C A V^2`` for wind or current.
+
+    Without a ``table`` the coefficients are constant and each body axis sees the flow
+    component along it: ``Fx = 0.5 rho cx area_x V^2 cos(theta)|cos(theta)|`` and
+    ``Fy = 0.5 rho cy area_y V^2 sin(theta)|sin(theta)|`` (body axes).
+    With a ``table`` of rows ``(heading_deg, cx, cy, cmz)`` (relative heading, interpolated
+    linearly and periodically) the coefficients carry their own sign:
+    ``Fx = q cx(theta) area_x``, ``Fy = q cy(theta) area_y``,
+    ``Mz = q cmz(theta) area_y length`` with ``q = 0.5 rho V^2``.
+
+    Attributes
+    ----------
+    area_x, area_y : float
+        Projected areas [m^2] facing a flow along body x and along body y.
+    cx, cy : float
+        Drag coefficients [-] (used without a table).
+    table : tuple of (heading_deg, cx, cy, cmz) or None
+    length : float
+        Reference length [m] for the table's yaw-moment coefficient.
+    centre : tuple of 2 floats
+        Centre of pressure [m], body frame.
+    """
+
+    area_x: float
+    area_y: float
+    cx: float = 1.0
+    cy: float = 1.0
+    table: Optional[tuple] = None
+    length: float = 0.0
+    centre: tuple = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class HuTangWind:
+    """Hu & Tang (2004) wind resistance ``R1 = 0.006 rho_a V^2 (F' + 0.31 F)`` [kN].
+
+    ``superstructure_area`` (F') and ``hull_area`` (F, hull above water) are projected on the
+    midship section, i.e. they face a flow along body x. Given alone, the force acts along
+    the wind with that magnitude whatever the heading (the paper's use). With the lateral
+    areas too, body x sees ``R1(frontal) cos|cos|`` and body y ``R1(lateral) sin|sin|``.
+    """
+
+    superstructure_area: float
+    hull_area: float
+    superstructure_area_lateral: Optional[float] = None
+    hull_area_lateral: Optional[float] = None
+    centre: tuple = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class HuTangCurrent:
+    """Hu & Tang (2004) current resistance ``R2 = 0.01 f Omega v^1.83`` [kN], along the flow.
+
+    ``wetted_area`` is Omega [m^2], ``coefficient`` is f (0.18 in the paper).
+    """
+
+    wetted_area: float
+    coefficient: float = 0.18
+    centre: tuple = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class HuTangDrift:
+    """Hu & Tang (2004) wave drift ``R3 = 0.75 k rho g B (Hs/4)^2 cos(alpha) 1e-2`` [kN].
+
+    ``beam`` B [m] gives the drift along body x (``cos alpha`` with alpha the wave heading
+    relative to the bow); an optional ``length`` gives the beam-sea drift along body y the same
+    way with ``sin alpha``. ``k`` is the paper's coefficient (0.7).
+    """
+
+    beam: float
+    length: Optional[float] = None
+    k: float = 0.7
+    centre: tuple = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class DriftCoefficient:
+    """Mean wave drift in a general coefficient form.
+
+    ``Fx = rho g cx length_x (Hs/4)^2 cos(theta)`` and ``Fy = rho g cy length_y (Hs/4)^2
+    sin(theta)``: drift scales with the wave height squared (Hs/4 is the standard deviation
+    of the surface elevation; Hu & Tang write their formula with it) and with the waterline
+    breadth facing the waves.
+    """
+
+    length_x: float
+    length_y: float
+    cx: float = 1.0
+    cy: float = 1.0
+    centre: tuple = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class BodyLoads:
+    """The load models a body declares; each one present is simulated.
+
+    ``force`` is a constant [Fx N, Fy N, Mz N m] in the global frame.
+    """
+
+    force: Optional[tuple] = None
+    wind: Optional[object] = None        # DragLoad | HuTangWind
+    current: Optional[object] = None     # DragLoad | HuTangCurrent
+    wave_drift: Optional[object] = None  # HuTangDrift | DriftCoefficient
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid floating body moving in the horizontal plane.
+
+    ``free`` lists the solved degrees of freedom among surge, sway and yaw; the others are
+    held at their case-file value (zero offset).
+    """
+
+    free: tuple = DEGREES_OF_FREEDOM
+    loads: BodyLoads = field(default_factory=BodyLoads)
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Solver settings a case may carry; the CLI's ``--tol`` overrides ``tol``.
+
+    ``tol`` is the certified force residual relative to the largest line tension.
+    """
+
+    tol: float = 1e-9
+    max_iter: int = 200
+    max_time_s: float = 5.0
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    environment: Environment
+    line_types: dict
+    legs: tuple
+    body: Optional[Body] = None
+    solver: SolverOptions = field(default_factory=SolverOptions)

@@ -1,0 +1,354 @@
+"""One mooring leg: the elastic catenary with seabed contact, friction, uplift and slack.
+
+The leg lies in the vertical plane through its anchor (end A) and fairlead (end F). Given the
+spans ``X`` (horizontal) and ``Z`` (vertical, fairlead above anchor) it is described by two
+unknowns: a signed tension variable ``u`` and the vertical tension at the fairlead ``V``.
+``H = max(u, 0)`` is the horizontal tension; ``-u / w`` (when ``u < 0``) is the length of line
+lying loose on the seabed, so that ``H * loose = 0`` holds exactly and the slack state (H = 0:
+the line hangs straight down from the fairlead and the rest lies on the seabed) is one
+branch of a single continuous model instead of a case the solver must guess.
+
+Every regime of REFERENCE.md section 1 is selected inside the symbolic graph with
+``casadi.if_else``, never a Python ``if`` on a value, so one CasADi function serves every leg
+and every solve and evaluates on floats for post-processing.
+
+Seabed friction assumption
+--------------------------
+Coulomb friction with coefficient ``mu`` is taken *fully mobilised toward the anchor* on
+the whole grounded length (the line has been dragged taut, as after pretensioning): the
+tension on the seabed falls off as ``H - mu w s`` from the touchdown point, reaching the
+anchor as ``H_A = max(H - mu w L_B, 0)``. It changes the anchor load and the elastic
+stretch of the grounded part; an inextensible line's shape does not depend on it. The
+opposite "as laid" assumption (no friction relief) is ``mu = 0``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import casadi as ca
+import numpy as np
+
+#: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
+_H_FLOOR = 1e-9
+
+
+@dataclass(frozen=True)
+class LegKind:
+    """Which physics a leg needs: decided by the case at build time.
+
+    Attributes
+    ----------
+    elastic : bool
+        The line has an axial stiffness; otherwise the inextensible equations are built.
+    contact : bool
+        The line can rest on the seabed (sinking line, anchor on the seabed).
+    friction : bool
+        Seabed friction acts on the grounded length (needs ``contact``).
+    neutral : bool
+        Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
+    """
+
+    elastic: bool
+    contact: bool
+    friction: bool = False
+    neutral: bool = False
+
+    @property
+    def tag(self) -> str:
+        parts = ["elastic" if self.elastic else "inextensible"]
+        if self.neutral:
+            parts.append("neutral")
+        elif self.contact:
+            parts.append("contact")
+            if self.friction:
+                parts.append("friction")
+        else:
+            parts.append("suspended")
+        return "_".join(parts)
+
+
+def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
+    """Residuals and end forces of one leg, symbolic or numeric.
+
+    Parameters
+    ----------
+    kind : LegKind
+        Physics to build (a Python-level choice: structure, not values).
+    X, Z : float or casadi symbol
+        Horizontal and vertical span from anchor to fairlead [m].
+    u : float or casadi symbol
+        Signed tension variable [N]: ``H = max(u, 0)``; ``u < 0`` is slack.
+    V : float or casadi symbol
+        Vertical tension at the fairlead [N] (upward force the fairlead exerts on the line).
+    L : float or symbol
+        Unstretched length [m].
+    w : float or symbol
+        Submerged weight per unstretched length [N/m] (negative: buoyant).
+    ea_inv : float or symbol
+        Compliance 1/EA [1/N] (unused for inextensible kinds).
+    mu : float or symbol
+        Seabed friction coefficient [-] (unused without friction).
+
+    Returns
+    -------
+    dict
+        ``rX``, ``rZ``: span residuals [m] (zero at a solution); ``H`` horizontal tension
+        at the fairlead [N]; ``V`` vertical tension at the fairlead [N]; ``HA``, ``VA``
+        horizontal and vertical (upward pull, signed) force on the anchor [N];
+        ``grounded`` unstretched length on the seabed [m]; ``suspended_x`` horizontal
+        extent of the suspended part [m].
+
+    Notes
+    -----
+    REFERENCE.md section 1 (after Merkin 1980, seed 004, sections 2.1 and 2.3; Malacic,
+    seed 002). Suspended (``V_A = V - w L >= 0``)::
+
+        X = (H/w)[asinh(V/H) - asinh(V_A/H)] + H L/EA
+        Z = [sqrt(H^2+V^2) - sqrt(H^2+V_A^2)]/w + (L/EA)(V - w L/2)
+
+    Touchdown (``V_A < 0``), grounded length ``L_B = L - V/w``::
+
+        X = L_B + (H/w) asinh(V/H) + H L/EA + friction term
+        Z = sgn(V)[sqrt(H^2+V^2) - H]/w + V|V|/(2 EA w)
+
+    The ``sgn(V)`` form removes the mirrored false root at ``V = -w L_s`` that the even
+    textbook form has once ``H = 0`` is admitted.
+    """
+    H = ca.fmax(u, 0)
+    if kind.neutral:
+        return _neutral_equations(kind, X, Z, u, V, L, ea_inv)
+
+    Hg = ca.fmax(H, _H_FLOOR)
+    VA = V - w * L
+    stretch = H * L * ea_inv if kind.elastic else 0
+
+    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + stretch
+    Zs = (ca.sqrt(H**2 + V**2) - ca.sqrt(H**2 + VA**2)) / w
+    if kind.elastic:
+        Zs = Zs + L * ea_inv * (V - w * L / 2)
+
+    if not kind.contact:
+        # No seabed under the line: one catenary whatever the sign of V_A.
+        return dict(rX=Xs - X, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
+                    grounded=0 * H, suspended_x=Xs)
+
+    loose = ca.fmax(-u, 0) / w
+    LB = L - V / w
+    Xsusp_t = (H / w) * ca.asinh(V / Hg)
+    Xt = LB + Xsusp_t + stretch
+    Zt = ca.sign(V) * (ca.sqrt(H**2 + V**2) - H) / w
+    if kind.elastic:
+        Zt = Zt + ea_inv * V * ca.fabs(V) / (2 * w)
+        Xsusp_t = Xsusp_t + H * (V / w) * ea_inv
+    if kind.friction:
+        # Tension decays by mu*w per metre along the grounded length, from H at touchdown.
+        # Where it would reach zero before the anchor (L_B > H/(mu w)) the rest is unloaded.
+        excess = LB - H / (mu * w)
+        if kind.elastic:
+            Xt = Xt + (mu * w * ea_inv / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
+        HA_t = ca.fmax(H - mu * w * LB, 0)
+    else:
+        HA_t = H
+
+    suspended = VA >= 0
+    Xc = ca.if_else(suspended, Xs, Xt)
+    Zc = ca.if_else(suspended, Zs, Zt)
+    return dict(
+        rX=Xc - X - loose,
+        rZ=Zc - Z,
+        H=H,
+        VF=V,
+        HA=ca.if_else(suspended, H, HA_t),
+        VA=ca.fmax(VA, 0),
+        grounded=ca.if_else(suspended, 0, LB),
+        suspended_x=ca.if_else(suspended, Xs, Xsusp_t),
+    )
+
+
+def _neutral_equations(kind, X, Z, u, V, L, ea_inv):
+    """A weightless line: straight at tension T = max(u, 0) when taut, loose otherwise.
+
+    The chord must equal the stretched length while taut; ``-u`` [N] measures, at one metre
+    per newton, how much longer than the chord a loose line is.
+    """
+    T = ca.fmax(u, 0)
+    D = ca.sqrt(X**2 + Z**2)
+    stretched = L * (1 + T * ea_inv) if kind.elastic else L
+    loose = ca.fmax(-u, 0)
+    H = T * X / ca.fmax(D, _H_FLOOR)
+    return dict(rX=stretched - loose - D, rZ=V * D - T * Z, H=H, VF=V, HA=H, VA=V,
+                grounded=0 * T, suspended_x=X)
+
+
+LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
+LEG_INPUTS = ("X", "Z", "u", "V", "L", "w", "ea_inv", "mu")
+
+
+@lru_cache(maxsize=None)
+def leg_function(kind: LegKind) -> ca.Function:
+    """The leg block for ``kind`` as one ``casadi.Function``, built once and reused.
+
+    Inputs ``(X, Z, u, V, L, w, ea_inv, mu)``, outputs ``LEG_OUTPUTS``; see
+    :func:`leg_equations`. Call it on SX/MX symbols to embed it, or on floats.
+    """
+    args = [ca.SX.sym(n) for n in LEG_INPUTS]
+    out = leg_equations(kind, *args)
+    return ca.Function(f"leg_{kind.tag}", args, [out[k] for k in LEG_OUTPUTS],
+                       list(LEG_INPUTS), list(LEG_OUTPUTS))
+
+
+def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0) -> dict:
+    """Evaluate the leg block on floats; returns a dict of floats (``LEG_OUTPUTS``)."""
+    vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu)
+    return {k: float(v) for k, v in zip(LEG_OUTPUTS, vals)}
+
+
+# ---- starting point of a leg (floats) ---------------------------------------------------
+
+
+def _bisect(f, lo, hi, iters=200):
+    """Root of an increasing function on [lo, hi] by bisection in log space."""
+    flo = f(lo)
+    if flo > 0:
+        return lo
+    for _ in range(iters):
+        mid = np.sqrt(lo * hi)
+        if f(mid) > 0:
+            hi = mid
+        else:
+            lo = mid
+        if hi / lo < 1 + 1e-10:
+            break
+    return np.sqrt(lo * hi)
+
+
+def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
+                  ea: float | None) -> tuple[float, float]:
+    """A starting ``(u, V)`` for one leg from the inextensible closed forms.
+
+    Slack when the line is long enough to hang straight down and reach the anchor along the
+    seabed; touchdown when a grounded length remains; suspended otherwise; a straight
+    stretched line when the chord exceeds the length.
+    """
+    D = float(np.hypot(X, Z))
+    if kind.neutral:
+        if D >= L and ea:
+            return ea * (D / L - 1), 0.0
+        return -(L - D), 0.0
+    aw = abs(w)
+    if D >= L * (1 - 1e-9):
+        # Taut: straight stretched line carrying half its weight at each end.
+        T = (ea * (D / L - 1) if ea else 0.0) + aw * L
+        return T * X / max(D, 1e-12), T * Z / max(D, 1e-12) + w * L / 2
+    if kind.contact and X <= L - Z:
+        return -w * (L - Z - X), w * Z
+    if kind.contact:
+        # Touchdown: find H with L_B + suspended span = X, while the suspended part fits in L.
+        def span(H):
+            Ls = np.sqrt(Z**2 + 2 * Z * H / w)
+            return L - Ls + (H / w) * np.arcsinh(w * Ls / H) - X
+        H_max = w * (L**2 - Z**2) / (2 * Z)
+        if span(H_max) >= 0:
+            H = _bisect(span, 1e-9 * w * L, H_max)
+            return H, w * np.sqrt(Z**2 + 2 * Z * H / w)
+    # Suspended: sqrt(L^2 - Z^2) = 2 (H/|w|) sinh(|w| X / (2 H)) for the chord's sag.
+    target = np.sqrt(max(L**2 - Z**2, 0.0))
+    if X <= 0:
+        return 0.0, w * L if w > 0 else 0.0
+
+    def chord(H):
+        return target - 2 * (H / aw) * np.sinh(min(aw * X / (2 * H), 700))
+    H = _bisect(chord, 1e-12 * aw * L + 1e-12, 1e3 * aw * L + aw * X)
+    V = (w / 2) * (Z / np.tanh(w * X / (2 * H)) + L)
+    return H, V
+
+
+# ---- profile along the line (floats) ----------------------------------------------------
+
+
+def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
+                ea: float | None, mu: float, X: float, n: int = 101) -> dict:
+    """Points and tension along a solved leg, in its vertical plane, from the anchor.
+
+    Parameters
+    ----------
+    kind : LegKind
+    H, V : float
+        Horizontal and vertical tension at the fairlead [N] (the solved state).
+    L, w, ea, mu : float
+        Length [m], submerged weight [N/m], stiffness [N] (None: inextensible), friction.
+    X : float
+        Horizontal span [m] (fixes where a slack line's loose part ends).
+    n : int
+        Number of points.
+
+    Returns
+    -------
+    dict of numpy arrays
+        ``s`` unstretched arc length from the anchor [m], ``x`` horizontal distance from the
+        anchor [m], ``z`` height above the anchor [m], ``tension`` effective tension [N].
+
+    Notes
+    -----
+    With ``T_v(s)`` the vertical tension at arc length s, the suspended part follows
+    ``x = (H/w)[asinh(T_v/H) - asinh(T_v0/H)] + H s/EA`` and
+    ``z = [sqrt(H^2+T_v^2) - sqrt(H^2+T_v0^2)]/w + (T_v0 s + w s^2/2)/EA``
+    (Merkin 1980, seed 004, section 2.3, integrated from the lowest suspended point).
+    """
+    c = 1.0 / ea if ea else 0.0
+    s = np.linspace(0.0, L, n)
+    if kind.neutral:
+        D = np.hypot(X, 0.0)
+        T = np.full_like(s, np.hypot(H, V))
+        frac = s / L
+        theta = np.arctan2(V, H) if (H > 0 or V != 0) else np.pi / 2
+        stretched = L * (1 + T[0] * c)
+        return dict(s=s, x=frac * stretched * np.cos(theta), z=frac * stretched * np.sin(theta),
+                    tension=T)
+    VA = V - w * L
+    if not kind.contact or VA >= 0:
+        Tv = VA + w * s
+        if H > 0:
+            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
+            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+        else:
+            x = np.zeros_like(s)
+            z = (np.abs(Tv) - abs(VA)) / w * np.sign(Tv) + (VA * s + w * s**2 / 2) * c
+        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+    LB = L - V / w
+    grounded = s <= LB
+    Tv = np.where(grounded, 0.0, w * (s - LB))
+    sg = np.minimum(s, LB)
+    # Tension on the seabed: H at touchdown, decaying by friction toward the anchor.
+    Tg = np.maximum(H - mu * w * (LB - sg), 0.0) if mu > 0 else np.full_like(s, H)
+    if H > 0:
+        stretch_g = _grounded_stretch(H, w, mu, LB, sg, c)
+        x_td = sg + stretch_g
+        xs = (H / w) * np.arcsinh(Tv / H) + H * (s - sg) * c
+        zs = (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
+        x_touch = LB + _grounded_stretch(H, w, mu, LB, np.array([LB]), c)[0]
+        x = np.where(grounded, x_td, x_touch + xs)
+        z = np.where(grounded, 0.0, zs)
+        tension = np.where(grounded, Tg, np.hypot(H, Tv))
+    else:
+        # Slack: the hanging part is vertical under the fairlead, the rest lies loose
+        # (buckled) between anchor and the fairlead's foot: shown straight along the seabed.
+        x = np.where(grounded, np.minimum(sg, X), X)
+        z = np.where(grounded, 0.0, Tv / w + Tv**2 / (2 * w) * c)
+        tension = np.where(grounded, 0.0, Tv)
+    return dict(s=s, x=x, z=z, tension=tension)
+
+
+def _grounded_stretch(H, w, mu, LB, sg, c):
+    """Elastic stretch accumulated from the anchor to arc length ``sg`` on the seabed."""
+    if c == 0:
+        return np.zeros_like(sg)
+    if mu <= 0:
+        return H * sg * c
+    # T(s) = max(H - mu w (LB - s), 0); integrate T/EA from 0 to sg.
+    s0 = max(LB - H / (mu * w), 0.0)            # where the tension starts to rise
+    a = np.clip(sg, s0, None)
+    integral = np.where(sg > s0, (H - mu * w * LB) * (a - s0) + mu * w * (a**2 - s0**2) / 2, 0.0)
+    return integral * c

@@ -1,0 +1,104 @@
+"""Plan and elevation views of an equilibrium; the only module that imports matplotlib."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .solve.result import Result
+
+
+def _tension_colour(leg, t_max):
+    import matplotlib.pyplot as plt
+    return plt.get_cmap("viridis")(leg.fairlead_tension_N / t_max if t_max > 0 else 0.0)
+
+
+def plot_plan(result: Result, ax=None):
+    """Plan view: legs coloured by fairlead tension, anchors, touchdown points, body.
+
+    Returns the Axes.
+    """
+    import matplotlib.pyplot as plt
+    if ax is None:
+        _, ax = plt.subplots()
+    t_max = max((leg.fairlead_tension_N for leg in result.legs), default=0.0)
+    for leg in result.legs:
+        p = leg.profile
+        colour = _tension_colour(leg, t_max)
+        ax.plot(p["x_m"], p["y_m"], color=colour, lw=1.5, ls=":" if leg.slack else "-")
+        ax.plot(*leg.anchor[:2], marker="v", color="k", ms=5)
+        if leg.touchdown_point is not None:
+            ax.plot(*leg.touchdown_point[:2], marker="o", mfc="none", color=colour, ms=4)
+        ax.annotate(f"{leg.name}\n{leg.fairlead_tension_N / 1e3:.0f} kN", leg.anchor[:2],
+                    fontsize=7, ha="center", va="top", xytext=(0, -6),
+                    textcoords="offset points")
+    fair = np.array([leg.fairlead[:2] for leg in result.legs])
+    if result.body is not None and len(fair) > 2:
+        ax.fill(*_hull(fair).T, color="0.8", alpha=0.6, zorder=0)
+    ax.plot(fair[:, 0], fair[:, 1], "s", color="k", ms=3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    title = "plan"
+    if result.body is not None:
+        b = result.body
+        title += (f": offset ({b['x_m']:.2f}, {b['y_m']:.2f}) m, yaw {b['yaw_deg']:.3f} deg")
+    ax.set_title(title, fontsize=9)
+    sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(0, t_max / 1e3))
+    ax.figure.colorbar(sm, ax=ax, label="fairlead tension [kN]", shrink=0.8)
+    return ax
+
+
+def plot_elevation(result: Result, ax=None, depth: float | None = None):
+    """Elevation: each leg's profile against horizontal distance from its anchor.
+
+    Returns the Axes.
+    """
+    import matplotlib.pyplot as plt
+    if ax is None:
+        _, ax = plt.subplots()
+    t_max = max((leg.fairlead_tension_N for leg in result.legs), default=0.0)
+    for leg in result.legs:
+        p = leg.profile
+        dist = np.hypot(p["x_m"] - leg.anchor[0], p["y_m"] - leg.anchor[1])
+        ax.plot(dist, p["z_m"], color=_tension_colour(leg, t_max), lw=1.2,
+                label=f"{leg.name} {leg.fairlead_tension_N / 1e3:.0f} kN")
+    if depth is not None:
+        ax.axhline(-depth, color="saddlebrown", lw=1)
+    ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
+    ax.set_xlabel("distance from anchor [m]")
+    ax.set_ylabel("z [m]")
+    ax.set_title("elevation (each leg in its own vertical plane)", fontsize=9)
+    ax.legend(fontsize=6, ncol=2, loc="upper left")
+    return ax
+
+
+def plot_equilibrium(result: Result, depth: float | None = None):
+    """A figure with the plan and elevation views; returns the Figure."""
+    import matplotlib.pyplot as plt
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(13, 5.5),
+                                 gridspec_kw={"width_ratios": [1.2, 1]})
+    plot_plan(result, a1)
+    plot_elevation(result, a2, depth=depth)
+    fig.suptitle(result.case_name or "equilibrium")
+    fig.tight_layout()
+    return fig
+
+
+def _hull(points: np.ndarray) -> np.ndarray:
+    """Convex hull of 2-D points (monotone chain), to outline the body."""
+    pts = sorted(map(tuple, points))
+    if len(pts) < 3:
+        return np.array(pts)
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    lower, upper = [], []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return np.array(lower[:-1] + upper[:-1])

@@ -1,0 +1,349 @@
+"""Run the equilibrium solve, certify it, and turn it into a :class:`Result`.
+
+Strategy, from REFERENCE.md section 1's measured pitfalls:
+
+1. Start every leg from its inextensible closed-form state at the case-file position and
+   solve the unloaded (pretensioned rest) state first; a start with all legs slack would
+   give a singular Jacobian, and the rest state keeps the body on the right equilibrium
+   branch (not yawed round with lines crossing under the hull).
+2. Solve the loaded state from the rest state with IPOPT.
+3. If that fails, step the load up from rest in increments, warm-starting each step.
+4. Polish with a few Newton steps on the same residuals (the problem is square), then
+   recompute the residuals from the solution and certify them against the tolerance.
+
+A point that is not certified raises :class:`ConvergenceError` with the physical reason
+found by :func:`_diagnose` and the best residual reached.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from collections import OrderedDict
+
+import numpy as np
+
+from ..errors import ConvergenceError
+from ..model import Case
+from ..physics.catenary import initial_state, leg_profile
+from ..physics.wall_tension import wall_tension
+from .problem import (LEG_PARAMS, EquilibriumProblem, environment_parameters, leg_kind,
+                      leg_parameters, structure_key)
+from .result import Certificate, LegResult, Result
+
+log = logging.getLogger(__name__)
+
+_PROBLEMS: "OrderedDict[tuple, EquilibriumProblem]" = OrderedDict()
+_MAX_CACHED = 32
+_LOAD_STEPS = (0.25, 0.5, 0.75, 1.0)
+_POLISH_STEPS = 8
+_PROFILE_POINTS = 51
+
+
+def get_problem(case: Case) -> EquilibriumProblem:
+    """The built problem for ``case``'s structure, built on first use and cached."""
+    key = structure_key(case)
+    problem = _PROBLEMS.get(key)
+    if problem is None:
+        force_scale, length_scale = _scales(case)
+        problem = EquilibriumProblem(case, force_scale, length_scale)
+        _PROBLEMS[key] = problem
+        if len(_PROBLEMS) > _MAX_CACHED:
+            _PROBLEMS.popitem(last=False)
+    else:
+        _PROBLEMS.move_to_end(key)
+    return problem
+
+
+def _scales(case: Case) -> tuple[float, float]:
+    """Typical tension [N] and length [m] of the scene, for scaling the unknowns."""
+    tensions = [abs(leg.line_type.weight_in_water) * leg.length for leg in case.legs]
+    for leg, (u, V) in zip(case.legs, _rest_leg_states(case)):
+        tensions.append(math.hypot(max(u, 0.0), V))
+    force = max(max(tensions, default=1.0), 1.0)
+    return force, max(case.environment.depth, 1.0)
+
+
+def _rest_leg_states(case: Case, q=(0.0, 0.0, 0.0)):
+    """Closed-form starting ``(u, V)`` of every leg with the body at offset ``q``."""
+    states = []
+    c, s = math.cos(q[2]), math.sin(q[2])
+    for leg in case.legs:
+        fx, fy, fz = leg.fairlead
+        if case.body is not None:
+            fx, fy = q[0] + c * fx - s * fy, q[1] + s * fx + c * fy
+        X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
+        Z = fz - leg.anchor[2]
+        lt = leg.line_type
+        states.append(initial_state(leg_kind(case, leg), X, Z, leg.length,
+                                    lt.weight_in_water, lt.ea))
+    return states
+
+
+def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
+    """Scaled starting vector: body at rest, legs in their closed-form states."""
+    x = np.zeros(problem.n_x)
+    for i, (u, V) in enumerate(_rest_leg_states(case)):
+        x[problem.n_q + 2 * i] = u
+        x[problem.n_q + 2 * i + 1] = V
+    return x / problem.x_scale
+
+
+def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
+          start: np.ndarray | None = None) -> Result:
+    """Static equilibrium of ``case``, certified.
+
+    Parameters
+    ----------
+    case : Case
+        From :func:`moorsolve.load_case`.
+    tol : float, optional
+        Largest force residual allowed, relative to the largest line tension; defaults to
+        the case's ``solver.tol`` (1e-9).
+    allow_overload : bool
+        Return an equilibrium in which a line exceeds its minimum breaking load instead of
+        raising ConvergenceError (for damaged-condition checks that must report it).
+    start : numpy.ndarray, optional
+        A previous ``Result.state`` of the same scene structure to warm-start from.
+
+    Returns
+    -------
+    Result
+
+    Raises
+    ------
+    ConvergenceError
+        No certified equilibrium; carries the physical reason and the best residual.
+    """
+    opts = case.solver
+    tol = opts.tol if tol is None else tol
+    problem = get_problem(case)
+    p_legs = leg_parameters(case)
+    p_full = np.concatenate([environment_parameters(case, 1.0), p_legs])
+    t0 = time.perf_counter()
+    deadline = t0 + opts.max_time_s
+    # IPOPT's own tolerance is on the scaled residual; the polish and certificate below
+    # decide acceptance, so IPOPT only needs to get close.
+    ipopt_tol = max(min(tol, 1e-8), 1e-12)
+    lb, ub = problem.bounds()
+    stats = dict(iterations=0, status="not run")
+
+    def run(x0, p):
+        remaining = deadline - time.perf_counter()
+        if remaining <= 0:
+            return x0, False
+        solver = problem.ipopt(ipopt_tol, opts.max_iter, max(remaining, 1e-3))
+        sol = solver(x0=x0, p=p, lbx=lb, ubx=ub, lbg=0, ubg=0)
+        st = solver.stats()
+        stats["iterations"] += int(st.get("iter_count", 0))
+        stats["status"] = st.get("return_status", "unknown")
+        x = np.asarray(sol["x"]).ravel()
+        x = _polish(problem, x, p, lb, ub, stats)
+        return x, _certify(problem, x, p, tol)[0]
+
+    if start is not None and np.shape(start) == (problem.n_x,):
+        x, ok = run(np.asarray(start, float), p_full)
+    else:
+        ok = False
+        x = initial_point(problem, case)
+    if not ok:
+        if problem.n_q and problem.load_names:
+            p_rest = np.concatenate([environment_parameters(case, 0.0), p_legs])
+            x, _ = run(x, p_rest)
+        x, ok = run(x, p_full)
+    if not ok:
+        # Load stepping from rest: each step starts from the last certified state.
+        x_step = x if np.all(np.isfinite(x)) else initial_point(problem, case)
+        for factor in _LOAD_STEPS:
+            p_step = np.concatenate([environment_parameters(case, factor), p_legs])
+            x_try, ok = run(x_step, p_step)
+            if not ok:
+                break
+            x_step = x_try
+        x = x_step if ok else x_try
+
+    elapsed = time.perf_counter() - t0
+    certified, force_res, moment_res, relative = _certify(problem, x, p_full, tol)
+    cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
+                       tolerance=tol, status=stats["status"],
+                       iterations=stats["iterations"], solve_time_s=elapsed)
+    result = _build_result(problem, case, x, p_full, cert, certified)
+    if not certified:
+        raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
+                               residual_Nm=moment_res, status=stats["status"],
+                               iterations=stats["iterations"], result=result)
+    broken = _over_mbl(result)
+    if broken and not allow_overload:
+        raise ConvergenceError(
+            "overload: " + "; ".join(broken) + " (the mooring cannot hold this load; "
+            "pass allow_overload=True to inspect the equilibrium anyway)",
+            residual_N=force_res, residual_Nm=moment_res, status=stats["status"],
+            iterations=stats["iterations"], result=result)
+    return result
+
+
+# ---- polish and certificate -----------------------------------------------------------
+
+
+def _polish(problem, x, p, lb, ub, stats):
+    """Newton steps on the square residual system, kept only while they reduce it."""
+    if not np.all(np.isfinite(x)):
+        return x
+    g = np.asarray(problem.residual(x, p)).ravel()
+    norm = np.max(np.abs(g)) if g.size else 0.0
+    for _ in range(_POLISH_STEPS):
+        if norm < 1e-15:
+            break
+        J = np.asarray(problem.jacobian(x, p))
+        try:
+            step = np.linalg.solve(J, g)
+        except np.linalg.LinAlgError:
+            break
+        improved = False
+        alpha = 1.0
+        for _ in range(6):
+            x_new = np.clip(x - alpha * step, lb, ub)
+            g_new = np.asarray(problem.residual(x_new, p)).ravel()
+            n_new = np.max(np.abs(g_new))
+            if np.isfinite(n_new) and n_new < norm:
+                x, g, norm, improved = x_new, g_new, n_new, True
+                break
+            alpha *= 0.5
+        stats["iterations"] += 1
+        if not improved:
+            break
+    return x
+
+
+def _certify(problem, x, p, tol):
+    """Largest unbalanced force and moment, recomputed from the solution.
+
+    A leg's span residual (metres) is turned into the fairlead force that would close it
+    with the leg's own 2x2 stiffness (one Newton step of that leg alone), so a mismatch in
+    any leg shows up as force, the quantity engineers check.
+    """
+    if not np.all(np.isfinite(x)):
+        return False, math.inf, math.inf, math.inf
+    legs, unbalanced, _, _ = (np.asarray(v) for v in problem.report(x, p))
+    unbalanced = unbalanced.ravel()
+    forces, moment = [0.0], 0.0
+    for d, value in zip(("surge", "sway", "yaw"), unbalanced):
+        if d in problem.free:
+            if d == "yaw":
+                moment = abs(value)
+            else:
+                forces.append(abs(value))
+    t_max = 0.0
+    for row in np.atleast_2d(legs) if problem.n_legs else []:
+        H, VF, HA, VA = row[0:4]
+        t_max = max(t_max, math.hypot(H, VF), math.hypot(HA, VA))
+        J = row[14:18].reshape(2, 2, order="F")
+        e = row[6:8]
+        try:
+            delta = np.linalg.solve(J, e)
+            forces.append(float(np.hypot(*delta)))
+        except np.linalg.LinAlgError:
+            forces.append(math.inf if np.any(e != 0) else 0.0)
+    force = max(forces)
+    scale = t_max if t_max > 0 else problem.force_scale
+    relative = force / scale
+    moment_ok = moment <= tol * scale * problem.moment_scale / problem.force_scale
+    ok = bool(np.isfinite(relative) and relative <= tol and moment_ok)
+    return ok, float(force), float(moment), float(relative)
+
+
+def _over_mbl(result: Result) -> list[str]:
+    out = []
+    for leg in result.legs:
+        u = leg.utilisation
+        if u is not None and u > 1.0:
+            out.append(f"leg {leg.name} would break: tension "
+                       f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
+                       f"> MBL {leg.mbl_N / 1e3:.1f} kN")
+    return out
+
+
+def _diagnose(problem, case, result) -> str:
+    """The physical reason an equilibrium was not found, at the best point reached."""
+    reasons = []
+    for leg, lr in zip(case.legs, result.legs):
+        lt = leg.line_type
+        chord = math.dist(lr.anchor, lr.fairlead)
+        if lt.ea is None and chord > leg.length * (1 + 1e-9):
+            reasons.append(f"leg {leg.name} cannot reach: anchor-fairlead distance "
+                           f"{chord:.2f} m exceeds its inextensible length {leg.length:.2f} m")
+    reasons += _over_mbl(result)
+    if result.body is not None and problem.load_names:
+        total = np.sum([v[:2] for v in result.loads.values()], axis=0)
+        if np.hypot(*total) > 0:
+            heading = math.degrees(math.atan2(total[1], total[0]))
+            reasons.append(f"the legs could not balance the body load of "
+                           f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
+                           f"(the lines may be too weak, too short or all on one side)")
+    if not reasons:
+        reasons.append(f"the solver stopped with status {result.certificate.status}")
+    return "; ".join(reasons)
+
+
+# ---- result -----------------------------------------------------------------------------
+
+
+def _build_result(problem, case, x, p, cert, certified) -> Result:
+    x = np.where(np.isfinite(x), x, 0.0)
+    legs_out, _, load_total, load_vec = (np.asarray(v) for v in problem.report(x, p))
+    xp = x * problem.x_scale
+    q = dict.fromkeys(("surge", "sway", "yaw"), 0.0)
+    for i, d in enumerate(problem.free):
+        q[d] = float(xp[i])
+    env = case.environment
+    legs = []
+    n_par = len(LEG_PARAMS)
+    for i, (leg, kind) in enumerate(zip(case.legs, problem.kinds)):
+        row = np.atleast_2d(legs_out)[i]
+        H, VF, HA, VA, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
+        lt = leg.line_type
+        u = float(xp[problem.n_q + 2 * i])
+        anchor = tuple(float(v) for v in p[10 + i * n_par: 10 + i * n_par + 3])
+        fairlead = (gx, gy, leg.fairlead[2])
+        ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
+        td = max(X - susp_x, 0.0) if grounded > 0 else 0.0
+        prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
+                           mu=env.seabed.friction if kind.friction else 0.0, X=X,
+                           n=_PROFILE_POINTS)
+        profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
+                   "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
+        if lt.sealed and lt.diameter:
+            depth_below = np.maximum(-profile["z_m"], 0.0)
+            tw = wall_tension(prof["tension"], depth_below, lt.diameter, env.water_density,
+                              env.gravity)
+            profile["wall_tension_N"] = tw
+            profile["compression"] = bool(np.any(tw < 0))
+        uplift = VA > 0 and not (kind.contact and grounded > 0)
+        legs.append(LegResult(
+            name=leg.name,
+            fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+            fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
+            anchor_horizontal_N=HA, anchor_vertical_N=VA,
+            grounded_length_m=grounded, touchdown_from_anchor_m=td,
+            uplift=bool(uplift), slack=bool(u <= 0.0),
+            uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+            fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+            anchor=anchor, fairlead=fairlead,
+            touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2])
+                             if grounded > 0 else None),
+            mbl_N=lt.mbl, profile=profile))
+    body = None
+    if case.body is not None:
+        body = {"x_m": q["surge"], "y_m": q["sway"], "yaw_deg": math.degrees(q["yaw"])}
+    loads = {}
+    lv = np.asarray(load_vec).ravel()
+    for k, name in enumerate(problem.load_names):
+        loads[name] = [float(v) for v in lv[3 * k: 3 * k + 3]]
+    notes = [f"leg {lr.name}: the line passes below the seabed (contact not modelled "
+             f"for an anchor above the seabed or a buoyant line)"
+             for lr, kind in zip(legs, problem.kinds)
+             if not kind.contact and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+    return Result(converged=certified, solver="ipopt", certificate=cert,
+                  effects=list(problem.effects), body=body, legs=legs, loads=loads,
+                  case_name=case.name, state=x.copy(), notes=tuple(notes))

@@ -1,0 +1,168 @@
+"""The outcome of a solve: the equilibrium, every leg's state and the certificate."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """Evidence that the forces balance, recomputed from the solution itself.
+
+    Attributes
+    ----------
+    force_N : float
+        Largest unbalanced force [N]: on a free body degree of freedom, or at a fairlead,
+        where a leg's span mismatch is converted to the force that would close it.
+    moment_Nm : float
+        Largest unbalanced yaw moment [N m] (0 when yaw is not solved).
+    relative : float
+        ``force_N`` divided by the largest line tension.
+    tolerance : float
+        The relative residual the solve had to reach.
+    status : str
+        IPOPT's return status of the last solve.
+    iterations : int
+        IPOPT iterations over all stages (rest state, load steps), plus Newton polish steps.
+    solve_time_s : float
+        Wall time of the solve, building excluded [s].
+    """
+
+    force_N: float
+    moment_Nm: float
+    relative: float
+    tolerance: float
+    status: str
+    iterations: int
+    solve_time_s: float
+
+    @property
+    def certified(self) -> bool:
+        return bool(np.isfinite(self.relative) and self.relative <= self.tolerance)
+
+
+@dataclass(frozen=True)
+class LegResult:
+    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md."""
+
+    name: str
+    fairlead_tension_N: float
+    horizontal_tension_N: float
+    fairlead_vertical_N: float
+    anchor_tension_N: float
+    anchor_horizontal_N: float
+    anchor_vertical_N: float
+    grounded_length_m: float
+    touchdown_from_anchor_m: float
+    uplift: bool
+    slack: bool
+    uplift_angle_deg: float
+    fairlead_angle_deg: float
+    anchor: tuple
+    fairlead: tuple
+    touchdown_point: Optional[tuple]
+    mbl_N: Optional[float]
+    profile: dict = field(repr=False)
+
+    @property
+    def utilisation(self) -> Optional[float]:
+        """Largest tension over the minimum breaking load, when the MBL is known."""
+        if not self.mbl_N:
+            return None
+        return max(self.fairlead_tension_N, self.anchor_tension_N) / self.mbl_N
+
+    def to_dict(self, profile: bool = True) -> dict:
+        d = {
+            "name": self.name,
+            "fairlead_tension_N": self.fairlead_tension_N,
+            "horizontal_tension_N": self.horizontal_tension_N,
+            "fairlead_vertical_N": self.fairlead_vertical_N,
+            "anchor_tension_N": self.anchor_tension_N,
+            "anchor_horizontal_N": self.anchor_horizontal_N,
+            "anchor_vertical_N": self.anchor_vertical_N,
+            "grounded_length_m": self.grounded_length_m,
+            "touchdown_from_anchor_m": self.touchdown_from_anchor_m,
+            "uplift": self.uplift,
+            "slack": self.slack,
+            "uplift_angle_deg": self.uplift_angle_deg,
+            "fairlead_angle_deg": self.fairlead_angle_deg,
+            "anchor_m": list(self.anchor),
+            "fairlead_m": list(self.fairlead),
+            "touchdown_point_m": None if self.touchdown_point is None
+            else list(self.touchdown_point),
+            "mbl_N": self.mbl_N,
+            "utilisation": self.utilisation,
+        }
+        if profile:
+            d["profile"] = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
+                            for k, v in self.profile.items()}
+        return d
+
+
+@dataclass(frozen=True)
+class Result:
+    """A certified equilibrium.
+
+    Attributes
+    ----------
+    converged : bool
+    solver : str
+    certificate : Certificate
+    effects : list of str
+        The physical effects the problem simulated.
+    body : dict or None
+        ``x_m``, ``y_m`` displacement of the body origin and ``yaw_deg``; None without body.
+    legs : list of LegResult
+    loads : dict
+        Each simulated body load, ``name -> [Fx N, Fy N, Mz N m]`` in the global frame.
+    case_name : str
+    state : numpy.ndarray
+        The solution vector (scaled), for warm starts.
+    """
+
+    converged: bool
+    solver: str
+    certificate: Certificate
+    effects: list
+    body: Optional[dict]
+    legs: list
+    loads: dict
+    case_name: str = ""
+    state: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
+    notes: tuple = ()
+
+    @property
+    def iterations(self) -> int:
+        return self.certificate.iterations
+
+    @property
+    def solve_time_s(self) -> float:
+        return self.certificate.solve_time_s
+
+    def leg(self, name: str) -> LegResult:
+        for leg in self.legs:
+            if leg.name == name:
+                return leg
+        raise KeyError(name)
+
+    def to_dict(self, profiles: bool = True) -> dict:
+        """The result as JSON-ready data (CONTRACT.md "Result"), plus extensions."""
+        c = self.certificate
+        return {
+            "converged": self.converged,
+            "solver": self.solver,
+            "iterations": c.iterations,
+            "solve_time_s": c.solve_time_s,
+            "residual": {"force_N": c.force_N, "moment_Nm": c.moment_Nm,
+                         "relative": c.relative, "tolerance": c.tolerance,
+                         "status": c.status},
+            "effects": list(self.effects),
+            "body": None if self.body is None else dict(self.body),
+            "legs": [leg.to_dict(profile=profiles) for leg in self.legs],
+            "loads": {k: list(v) for k, v in self.loads.items()},
+            "notes": list(self.notes),
+            "case": self.case_name,
+        }
