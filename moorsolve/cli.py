@@ -66,8 +66,14 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_NO_EQUILIBRIUM
     if args.command == "solve":
         from .io.results import format_table, to_json
-        print(to_json(result, profiles=not args.no_profiles) if args.json
-              else format_table(result))
+        text = to_json(result, profiles=not args.no_profiles) if args.json \
+            else format_table(result)
+        try:
+            print(text)
+            sys.stdout.flush()
+        except BrokenPipeError:
+            # The reader (e.g. `| head`) closed the pipe: not an error of ours.
+            sys.stdout = None
         return EXIT_OK
     return _write_plot(result, case, args.output)
 

@@ -39,7 +39,6 @@ from __future__ import annotations
 import math
 import numbers
 import re
-import reprlib
 from collections.abc import Mapping
 from os import PathLike
 from pathlib import Path
@@ -66,34 +65,24 @@ from ..model import (
     SolverOptions,
     Waves,
 )
-from .units import describe, format_si, to_si, weight_per_length_to_si
+from .units import describe, format_si, show_value, to_si, weight_per_length_to_si
 
 __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
 
 #: Highest fairlead allowed [m above still water]; catches a unit slip (mm for m) early.
 FAIRLEAD_Z_MAX = 1000.0
+#: The deepest ocean is under 11 km; a larger depth is a unit mistake.
+MAX_DEPTH = 12_000.0
+#: Longer than any mooring line ever laid: a unit mistake.
+MAX_LINE_LENGTH = 100_000.0
 
 #: Largest ``solver.max_iter``: IPOPT takes it as a C int.
 MAX_ITER_LIMIT = 2**31 - 1
 
 _IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
-_REPR = reprlib.Repr()
-_REPR.maxstring = 60
-_REPR.maxother = 60
-_REPR.maxlist = 6
-_REPR.maxdict = 6
-
 
 # ---- small helpers ----------------------------------------------------------------------
-
-
-def _show(raw) -> str:
-    """A short, never-failing repr of a user value for error messages."""
-    try:
-        return _REPR.repr(raw)
-    except Exception:  # a user object with a broken __repr__ must not escape as itself
-        return f"<{type(raw).__name__}>"
 
 
 def _join(path: str, key) -> str:
@@ -102,7 +91,7 @@ def _join(path: str, key) -> str:
         return f"{path}[{key}]"
     if isinstance(key, str) and _IDENTIFIER.match(key):
         return f"{path}.{key}" if path else key
-    return f"{path}[{_show(key)}]"
+    return f"{path}[{show_value(key)}]"
 
 
 def _mapping(raw, path: str, required=(), optional=()) -> dict:
@@ -110,11 +99,11 @@ def _mapping(raw, path: str, required=(), optional=()) -> dict:
     allowed = tuple(required) + tuple(optional)
     where = path or "the case"
     if not isinstance(raw, Mapping):
-        raise CaseError(path, f"{_show(raw)} is not a mapping; {where} takes the keys "
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; {where} takes the keys "
                               f"{', '.join(allowed)}")
     for key in raw:
         if not isinstance(key, str):
-            raise CaseError(path, f"key {_show(key)} is not a string; allowed keys: "
+            raise CaseError(path, f"key {show_value(key)} is not a string; allowed keys: "
                                   f"{', '.join(allowed)}")
         if key not in allowed:
             raise CaseError(_join(path, key), f"unknown key {key!r} in {where}; allowed keys: "
@@ -129,7 +118,7 @@ def _sequence(raw, path: str, what: str) -> list:
     """Check that ``raw`` is a list (or tuple) and return it as a list."""
     if isinstance(raw, (list, tuple)):
         return list(raw)
-    raise CaseError(path, f"{_show(raw)} is not a list; {path or 'this'} must be {what}")
+    raise CaseError(path, f"{show_value(raw)} is not a list; {path or 'this'} must be {what}")
 
 
 def _check_bounds(raw, value: float, kind: str, path: str, *, gt=None, ge=None, lt=None,
@@ -169,7 +158,7 @@ def _nullable(m: dict, path: str, key: str, kind: str, **bounds):
 
 def _name(raw, path: str, what: str) -> str:
     if not isinstance(raw, str) or not raw.strip():
-        raise CaseError(path, f"{_show(raw)} is not a valid {what}; give a non-empty string")
+        raise CaseError(path, f"{show_value(raw)} is not a valid {what}; give a non-empty string")
     return raw
 
 
@@ -178,7 +167,7 @@ def _point(raw, path: str, sizes: tuple) -> tuple:
     shape = " or ".join({2: "[x, y]", 3: "[x, y, z]"}[n] for n in sizes)
     items = _sequence(raw, path, f"a list {shape} of lengths [m]")
     if len(items) not in sizes:
-        raise CaseError(path, f"{_show(raw)} has {len(items)} values; it must be {shape}")
+        raise CaseError(path, f"{show_value(raw)} has {len(items)} values; it must be {shape}")
     return tuple(_quantity(v, _join(path, i), "length") for i, v in enumerate(items))
 
 
@@ -210,7 +199,7 @@ def _environment(raw, path: str) -> Environment:
                  optional=("water_density", "air_density", "gravity", "seabed", "wind",
                            "current", "waves"))
     defaults = Environment(depth=1.0)
-    depth = _quantity(m["depth"], _join(path, "depth"), "length", gt=0)
+    depth = _quantity(m["depth"], _join(path, "depth"), "length", gt=0, le=MAX_DEPTH)
     water_density = _field(m, path, "water_density", "density", defaults.water_density, gt=0)
     air_density = _field(m, path, "air_density", "density", defaults.air_density, gt=0)
     gravity = _field(m, path, "gravity", "acceleration", defaults.gravity, gt=0)
@@ -241,7 +230,7 @@ def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
     if "sealed" in m:
         sealed = m["sealed"]
         if not isinstance(sealed, bool):
-            raise CaseError(_join(path, "sealed"), f"{_show(sealed)} is not true or false")
+            raise CaseError(_join(path, "sealed"), f"{show_value(sealed)} is not true or false")
     if sealed and diameter is None:
         raise CaseError(_join(path, "diameter"),
                         "sealed line needs a diameter (its wall tension depends on the outer "
@@ -252,14 +241,14 @@ def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
 
 def _line_types(raw, path: str, gravity: float) -> dict:
     if not isinstance(raw, Mapping):
-        raise CaseError(path, f"{_show(raw)} is not a mapping; line_types maps each line type "
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; line_types maps each line type "
                               "name to its properties")
     if not raw:
         raise CaseError(path, "no line types; at least one is required")
     types = {}
     for name, spec in raw.items():
         if not isinstance(name, str) or not name.strip():
-            raise CaseError(path, f"line type name {_show(name)} is not a non-empty string")
+            raise CaseError(path, f"line type name {show_value(name)} is not a non-empty string")
         types[name] = _line_type(name, spec, _join(path, name), gravity)
     return types
 
@@ -277,7 +266,7 @@ def _table(raw, path: str) -> tuple:
         rpath = _join(path, i)
         row = _sequence(row_raw, rpath, "a row [heading_deg, cx, cy, cmz]")
         if len(row) != 4:
-            raise CaseError(rpath, f"{_show(row_raw)} has {len(row)} values; a row is "
+            raise CaseError(rpath, f"{show_value(row_raw)} has {len(row)} values; a row is "
                                    "[heading_deg, cx, cy, cmz]")
         heading = _quantity(row[0], _join(rpath, 0), "angle", ge=-180.0, lt=360.0)
         coefficients = tuple(_quantity(v, _join(rpath, j), "dimensionless")
@@ -373,14 +362,14 @@ def _load_model(raw, path: str, models: dict):
     """Dispatch on the required ``model`` key, then validate that model's keys."""
     allowed = ", ".join(models)
     if not isinstance(raw, Mapping):
-        raise CaseError(path, f"{_show(raw)} is not a mapping; give {{model: ...}} with model "
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; give {{model: ...}} with model "
                               f"one of {allowed}")
     if "model" not in raw:
         raise CaseError(_join(path, "model"), f"required key 'model' is missing; allowed "
                                               f"models: {allowed}")
     model = raw["model"]
     if not isinstance(model, str) or model not in models:
-        raise CaseError(_join(path, "model"), f"unknown model {_show(model)}; allowed models: "
+        raise CaseError(_join(path, "model"), f"unknown model {show_value(model)}; allowed models: "
                                               f"{allowed}")
     return models[model](raw, path)
 
@@ -388,7 +377,7 @@ def _load_model(raw, path: str, models: dict):
 def _force(raw, path: str) -> tuple:
     items = _sequence(raw, path, "[Fx N, Fy N, Mz N m]")
     if len(items) != 3:
-        raise CaseError(path, f"{_show(raw)} has {len(items)} values; it must be "
+        raise CaseError(path, f"{show_value(raw)} has {len(items)} values; it must be "
                               "[Fx N, Fy N, Mz N m]")
     kinds = ("force", "force", "moment")
     return tuple(_quantity(v, _join(path, i), k) for i, (v, k) in enumerate(zip(items, kinds)))
@@ -408,8 +397,8 @@ def _free(raw, path: str) -> tuple:
     seen = set()
     for i, item in enumerate(items):
         if not isinstance(item, str) or item not in DEGREES_OF_FREEDOM:
-            raise CaseError(_join(path, i), f"unknown degree of freedom {_show(item)}; allowed: "
-                                            f"{', '.join(DEGREES_OF_FREEDOM)}")
+            raise CaseError(_join(path, i), f"unknown degree of freedom {show_value(item)}; "
+                                            f"allowed: {', '.join(DEGREES_OF_FREEDOM)}")
         if item in seen:
             raise CaseError(_join(path, i), f"{item!r} is listed twice")
         seen.add(item)
@@ -431,9 +420,10 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
     m = _mapping(raw, path, required=("type", "length"))
     type_name = m["type"]
     if not isinstance(type_name, str) or type_name not in line_types:
-        raise CaseError(_join(path, "type"), f"unknown line type {_show(type_name)}; known line "
-                                             f"types: {', '.join(map(str, line_types))}")
-    length = _quantity(m["length"], _join(path, "length"), "length", gt=0)
+        raise CaseError(_join(path, "type"), f"unknown line type {show_value(type_name)}; "
+                                             f"known line types: {', '.join(line_types)}")
+    length = _quantity(m["length"], _join(path, "length"), "length", gt=0,
+                       le=MAX_LINE_LENGTH)
     return Segment(line_type=line_types[type_name], length=length)
 
 
@@ -446,10 +436,12 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
     fpath = _join(path, "fairlead")
     fairlead = _point(m["fairlead"], fpath, (3,))
     fz = fairlead[2]
-    if not fz > -depth + seabed_tol:
-        raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is not above "
+    if fz < -depth - seabed_tol:
+        raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is below "
                                          f"the seabed (z = {format_si(-depth, 'length')}); it "
-                                         "must be > -depth")
+                                         "must be >= -depth")
+    fz = max(fz, -depth)
+    fairlead = fairlead[:2] + (fz,)
     if fz > FAIRLEAD_Z_MAX:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} must be <= "
                                          f"{format_si(FAIRLEAD_Z_MAX, 'length')}")
@@ -466,10 +458,10 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
                                              "must be >= -depth")
         if az < -depth:
             anchor = anchor[:2] + (-depth,)
-        if not anchor[2] < fz:
-            raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is not below "
+        if anchor[2] > fz:
+            raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is above "
                                              f"the fairlead (z = {format_si(fz, 'length')}); the "
-                                             "anchor must be lower than its fairlead")
+                                             "anchor must not be higher than its fairlead")
 
     spath = _join(path, "segments")
     items = _sequence(m["segments"], spath, "a list of {type, length}")
@@ -521,7 +513,7 @@ def _solver(raw, path: str) -> SolverOptions:
         raw_iter = m["max_iter"]
         ipath = _join(path, "max_iter")
         if isinstance(raw_iter, bool) or not isinstance(raw_iter, numbers.Integral):
-            raise CaseError(ipath, f"{_show(raw_iter)} is not an integer; max_iter must be an "
+            raise CaseError(ipath, f"{show_value(raw_iter)} is not an integer; max_iter must be an "
                                    f"integer from 1 to {MAX_ITER_LIMIT}")
         max_iter = int(raw_iter)
         if not 1 <= max_iter <= MAX_ITER_LIMIT:
@@ -648,13 +640,13 @@ def load_case(source) -> Case:
         try:
             path = Path(source)
         except TypeError:
-            raise CaseError("", f"{_show(source)} is not a usable path") from None
+            raise CaseError("", f"{show_value(source)} is not a usable path") from None
         data = _read_yaml(path)
         default_name = path.stem or "case"
     elif isinstance(source, Mapping):
         data, default_name = source, "case"
     else:
-        raise CaseError("", f"{_show(source)} is not a case: give a path to a YAML file or a "
+        raise CaseError("", f"{show_value(source)} is not a case: give a path to a YAML file or a "
                             "dict")
     try:
         return _build_case(data, default_name)

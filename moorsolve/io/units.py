@@ -13,12 +13,14 @@ from __future__ import annotations
 import math
 import numbers
 import re
+import reprlib
 
 import pint
 
 from ..errors import CaseError
 
-__all__ = ["UREG", "KINDS", "to_si", "weight_per_length_to_si", "format_si", "describe"]
+__all__ = ["UREG", "KINDS", "to_si", "weight_per_length_to_si", "format_si", "describe",
+           "show_value"]
 
 #: The one unit registry of moorsolve. In pint ``t`` is the metric tonne, ``tf`` the
 #: tonne-force, ``kgf`` the kilogram-force and ``kn`` / ``kt`` the knot.
@@ -67,7 +69,8 @@ _UNIT_EXPR = rf"{_UNIT}(?:\s*[*/]\s*{_UNIT}|\s+{_UNIT})*"
 _QUANTITY_RE = re.compile(rf"^\s*({_NUMBER})\s*({_UNIT_EXPR})?\s*$")
 
 _DIMENSIONALITY = {kind: UREG.parse_units(unit).dimensionality
-                   for kind, (unit, _, _) in KINDS.items() if kind not in ("angle", "dimensionless")}
+                   for kind, (unit, _, _) in KINDS.items()
+                   if kind not in ("angle", "dimensionless")}
 
 
 def format_si(value: float, kind: str) -> str:
@@ -110,9 +113,30 @@ def describe(raw, value: float, kind: str) -> str:
     return format_si(value, kind)
 
 
-def _short_repr(raw) -> str:
-    text = repr(raw)
-    return text if len(text) <= 60 else text[:57] + "..."
+_REPR = reprlib.Repr()
+_REPR.maxstring = 60
+_REPR.maxother = 60
+_REPR.maxlist = 6
+_REPR.maxdict = 6
+
+
+def show_value(raw) -> str:
+    """A short repr of a user value for error messages; never raises.
+
+    Parameters
+    ----------
+    raw : object
+        Any value found in a case.
+
+    Returns
+    -------
+    str
+        ``repr(raw)``, shortened for long strings and containers.
+    """
+    try:
+        return _REPR.repr(raw)
+    except Exception:  # a user object with a broken __repr__ must not escape as itself
+        return f"<{type(raw).__name__}>"
 
 
 def _not_a(raw, kind: str, field: str) -> CaseError:
@@ -122,12 +146,12 @@ def _not_a(raw, kind: str, field: str) -> CaseError:
         hint = "give a number"
     else:
         hint = f"give a number in {symbol} or a string with a unit like {_EXAMPLES[kind]}"
-    return CaseError(field, f"{_short_repr(raw)} is not {noun} ({hint})")
+    return CaseError(field, f"{show_value(raw)} is not {noun} ({hint})")
 
 
 def _finite(value: float, raw, field: str) -> float:
     if not math.isfinite(value):
-        raise CaseError(field, f"{_short_repr(raw)} is not finite; a finite number is required")
+        raise CaseError(field, f"{show_value(raw)} is not finite; a finite number is required")
     return value
 
 
@@ -135,7 +159,7 @@ def _real_to_float(number, raw, field: str) -> float:
     try:
         value = float(number)
     except (OverflowError, ValueError, TypeError):
-        raise CaseError(field, f"{_short_repr(raw)} is too large or not a number") from None
+        raise CaseError(field, f"{show_value(raw)} is too large or not a number") from None
     return _finite(value, raw, field)
 
 
@@ -143,7 +167,7 @@ def _parse_units(text: str, raw, field: str):
     try:
         return UREG.parse_units(text)
     except Exception:  # pint raises many exception types; each one means "not a unit"
-        raise CaseError(field, f"{_short_repr(raw)}: {text!r} is not a known unit") from None
+        raise CaseError(field, f"{show_value(raw)}: {text!r} is not a known unit") from None
 
 
 def _split(raw: str, kind: str, field: str):
@@ -176,7 +200,7 @@ def _string_to_si(raw: str, kinds: tuple, field: str):
             raise _not_a(raw, kind, field) from None
         return _finite(float(value), raw, field), kind
     if kinds[0] == "dimensionless":
-        raise CaseError(field, f"{_short_repr(raw)} must be a plain number without a unit")
+        raise CaseError(field, f"{show_value(raw)} must be a plain number without a unit")
     raise _not_a(raw, kinds[0], field)
 
 

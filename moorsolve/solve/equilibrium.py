@@ -273,11 +273,15 @@ def _diagnose(problem, case, result) -> str:
         if lt.ea is None and chord > leg.length * (1 + 1e-9):
             reasons.append(f"leg {leg.name} cannot reach: anchor-fairlead distance "
                            f"{chord:.2f} m exceeds its inextensible length {leg.length:.2f} m")
+        elif lt.ea is None and chord > leg.length * (1 - 1e-4):
+            reasons.append(f"leg {leg.name} is pulled straight (chord {chord:.3f} m of "
+                           f"{leg.length:.3f} m): an inextensible line would need an "
+                           f"unbounded tension; give the line type an ea")
     reasons += _over_mbl(result)
     if result.body is not None and problem.load_names:
         total = np.sum([v[:2] for v in result.loads.values()], axis=0)
         if np.hypot(*total) > 0:
-            heading = math.degrees(math.atan2(total[1], total[0]))
+            heading = math.degrees(math.atan2(total[1], total[0])) % 360.0
             reasons.append(f"the legs could not balance the body load of "
                            f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
                            f"(the lines may be too weak, too short or all on one side)")
@@ -326,7 +330,9 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
             fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
             anchor_horizontal_N=HA, anchor_vertical_N=VA,
             grounded_length_m=grounded, touchdown_from_anchor_m=td,
-            uplift=bool(uplift), slack=bool(u <= 0.0),
+            # Slack: no horizontal tension and line loose on the seabed (or, for a
+            # weightless line, longer than its chord); a vertical taut leg is not slack.
+            uplift=bool(uplift), slack=bool(u < 0.0 or (H == 0.0 and grounded > 0.0)),
             uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
             fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
             anchor=anchor, fairlead=fairlead,

@@ -33,6 +33,7 @@ LEG_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
 #: Yaw is bounded to keep the solver away from the mirrored equilibrium with the lines
 #: crossing under the hull (yaw near 180 deg, REFERENCE.md section 1).
 YAW_LIMIT = math.pi / 2
+_X_FLOOR = 1e-12
 
 
 def leg_kind(case: Case, leg: Leg) -> LegKind:
@@ -171,7 +172,9 @@ class EquilibriumProblem:
                 rx = ry = 0
                 gx, gy = P["fair_x"], P["fair_y"]
             dx, dy = gx - P["anchor_x"], gy - P["anchor_y"]
-            X = ca.sqrt(dx**2 + dy**2)
+            # The tiny floor keeps derivatives finite for a vertical leg (X = 0); it moves
+            # X by less than 1e-18 m at any span that matters.
+            X = ca.sqrt(dx**2 + dy**2 + _X_FLOOR**2)
             Z = P["fair_z"] - P["anchor_z"]
             out = leg_function(kind).call(dict(X=X, Z=Z, u=u, V=V, L=P["length"],
                                                w=P["weight"], ea_inv=P["ea_inv"],
@@ -179,8 +182,7 @@ class EquilibriumProblem:
             scale = 1.0 / P["length"]
             leg_res += [out["rX"] * scale, out["rZ"] * scale]
             # The line pulls the fairlead horizontally toward the anchor with H.
-            Xsafe = ca.fmax(X, 1e-12)
-            fx, fy = -out["H"] * dx / Xsafe, -out["H"] * dy / Xsafe
+            fx, fy = -out["H"] * dx / X, -out["H"] * dy / X
             fx_total, fy_total = fx_total + fx, fy_total + fy
             mz_total = mz_total + rx * fy - ry * fx
             iu = self.n_q + 2 * i

@@ -1,0 +1,202 @@
+"""Hard cases: every regime of the leg converges with a certificate, or fails with a reason.
+
+Slack leeward legs, a leg taut near its breaking load, a nearly straight inextensible leg,
+vertical legs, a fully grounded leg, uplifted anchors, buoyant and weightless lines, and
+loads beyond capacity.
+"""
+
+import copy
+import math
+import pathlib
+
+import numpy as np
+import pytest
+import yaml
+
+import moorsolve
+from moorsolve import ConvergenceError, load_case, solve
+
+CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CHAIN_W, CHAIN_EA, CHAIN_MBL = 1275.0, 5.6e8, 5.5e6
+
+
+def single_leg(X, Z, L, w, ea=None, mbl=None, depth=None, anchor_z=None):
+    depth = Z if depth is None else depth
+    line = {"weight_in_water": w}
+    if ea is not None:
+        line["ea"] = ea
+    if mbl is not None:
+        line["mbl"] = mbl
+    anchor = [0.0, 0.0] if anchor_z is None else [0.0, 0.0, anchor_z]
+    return load_case({
+        "environment": {"depth": depth},
+        "line_types": {"line": line},
+        "legs": [{"name": "A", "anchor": anchor, "fairlead": [X, 0.0, Z - depth],
+                  "segments": [{"type": "line", "length": L}]}]})
+
+
+def buoy_with_force(fx, fy=0.0, **line_changes):
+    data = yaml.safe_load((CASES / "buoy_vida.yaml").read_text())
+    data["environment"].pop("wind")
+    data["body"]["loads"] = {"force": [fx, fy, 0.0]}
+    data["line_types"]["chain"].update(line_changes)
+    return load_case(data)
+
+
+def assert_certified(result):
+    assert result.converged
+    assert result.certificate.certified
+    t_max = max(max(leg.fairlead_tension_N, leg.anchor_tension_N) for leg in result.legs)
+    assert result.certificate.force_N <= 1e-9 * max(t_max, 1.0)
+
+
+def leg_balance(leg, w, L):
+    """Vertical balance of a whole leg: fairlead pull = weight + anchor pull (no seabed)."""
+    return leg.fairlead_vertical_N - (w * L + leg.anchor_vertical_N)
+
+
+@pytest.mark.parametrize("force", [1.0e3, 1.6e3, 3.0e3, 1.0e4])
+def test_leeward_leg_goes_slack_and_tension_stays_continuous(force):
+    result = solve(buoy_with_force(-force))
+    assert_certified(result)
+    west = result.leg("W")
+    north, south = result.leg("NNE"), result.leg("SSE")
+    # Mirror symmetry about the x axis holds through the slack switch.
+    assert north.fairlead_tension_N == pytest.approx(south.fairlead_tension_N, rel=1e-9)
+    assert result.body["y_m"] == pytest.approx(0.0, abs=1e-9)
+    if force >= 1.6e3:
+        # REFERENCE.md section 1: the buoy's leeward leg goes slack at about 1.5 kN.
+        assert west.slack and west.horizontal_tension_N == 0.0
+        w = 22.0 * 9.81
+        # A slack chain hangs straight down: V = w times the depth under the fairlead.
+        assert west.fairlead_vertical_N == pytest.approx(w * 22.0, rel=1e-9)
+        assert west.grounded_length_m == pytest.approx(50.0 - 22.0, rel=1e-9)
+    else:
+        assert not west.slack
+
+
+def test_tension_continuous_across_the_slack_switch():
+    forces = np.linspace(1.0e3, 2.0e3, 21)
+    h_west, offsets = [], []
+    for f in forces:
+        r = solve(buoy_with_force(-f))
+        h_west.append(r.leg("W").horizontal_tension_N)
+        offsets.append(r.body["x_m"])
+    assert h_west[0] > 0 and h_west[-1] == 0
+    # No jumps: each step changes H and offset by a small fraction of the range.
+    assert np.max(np.abs(np.diff(h_west))) < 0.2 * h_west[0]
+    assert np.all(np.diff(offsets) < 0) and np.max(np.abs(np.diff(offsets))) < 0.5
+
+
+def test_taut_leg_just_below_breaking_load():
+    # Find the span at which the fairlead tension is 0.999 MBL, then solve there.
+    L, Z = 122.5, 20.85
+
+    def tension(X):
+        r = solve(single_leg(X, Z, L, CHAIN_W, CHAIN_EA, CHAIN_MBL), allow_overload=True)
+        return r.legs[0].fairlead_tension_N
+    lo, hi = math.sqrt(L**2 - Z**2), math.sqrt((L * 1.02) ** 2 - Z**2)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if tension(mid) < 0.999 * CHAIN_MBL else (lo, mid)
+    result = solve(single_leg(lo, Z, L, CHAIN_W, CHAIN_EA, CHAIN_MBL))
+    assert_certified(result)
+    leg = result.legs[0]
+    assert leg.fairlead_tension_N == pytest.approx(0.999 * CHAIN_MBL, rel=1e-6)
+    assert leg.uplift
+    # Beyond the breaking load the same leg is reported as breaking.
+    with pytest.raises(ConvergenceError, match="would break"):
+        solve(single_leg(hi * 1.001, Z, L, CHAIN_W, CHAIN_EA, CHAIN_MBL))
+
+
+def test_inextensible_leg_within_a_thousandth_of_straight():
+    L, Z = 122.5, 20.85
+    X = math.sqrt((0.999 * L) ** 2 - Z**2)
+    result = solve(single_leg(X, Z, L, CHAIN_W))
+    assert_certified(result)
+    leg = result.legs[0]
+    assert leg.uplift and leg.grounded_length_m == 0.0
+    assert leg.horizontal_tension_N > 5 * CHAIN_W * L    # nearly straight: tension >> weight
+    assert leg_balance(leg, CHAIN_W, L) == pytest.approx(0.0, abs=1e-6 * leg.fairlead_tension_N)
+
+
+def test_vertical_leg_hanging_with_chain_on_the_seabed():
+    result = solve(single_leg(0.0, 20.85, 40.0, CHAIN_W))
+    assert_certified(result)
+    leg = result.legs[0]
+    assert leg.horizontal_tension_N == 0.0 and leg.slack
+    assert leg.fairlead_vertical_N == pytest.approx(CHAIN_W * 20.85, rel=1e-12)
+    assert leg.grounded_length_m == pytest.approx(40.0 - 20.85, rel=1e-12)
+
+
+def test_vertical_leg_stretched():
+    L, Z = 20.0, 20.85
+    result = solve(single_leg(0.0, Z, L, CHAIN_W, CHAIN_EA))
+    assert_certified(result)
+    leg = result.legs[0]
+    assert leg.uplift and not leg.slack
+    # Straight vertical elastic bar under its own weight: Z = L + (V L - w L^2/2)/EA.
+    V = (Z - L) * CHAIN_EA / L + CHAIN_W * L / 2
+    assert leg.fairlead_vertical_N == pytest.approx(V, rel=1e-9)
+
+
+def test_uplifted_anchor_matches_vertical_balance():
+    result = solve(load_case(str(CASES / "floating_dock.yaml")))
+    uplifted = [leg for leg in result.legs if leg.uplift]
+    assert uplifted, "the typhoon should lift at least one sinker"
+    w = 0.13e3 * 9.80665
+    for leg in uplifted:
+        assert leg.grounded_length_m == 0.0 and leg.anchor_vertical_N > 0
+        assert leg_balance(leg, w, 122.52) == pytest.approx(0.0, abs=1e-6)
+        assert leg.uplift_angle_deg == pytest.approx(
+            math.degrees(math.atan2(leg.anchor_vertical_N, leg.anchor_horizontal_N)))
+
+
+def test_buoyant_line_arches_up_and_holds_the_fairlead_down():
+    w = -200.0
+    result = solve(single_leg(80.0, 20.0, 100.0, w, CHAIN_EA, depth=30.0))
+    assert_certified(result)
+    leg = result.legs[0]
+    assert leg.fairlead_vertical_N < 0 < leg.anchor_vertical_N
+    assert leg.anchor_tension_N > leg.fairlead_tension_N
+    assert leg_balance(leg, w, 100.0) == pytest.approx(0.0, abs=1e-6)
+    z = leg.profile["z_m"]
+    assert np.max(z) > -10.0 + 1e-6 or np.all(np.diff(z) >= -1e-9)
+
+
+def test_weightless_line_is_straight_or_loose():
+    taut = solve(single_leg(80.0, 20.0, 82.4, 0.0, 1e7)).legs[0]
+    chord = math.hypot(80.0, 20.0)
+    assert taut.fairlead_tension_N == pytest.approx(1e7 * (chord / 82.4 - 1), rel=1e-9)
+    assert taut.fairlead_vertical_N / taut.horizontal_tension_N == pytest.approx(0.25)
+    loose = solve(single_leg(80.0, 20.0, 100.0, 0.0, 1e7)).legs[0]
+    assert loose.slack and loose.fairlead_tension_N == 0.0
+
+
+def test_anchor_above_the_seabed_hangs_as_one_catenary():
+    result = solve(single_leg(80.0, 20.0, 100.0, CHAIN_W, CHAIN_EA, depth=30.0,
+                              anchor_z=-25.0))
+    assert_certified(result)
+    leg = result.legs[0]
+    assert leg.grounded_length_m == 0.0
+    assert leg_balance(leg, CHAIN_W, 100.0) == pytest.approx(0.0, abs=1e-6)
+
+
+def test_load_beyond_breaking_raises_with_the_legs_that_break():
+    with pytest.raises(ConvergenceError) as err:
+        solve(buoy_with_force(5e6, mbl="100 kN"))
+    assert "W would break" in err.value.reason
+    assert err.value.residual_N >= 0
+
+
+def test_inextensible_mooring_pulled_straight_is_explained():
+    with pytest.raises(ConvergenceError) as err:
+        solve(buoy_with_force(5e7))
+    assert "pulled straight" in err.value.reason and "W" in err.value.reason
+    assert math.isfinite(err.value.residual_N)
+
+
+def test_allow_overload_returns_the_equilibrium():
+    result = solve(buoy_with_force(5e3, mbl="5 kN"), allow_overload=True)
+    assert_certified(result)
+    assert result.leg("W").utilisation > 1.0
