@@ -1,0 +1,34 @@
+"""Every example runs headless and says what it promises."""
+
+import pathlib
+import runpy
+import sys
+
+import pytest
+
+EXAMPLES = pathlib.Path(__file__).resolve().parent.parent / "examples"
+
+
+def run_example(name, argv, capsys, monkeypatch):
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    monkeypatch.setattr(sys, "argv", [name, *argv])
+    runpy.run_path(str(EXAMPLES / name), run_name="__main__")
+    return capsys.readouterr().out
+
+
+def test_dock_typhoon_headings(tmp_path, capsys, monkeypatch):
+    out = run_example("dock_typhoon_headings.py", ["--out", str(tmp_path)], capsys, monkeypatch)
+    assert "worst case: load toward" in out
+    png = tmp_path / "dock_typhoon_headings.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_buoy_vida_offset(capsys, monkeypatch):
+    out = run_example("buoy_vida_offset.py", [], capsys, monkeypatch)
+    rows = [line.split() for line in out.splitlines()[1:]]
+    bora_30 = next(r for r in rows if r[0] == "bora" and r[1] == "30.0")
+    # At rest each chain holds Malacic's 528.5 N; under a 30 m/s bora the NNE chain
+    # carries the most and the western one the least.
+    rest = next(r for r in rows if r[0] == "bora" and r[1] == "0.0")
+    assert rest[4] == "529"
+    assert int(bora_30[4]) > int(bora_30[6]) > int(bora_30[8])
