@@ -561,3 +561,18 @@ def test_junk_yields_case_or_case_error(changes):
         assert isinstance(err.field, str)
     else:
         assert isinstance(result, Case)
+
+
+def test_free_yaw_without_any_lever_arm_is_rejected():
+    from moorsolve import CaseError, load_case
+    data = {
+        "environment": {"depth": 22.0},
+        "line_types": {"c": {"weight_in_water": 200.0}},
+        "body": {"free": ["surge", "sway", "yaw"]},
+        "legs": [{"name": n, "anchor": [x, y], "fairlead": [0.0, 0.0, 0.0],
+                  "segments": [{"type": "c", "length": 50.0}]}
+                 for n, x, y in (("a", 33.0, 0.0), ("b", -16.5, 28.6), ("c", -16.5, -28.6))]}
+    with pytest.raises(CaseError, match=r"body.free: yaw is free"):
+        load_case(data)
+    data["body"]["free"] = ["surge", "sway"]
+    assert load_case(data).body.free == ("surge", "sway")

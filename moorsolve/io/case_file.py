@@ -536,6 +536,13 @@ def _build_case(data, default_name: str) -> Case:
     body = None if m.get("body") is None else _body(m["body"], "body")
     legs = _legs(m["legs"], "legs", environment, line_types)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
+    if body is not None and "yaw" in body.free and all(
+            leg.fairlead[0] == 0.0 and leg.fairlead[1] == 0.0 for leg in legs):
+        # Every line acts through the body origin: no leg can resist a yaw moment, so the
+        # yaw of the body is undetermined (and any applied moment unbalanced).
+        raise CaseError("body.free", "yaw is free but every fairlead is at the body origin "
+                                     "(x = y = 0), so nothing restrains yaw; remove yaw from "
+                                     "body.free")
     return Case(name=name, environment=environment, line_types=line_types, legs=legs,
                 body=body, solver=solver)
 
