@@ -28,7 +28,7 @@ from ..errors import ConvergenceError
 from ..model import Case
 from ..physics.catenary import initial_state, leg_profile
 from ..physics.wall_tension import wall_tension
-from .problem import (LEG_PARAMS, EquilibriumProblem, environment_parameters, leg_kind,
+from .problem import (ENV_PARAMS, LEG_PARAMS, EquilibriumProblem, environment_parameters, leg_kind,
                       leg_parameters, structure_key)
 from .result import Certificate, LegResult, Result
 
@@ -65,14 +65,11 @@ def _scales(case: Case) -> tuple[float, float]:
     return force, max(case.environment.depth, 1.0)
 
 
-def _rest_leg_states(case: Case, q=(0.0, 0.0, 0.0)):
-    """Closed-form starting ``(u, V)`` of every leg with the body at offset ``q``."""
+def _rest_leg_states(case: Case):
+    """Closed-form starting ``(u, V)`` of every leg with the body at its case position."""
     states = []
-    c, s = math.cos(q[2]), math.sin(q[2])
     for leg in case.legs:
         fx, fy, fz = leg.fairlead
-        if case.body is not None:
-            fx, fy = q[0] + c * fx - s * fy, q[1] + s * fx + c * fy
         X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
         Z = fz - leg.anchor[2]
         lt = leg.line_type
@@ -309,7 +306,8 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
         H, VF, HA, VA, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
         lt = leg.line_type
         u = float(xp[problem.n_q + 2 * i])
-        anchor = tuple(float(v) for v in p[10 + i * n_par: 10 + i * n_par + 3])
+        start_i = len(ENV_PARAMS) + i * n_par
+        anchor = tuple(float(v) for v in p[start_i: start_i + 3])
         fairlead = (gx, gy, leg.fairlead[2])
         ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
         td = max(X - susp_x, 0.0) if grounded > 0 else 0.0
