@@ -140,19 +140,20 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
         x = _polish(problem, x, p, lb, ub, stats)
         return x, _certify(problem, x, p, tol)[0]
 
+    ok = False
     if start is not None and np.shape(start) == (problem.n_x,):
         x, ok = run(np.asarray(start, float), p_full)
-    else:
-        ok = False
-        x = initial_point(problem, case)
+    x_rest = initial_point(problem, case)
     if not ok:
         if problem.n_q and problem.load_names:
             p_rest = np.concatenate([environment_parameters(case, 0.0), p_legs])
-            x, _ = run(x, p_rest)
-        x, ok = run(x, p_full)
+            x_rest, rest_ok = run(x_rest, p_rest)
+            if not rest_ok:
+                x_rest = initial_point(problem, case)
+        x, ok = run(x_rest, p_full)
     if not ok:
         # Load stepping from rest: each step starts from the last certified state.
-        x_step = x if np.all(np.isfinite(x)) else initial_point(problem, case)
+        x_step = x_rest
         for factor in _LOAD_STEPS:
             p_step = np.concatenate([environment_parameters(case, factor), p_legs])
             x_try, ok = run(x_step, p_step)
