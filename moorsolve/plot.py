@@ -7,6 +7,10 @@ import numpy as np
 from .solve.result import Result
 
 
+def _max_fairlead_tension(result: Result) -> float:
+    return max((leg.fairlead_tension_N for leg in result.legs), default=0.0)
+
+
 def _tension_colour(leg, t_max):
     import matplotlib.pyplot as plt
     return plt.get_cmap("viridis")(leg.fairlead_tension_N / t_max if t_max > 0 else 0.0)
@@ -20,7 +24,7 @@ def plot_plan(result: Result, ax=None):
     import matplotlib.pyplot as plt
     if ax is None:
         _, ax = plt.subplots()
-    t_max = max((leg.fairlead_tension_N for leg in result.legs), default=0.0)
+    t_max = _max_fairlead_tension(result)
     for leg in result.legs:
         p = leg.profile
         colour = _tension_colour(leg, t_max)
@@ -56,7 +60,7 @@ def plot_elevation(result: Result, ax=None, depth: float | None = None):
     import matplotlib.pyplot as plt
     if ax is None:
         _, ax = plt.subplots()
-    t_max = max((leg.fairlead_tension_N for leg in result.legs), default=0.0)
+    t_max = _max_fairlead_tension(result)
     for leg in result.legs:
         p = leg.profile
         dist = np.hypot(p["x_m"] - leg.anchor[0], p["y_m"] - leg.anchor[1])

@@ -7,7 +7,6 @@ Exit status: 0 solved, 1 no equilibrium, 2 bad input (one line naming the field)
 
 from __future__ import annotations
 
-import copy
 import json
 import numbers
 import subprocess

@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 import yaml
 
-import moorsolve
 from moorsolve import load_case, solve
 from moorsolve.solve.equilibrium import get_problem
 

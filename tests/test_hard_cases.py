@@ -5,7 +5,6 @@ vertical legs, a fully grounded leg, uplifted anchors, buoyant and weightless li
 loads beyond capacity.
 """
 
-import copy
 import math
 import pathlib
 
@@ -13,7 +12,6 @@ import numpy as np
 import pytest
 import yaml
 
-import moorsolve
 from moorsolve import ConvergenceError, load_case, solve
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
@@ -225,3 +223,11 @@ def test_random_loads_all_converge_including_slack_legs(scene):
         assert_certified(result)
         slack += sum(leg.slack for leg in result.legs)
     assert slack > 0
+
+
+def test_weightless_profile_runs_along_the_chord():
+    for L in (82.4, 100.0):          # taut and loose
+        leg = solve(single_leg(80.0, 20.0, L, 0.0, 1e7)).legs[0]
+        p = leg.profile
+        assert (p["x_m"][-1], p["y_m"][-1], p["z_m"][-1]) == pytest.approx(leg.fairlead,
+                                                                           abs=1e-9)

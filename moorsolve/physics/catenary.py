@@ -269,7 +269,8 @@ def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
 
 
 def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
-                ea: float | None, mu: float, X: float, n: int = 101) -> dict:
+                ea: float | None, mu: float, X: float, Z: float = 0.0,
+                n: int = 101) -> dict:
     """Points and tension along a solved leg, in its vertical plane, from the anchor.
 
     Parameters
@@ -279,8 +280,9 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
         Horizontal and vertical tension at the fairlead [N] (the solved state).
     L, w, ea, mu : float
         Length [m], submerged weight [N/m], stiffness [N] (None: inextensible), friction.
-    X : float
-        Horizontal span [m] (fixes where a slack line's loose part ends).
+    X, Z : float
+        Horizontal and vertical span [m]: where a slack line's loose part ends, and the
+        chord of a weightless line.
     n : int
         Number of points.
 
@@ -300,13 +302,10 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
     c = 1.0 / ea if ea else 0.0
     s = np.linspace(0.0, L, n)
     if kind.neutral:
-        D = np.hypot(X, 0.0)
-        T = np.full_like(s, np.hypot(H, V))
+        # Straight along the chord when taut; a loose weightless line has no definite
+        # shape, so it is drawn along the chord as well.
         frac = s / L
-        theta = np.arctan2(V, H) if (H > 0 or V != 0) else np.pi / 2
-        stretched = L * (1 + T[0] * c)
-        return dict(s=s, x=frac * stretched * np.cos(theta), z=frac * stretched * np.sin(theta),
-                    tension=T)
+        return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
     VA = V - w * L
     if not kind.contact or VA >= 0:
         Tv = VA + w * s

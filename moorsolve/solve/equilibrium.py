@@ -59,8 +59,7 @@ def get_problem(case: Case) -> EquilibriumProblem:
 def _scales(case: Case) -> tuple[float, float]:
     """Typical tension [N] and length [m] of the scene, for scaling the unknowns."""
     tensions = [abs(leg.line_type.weight_in_water) * leg.length for leg in case.legs]
-    for leg, (u, V) in zip(case.legs, _rest_leg_states(case)):
-        tensions.append(math.hypot(max(u, 0.0), V))
+    tensions += [math.hypot(max(u, 0.0), V) for u, V in _rest_leg_states(case)]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
 
@@ -313,7 +312,7 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
         ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
         td = max(X - susp_x, 0.0) if grounded > 0 else 0.0
         prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
-                           mu=env.seabed.friction if kind.friction else 0.0, X=X,
+                           mu=env.seabed.friction if kind.friction else 0.0, X=X, Z=Z,
                            n=_PROFILE_POINTS)
         profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
                    "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
