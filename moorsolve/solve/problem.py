@@ -283,6 +283,9 @@ class EquilibriumProblem:
             opts = {
                 "print_time": False,
                 "error_on_fail": False,
+                # A NaN or inf met on the way (absurd input) is reported by the certificate
+                # and ConvergenceError; CasADi's own per-evaluation warnings are noise.
+                "show_eval_warnings": False, "calc_lam_p": False,
                 "ipopt": {
                     "print_level": 0, "sb": "yes", "tol": tol,
                     "constr_viol_tol": tol, "max_iter": max_iter,
