@@ -241,3 +241,23 @@ def test_near_taut_span_has_no_cancellation(H_over_wL, contact):
                    u=H_over_wL * w * L)
         errors, ref, out = check_agreement(leg)
         assert max(errors.values()) <= 1e-12, errors
+
+
+@pytest.mark.parametrize("slope", [0.1, 0.75, 3.0])
+@pytest.mark.parametrize("H_over_wL", [1e3, 1e5, 1e7])
+def test_steep_taut_span_to_round_off(slope, H_over_wL):
+    """A steep, nearly straight line: X to round-off of the length.
+
+    ``asinh(V/H) - asinh(V_A/H)`` cancels when V and V_A have the same sign, losing
+    eps*asinh(V/H)*H/w in X: 4e-11 of the length at H/wL = 5e5, which a stiff line
+    (EA/L = 1e11 N/m) turns into a 500 N certificate residual (tests/hard_cases/
+    stiff_light_line.yaml failed on it). The block's asinh(w L (V+V_A)/(V T_A + V_A T_F))
+    keeps X to round-off.
+    """
+    w, L = 0.1, 100.0
+    H = H_over_wL * w * L
+    for contact in (True, False):
+        leg = dict(regime="near_taut", kind=LegKind(elastic=True, contact=contact), H=H,
+                   V=slope * H, L=L, w=w, ea=1e13, mu=0.0, u=H)
+        errors, _, _ = check_agreement(leg)
+        assert errors["X"] <= 1e-13 and errors["Z"] <= 1e-13, errors
