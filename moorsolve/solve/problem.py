@@ -160,7 +160,7 @@ class EquilibriumProblem:
 
         fx_total, fy_total, mz_total = 0, 0, 0
         leg_res, leg_out = [], []
-        leg_force, tensions = [], []
+        leg_force, tensions, line_weights = [], [], []
         for i, kind in enumerate(self.kinds):
             P = dict(zip(LEG_PARAMS, ca.vertsplit(legp[i * len(LEG_PARAMS):
                                                        (i + 1) * len(LEG_PARAMS)])))
@@ -192,6 +192,7 @@ class EquilibriumProblem:
             leg_force.append(_closing_force(J, out["rX"], out["rZ"]))
             tensions.append(ca.vertcat(ca.hypot(out["H"], out["VF"]),
                                        ca.hypot(out["HA"], out["VA"])))
+            line_weights.append(ca.fabs(P["weight"]) * P["length"])
             leg_out.append(ca.vertcat(out["H"], out["VF"], out["HA"], out["VA"],
                                       out["grounded"], out["suspended_x"], out["rX"],
                                       out["rZ"], X, Z, gx, gy, fx, fy,
@@ -229,23 +230,28 @@ class EquilibriumProblem:
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
                                              [g, ca.jacobian(g, xs)])
-        self._build_certificate(xs, p, unbalanced, leg_force, tensions, q)
+        self._build_certificate(xs, p, unbalanced, leg_force, tensions, q, line_weights)
         self._xs, self._p, self._g = xs, p, g
         self._nlp_solvers = {}
         self._newton = None
 
-    def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q):
+    def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q, line_weights=()):
         """``certificate(x, p) -> [force_N, moment_Nm, t_max_N]`` and the sweep summary.
 
         The force is the largest unbalanced force on a free degree of freedom or, per leg,
         the fairlead force that would close its span mismatch (one Newton step of that leg
         alone with its own 2x2 stiffness), so a mismatch anywhere shows up as force.
+        ``t_max`` is the largest tension, but never less than the weight of the heaviest
+        line: with every line slack (tensions near zero) the residual is judged against the
+        forces the scene carries, not against a vanishing tension.
         """
         forces = [ca.fabs(unbalanced[d]) for d in self.free if d != "yaw"] + leg_force
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.SX(0)
         moment = ca.fabs(unbalanced["yaw"]) if "yaw" in self.free else ca.SX(0)
         all_t = ca.vertcat(*tensions) if tensions else ca.SX(0)
         t_max = ca.mmax(all_t) if tensions else ca.SX(0)
+        if line_weights:
+            t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*line_weights)))
         self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
                                        ["x", "p"], ["force", "moment", "t_max"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
