@@ -97,7 +97,8 @@ def mutation(draw, case):
                                          "m/s", "deg", "rad", "s", "m^2", "kg/m^3", "bogus",
                                          "m/s^2", "tf/m", "%"]))
             parent[key] = f"{number} {unit}"
-        elif isinstance(parent[key], (int, float)) and not isinstance(parent[key], bool):
+        elif (isinstance(parent[key], (int, float)) and not isinstance(parent[key], bool)
+              and abs(parent[key]) < 1e300):
             factor = {"negate": -1.0, "zero": 0.0}.get(kind)
             if factor is None:
                 factor = draw(st.sampled_from([1e-30, 1e-9, 1e9, 1e30, 1e300]))

@@ -25,7 +25,8 @@ from hypothesis import strategies as st
 from hypothesis_budget import examples
 from reference_ode import integrate_leg
 
-from moorsolve.physics.catenary import LEG_INPUTS, LegKind, evaluate_leg, leg_function
+from moorsolve.physics.catenary import (_H_FLOOR, LEG_INPUTS, LegKind, evaluate_leg,
+                                        leg_function)
 
 REL = 1e-8
 
@@ -177,6 +178,11 @@ def test_tension_recovered_from_the_ode_spans(leg):
     """
     if leg["H"] == 0.0 or leg["regime"] == "friction_exhausted":
         event("slack or friction exhausted: not invertible in u")
+        return
+    if leg["H"] < 1e3 * _H_FLOOR:
+        # Below the block's floor (1e-9 N) asinh arguments are capped by design; the span
+        # it gives is then off by at most 0.74e-9/|w| m (the forward test allows for it).
+        event("H within 1e3 of the block's floor: not inverted")
         return
     kind = leg["kind"]
     ref = integrate_leg(H=leg["H"], V=leg["V"], L=leg["L"], w=leg["w"], ea=leg["ea"],
