@@ -62,6 +62,26 @@ class Segment:
 
 
 @dataclass(frozen=True)
+class Clump:
+    """A point load at a joint between two segments: a clump weight or a buoy.
+
+    Attributes
+    ----------
+    weight : float
+        Net downward force in water [N]: ``g (mass - water_density volume)`` when given by
+        mass and volume; negative for a buoy.
+    mass : float or None
+        Mass [kg], when the case gave one.
+    volume : float or None
+        Displaced volume [m^3], when the case gave one.
+    """
+
+    weight: float
+    mass: Optional[float] = None
+    volume: Optional[float] = None
+
+
+@dataclass(frozen=True)
 class Leg:
     """One mooring leg from its anchor (end A) to its fairlead (end F).
 
@@ -74,13 +94,27 @@ class Leg:
     fairlead : tuple of 3 floats
         Position [m] in the body frame, or global when the case has no body.
     segments : tuple of Segment
-        From anchor to fairlead. The core model takes one segment per leg.
+        From anchor to fairlead.
+    clumps : tuple of (Clump or None)
+        One entry per joint between consecutive segments (``len(segments) - 1``), from the
+        anchor up; None (or an empty tuple for all joints) is a bare joint.
     """
 
     name: str
     anchor: tuple
     fairlead: tuple
     segments: tuple
+    clumps: tuple = ()
+
+    @property
+    def joint_clumps(self) -> tuple:
+        """The clump at every joint (None for a bare joint), ``len(segments) - 1`` entries."""
+        n = len(self.segments) - 1
+        return tuple(self.clumps) + (None,) * (n - len(self.clumps))
+
+    @property
+    def multi_segment(self) -> bool:
+        return len(self.segments) > 1
 
     @property
     def line_type(self) -> LineType:

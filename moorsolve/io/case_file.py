@@ -30,7 +30,10 @@ Schema (SI units, ``[...]`` lists)::
               wave_drift: {model: hu_tang | coefficient, ...}}
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
-         segments: [{type: NAME, length: > 0}]}
+         segments: [{type: NAME, length: > 0}, {clump: CLUMP}, {type: NAME, length}, ...]}
+                                               from the anchor up; a clump item sits between
+                                               two segments; CLUMP is {mass: kg >= 0,
+                                               volume: m^3 >= 0} or {weight: N} (< 0: buoy)
     solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
 """
 
@@ -50,6 +53,7 @@ from ..model import (
     DEGREES_OF_FREEDOM,
     Body,
     BodyLoads,
+    Clump,
     Case,
     DragLoad,
     DriftCoefficient,
@@ -427,6 +431,50 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
     return Segment(line_type=line_types[type_name], length=length)
 
 
+def _clump(raw, path: str, environment: Environment) -> Clump:
+    """``{mass: kg, volume: m^3}`` (net weight in water) or ``{weight: N}`` (negative: buoy)."""
+    m = _mapping(raw, path, optional=("mass", "volume", "weight"))
+    if "weight" in m:
+        for key in ("mass", "volume"):
+            if key in m:
+                raise CaseError(_join(path, key), f"{key} is not used with weight; give either "
+                                                  "weight [N] or mass [kg] and volume [m^3]")
+        weight = _quantity(m["weight"], _join(path, "weight"), "force")
+        return Clump(weight=weight)
+    if "mass" not in m:
+        raise CaseError(_join(path, "mass"), "a clump needs mass [kg] (and optionally volume "
+                                             "[m^3]) or a net weight [N]")
+    mass = _quantity(m["mass"], _join(path, "mass"), "mass", ge=0)
+    volume = _field(m, path, "volume", "volume", 0.0, ge=0)
+    weight = environment.gravity * (mass - environment.water_density * volume)
+    return Clump(weight=weight, mass=mass, volume=volume)
+
+
+def _segments(raw, path: str, environment: Environment, line_types: dict):
+    """Segments from anchor to fairlead, with optional ``{clump: ...}`` items between them."""
+    items = _sequence(raw, path, "a list of {type, length} segments from the anchor, with "
+                                 "optional {clump: {...}} items between them")
+    if not items:
+        raise CaseError(path, "no segments; a leg needs one segment {type, length}")
+    segments, clumps = [], []
+    for j, item in enumerate(items):
+        ipath = _join(path, j)
+        if isinstance(item, Mapping) and "clump" in item:
+            _mapping(item, ipath, required=("clump",))
+            if not segments or len(clumps) != len(segments) - 1:
+                raise CaseError(ipath, "a clump must sit between two segments (after a "
+                                       "segment, not first and not after another clump)")
+            clumps.append(_clump(item["clump"], _join(ipath, "clump"), environment))
+            continue
+        if segments and len(clumps) < len(segments):
+            clumps.append(None)
+        segments.append(_segment(item, ipath, line_types))
+    if len(clumps) == len(segments):
+        raise CaseError(_join(path, len(items) - 1),
+                        "a clump must sit between two segments; this one ends the leg")
+    return tuple(segments), tuple(clumps)
+
+
 def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
     m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"))
     name = _name(m["name"], _join(path, "name"), "leg name")
@@ -464,24 +512,18 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
                                              "anchor must not be higher than its fairlead")
 
     spath = _join(path, "segments")
-    items = _sequence(m["segments"], spath, "a list of {type, length}")
-    if not items:
-        raise CaseError(spath, "no segments; a leg needs one segment {type, length}")
-    segments = tuple(_segment(s, _join(spath, j), line_types) for j, s in enumerate(items))
-    if len(segments) > 1:
-        raise CaseError(spath, f"{len(segments)} segments: multi-segment legs are not supported "
-                               "yet (issue: lines beyond one catenary); give one segment")
-
-    segment = segments[0]
-    if segment.line_type.ea is None:
+    segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    if all(seg.line_type.ea is None for seg in segments):
         # Body at zero offset: the body-frame fairlead is its global position.
         distance = math.dist(anchor, fairlead)
-        if distance > segment.length:
-            raise CaseError(spath, f"the line ({format_si(segment.length, 'length')}) cannot "
+        length = sum(seg.length for seg in segments)
+        if distance > length:
+            raise CaseError(spath, f"the line ({format_si(length, 'length')}) cannot "
                                    f"reach from anchor to fairlead (distance "
                                    f"{format_si(distance, 'length')}); an inextensible line "
                                    "must be at least that long")
-    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments)
+    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments,
+               clumps=clumps if any(c is not None for c in clumps) else ())
 
 
 def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
@@ -634,8 +676,8 @@ def load_case(source) -> Case:
     Checks beyond the schema: anchors lie on or above the seabed and below their fairlead;
     fairleads lie above the seabed and at most :data:`FAIRLEAD_Z_MAX` above still water; an
     inextensible line is at least as long as the straight distance from its anchor to its
-    fairlead at the case-file position (body at zero offset); leg names are unique; each leg
-    has exactly one segment (the core model's limit).
+    fairlead at the case-file position (body at zero offset); leg names are unique; clump
+    items sit between two segments.
 
     Examples
     --------

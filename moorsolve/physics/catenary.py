@@ -351,3 +351,174 @@ def _grounded_stretch(H, w, mu, LB, sg, c):
     a = np.clip(sg, s0, None)
     integral = np.where(sg > s0, (H - mu * w * LB) * (a - s0) + mu * w * (a**2 - s0**2) / 2, 0.0)
     return integral * c
+
+
+# ---- segments of a multi-segment leg ----------------------------------------------------
+#
+# In a leg of several segments every joint is a free node. The horizontal tension is the same
+# in every segment (joints carry only vertical loads: a clump, a buoy, the seabed's reaction),
+# so one signed variable ``u`` serves the whole leg and each segment adds its top vertical
+# tension ``V``. A segment whose lower end is the anchor on the seabed is the leg block above;
+# the others use the blocks below.
+
+#: Square of a vertical force [N^2] under which the descent force is taken through its
+#: linear form, so that derivatives stay finite at a lower end resting on the seabed.
+_T_FLOOR = 1e-24
+
+LIFTED_INPUTS = ("X", "Z", "h", "u", "V", "L", "w", "ea_inv")
+SEGMENT_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x", "descent_x")
+
+
+def descent_force(H, h, w, ea_inv):
+    """Vertical force at a lifted end whose line runs down to touch a flat seabed.
+
+    A line that leaves its lower end (``h`` above the seabed) downward reaches the seabed
+    tangentially where its vertical tension is zero; over the descent the vertical tension
+    rises linearly by ``w`` per metre from ``V1`` (negative) to 0. With Hooke stretch the drop
+    is ``h = (sqrt(H^2 + V1^2) - H)/w + V1^2/(2 w EA)``, a quadratic in ``V1^2``; its root
+    (written without cancellation) is returned as ``V1 = -sqrt(t)`` [N].
+
+    Notes
+    -----
+    With ``d = w h (w h + 2 H)``, ``a = w h + H`` and ``c = 1/EA``:
+    ``t = 2 d / (1 + a c + sqrt(1 + 2 a c + c^2 H^2))``, which is ``d`` when ``c = 0``
+    (Merkin 1980, seed 004, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
+    """
+    d = w * h * (w * h + 2 * H)
+    a = w * h + H
+    c = ea_inv
+    t = 2 * d / (1 + a * c + ca.sqrt(1 + 2 * a * c + c**2 * H**2))
+    return -t / ca.sqrt(ca.fmax(t, _T_FLOOR))
+
+
+def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv):
+    """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
+
+    The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
+    that need not rest on the seabed: a joint lifted by a buoy, an anchor on a pile. Three
+    regimes, chosen in the graph:
+
+    - suspended (``V_A >= V1(h)``): one catenary, which may dip below its lower end without
+      reaching the seabed (the S between a buoy and a fairlead);
+    - two-sided touchdown (``V_A < V1``): the line runs down from the lower end to the seabed
+      (vertical force ``V1`` from :func:`descent_force`), lies on it for ``L_B`` and rises to the
+      upper end (the U under a buoyed joint, or a line between two points on the seabed);
+    - slack (``u < 0``): as in the leg block, ``-u / w`` of loose line lies on the seabed.
+
+    With ``h = 0`` it is exactly the touchdown/suspended leg block. Seabed friction is not
+    applied here (see the multi-segment notes in the README).
+
+    Returns
+    -------
+    dict
+        ``SEGMENT_OUTPUTS``: span residuals ``rX``, ``rZ`` [m]; ``H``; ``VF`` the top vertical
+        tension; ``HA`` and ``VA`` the horizontal and (signed, upward positive) vertical pull
+        on the lower end [N]; ``grounded`` [m]; ``suspended_x`` horizontal extent of the part
+        rising to the upper end [m]; ``descent_x`` horizontal extent of the descent [m].
+    """
+    H = ca.fmax(u, 0)
+    Hg = ca.fmax(H, _H_FLOOR)
+    c = ea_inv if elastic else 0
+    VA = V - w * L
+    V1 = descent_force(H, h, w, c)
+    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
+    Zs = (ca.sqrt(H**2 + V**2) - ca.sqrt(H**2 + VA**2)) / w + L * c * (V - w * L / 2)
+    s1 = -V1 / w
+    x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
+    LB = L - s1 - V / w
+    x_rise = (H / w) * ca.asinh(V / Hg) + H * (V / w) * c
+    Xt = x1 + LB * (1 + H * c) + x_rise
+    Zt = -h + ca.sign(V) * (ca.sqrt(H**2 + V**2) - H) / w + c * V * ca.fabs(V) / (2 * w)
+    loose = ca.fmax(-u, 0) / w
+    suspended = VA >= V1
+    return dict(
+        rX=ca.if_else(suspended, Xs, Xt) - X - loose,
+        rZ=ca.if_else(suspended, Zs, Zt) - Z,
+        H=H, VF=V, HA=H,
+        VA=ca.if_else(suspended, VA, V1),
+        grounded=ca.if_else(suspended, 0, LB),
+        suspended_x=ca.if_else(suspended, Xs, x_rise),
+        descent_x=ca.if_else(suspended, 0, x1),
+    )
+
+
+def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
+    """A weightless segment inside a multi-segment leg: straight, ``H = max(u, 0)``.
+
+    Its tension ``T = sqrt(H^2 + V^2)`` is the same at both ends and its direction is the
+    chord's: ``X = H L (1/T + 1/EA)``, ``Z = V L (1/T + 1/EA)``. With ``H = 0`` it hangs
+    vertical under the joint loads. (A weightless segment with no tension at all has no
+    definite shape; the model does not represent it.)
+    """
+    H = ca.fmax(u, 0)
+    T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
+    k = L * (1 / T + (ea_inv if elastic else 0))
+    return dict(rX=H * k - X, rZ=V * k - Z, H=H, VF=V, HA=H, VA=V, grounded=0 * H,
+                suspended_x=X, descent_x=0 * H)
+
+
+@lru_cache(maxsize=None)
+def lifted_segment_function(elastic: bool) -> ca.Function:
+    """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
+    args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
+    out = lifted_segment_equations(elastic, *args)
+    return ca.Function(f"segment_lifted_{'elastic' if elastic else 'inextensible'}", args,
+                       [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
+                       list(SEGMENT_OUTPUTS))
+
+
+@lru_cache(maxsize=None)
+def straight_segment_function(elastic: bool) -> ca.Function:
+    """:func:`straight_segment_equations` as a ``casadi.Function``."""
+    names = ("X", "Z", "u", "V", "L", "ea_inv")
+    args = [ca.SX.sym(n) for n in names]
+    out = straight_segment_equations(elastic, *args)
+    return ca.Function(f"segment_straight_{'elastic' if elastic else 'inextensible'}", args,
+                       [out[k] for k in SEGMENT_OUTPUTS], list(names), list(SEGMENT_OUTPUTS))
+
+
+def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None, h: float,
+                    X: float, Z: float, n: int = 51) -> dict:
+    """Points and tension along one segment from its lower end, in the leg's plane.
+
+    Covers every regime of :func:`lifted_segment_equations` (``h`` may be 0) and of a
+    suspended or weightless segment (``w <= 0``); see :func:`leg_profile` for the output.
+    The vertical tension is ``T_v(s) = V_A + w s`` on a suspended segment; on a two-sided
+    touchdown it runs from ``V1`` to 0 on the descent, is 0 on the seabed and rises from 0.
+    """
+    c = 1.0 / ea if ea else 0.0
+    s = np.linspace(0.0, L, n)
+    if w == 0:
+        frac = s / L
+        return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
+    VA = V - w * L
+    V1 = float(descent_force(H, h, w, c)) if w > 0 else -np.inf
+    if VA >= V1:
+        Tv = VA + w * s
+        if H > 0:
+            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
+            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+        else:
+            x = np.zeros_like(s)
+            z = (np.abs(Tv) * np.sign(Tv) - abs(VA) * np.sign(VA)) / w \
+                + (VA * s + w * s**2 / 2) * c
+        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+    s1 = -V1 / w
+    LB = L - s1 - V / w
+    s2 = s1 + LB
+    Tv = np.where(s < s1, V1 + w * s, np.where(s <= s2, 0.0, w * (s - s2)))
+    if H > 0:
+        x_desc = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(V1 / H)) + H * s * c
+        x1 = (H / w) * np.arcsinh(-V1 / H) + H * s1 * c
+        x_ground = x1 + (s - s1) * (1 + H * c)
+        x2 = x1 + LB * (1 + H * c)
+        x_rise = x2 + (H / w) * np.arcsinh(Tv / H) + H * (s - s2) * c
+    else:
+        x_desc = np.zeros_like(s)
+        x_ground = np.minimum(s - s1, X)
+        x_rise = np.full_like(s, X)
+    z_desc = (np.hypot(H, Tv) - np.hypot(H, V1)) / w + (V1 * s + w * s**2 / 2) * c
+    z_rise = -h + (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
+    x = np.where(s < s1, x_desc, np.where(s <= s2, x_ground, x_rise))
+    z = np.where(s < s1, z_desc, np.where(s <= s2, -h, z_rise))
+    return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
