@@ -26,10 +26,10 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from ..physics.catenary import initial_state, leg_profile
+from ..physics.catenary import LegKind, initial_state, leg_profile, segment_profile
 from ..physics.wall_tension import wall_tension
-from .problem import (ENV_PARAMS, LEG_PARAMS, EquilibriumProblem, environment_parameters, leg_kind,
-                      leg_parameters, structure_key)
+from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, EquilibriumProblem,
+                      MultiLegKind, _can_ground, leg_kind, parameter_vector, structure_key)
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -58,7 +58,9 @@ def get_problem(case: Case) -> EquilibriumProblem:
 
 def _scales(case: Case) -> tuple[float, float]:
     """Typical tension [N] and length [m] of the scene, for scaling the unknowns."""
-    tensions = [abs(leg.line_type.weight_in_water) * leg.length for leg in case.legs]
+    tensions = [sum(abs(seg.line_type.weight_in_water) * seg.length for seg in leg.segments)
+                + sum(abs(c.weight) for c in leg.joint_clumps if c is not None)
+                for leg in case.legs]
     tensions += [math.hypot(max(u, 0.0), V) for u, V in _rest_leg_states(case)]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
@@ -71,18 +73,77 @@ def _rest_leg_states(case: Case):
         fx, fy, fz = leg.fairlead
         X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
         Z = fz - leg.anchor[2]
+        if leg.multi_segment:
+            kind, w = _equivalent_line(case, leg)
+            states.append(initial_state(kind, X, Z, leg.length, w, None))
+            continue
         lt = leg.line_type
         states.append(initial_state(leg_kind(case, leg), X, Z, leg.length,
                                     lt.weight_in_water, lt.ea))
     return states
 
 
+def _equivalent_line(case: Case, leg) -> tuple:
+    """A uniform inextensible line of the same length and total weight (clumps spread)."""
+    total = sum(seg.line_type.weight_in_water * seg.length for seg in leg.segments)
+    total += sum(c.weight for c in leg.joint_clumps if c is not None)
+    w = total / leg.length
+    on_seabed = leg.anchor[2] <= -case.environment.depth + 1e-9
+    return LegKind(elastic=False, contact=on_seabed and w > 0, neutral=(w == 0)), w
+
+
+def _multi_leg_start(case: Case, leg, kind: MultiLegKind, u: float, V: float,
+                     length_scale: float, force_scale: float) -> list:
+    """Closed-form start of a multi-segment leg from its equivalent uniform line.
+
+    The joints are put where the equivalent catenary has their arc length; the segments'
+    top vertical tensions follow from the fairlead's by subtracting the weights below it
+    (zero on the seabed); a joint on the seabed starts pressed onto it by its clump.
+    """
+    eq_kind, w_eq = _equivalent_line(case, leg)
+    fx, fy, fz = leg.fairlead
+    X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
+    Z = fz - leg.anchor[2]
+    if eq_kind.neutral:
+        prof = dict(s=np.linspace(0, leg.length, 51), x=np.linspace(0, X, 51),
+                    z=np.linspace(0, Z, 51))
+    else:
+        prof = leg_profile(eq_kind, H=max(u, 0.0), V=V, L=leg.length, w=w_eq, ea=None, mu=0.0,
+                           X=X, Z=Z, n=201)
+    z_bed = -case.environment.depth
+    arc = np.cumsum([seg.length for seg in leg.segments])[:-1]
+    xi = np.interp(arc, prof["s"], prof["x"])
+    z = leg.anchor[2] + np.interp(arc, prof["s"], prof["z"])
+    clumps = [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
+    grounded = z <= z_bed + 1e-6 * max(case.environment.depth, 1.0)
+    Vs = [0.0] * len(leg.segments)
+    Vs[-1] = V
+    for k in range(len(leg.segments) - 2, -1, -1):
+        above = leg.segments[k + 1]
+        Vs[k] = Vs[k + 1] - above.line_type.weight_in_water * above.length - clumps[k]
+    joints = []
+    for j in range(kind.n_joints):
+        if grounded[j] and _can_ground(kind.segments[j]):
+            sigma = -(max(clumps[j], 0.0) + 1e-6 * force_scale)
+        else:
+            sigma = Vs[j]
+        joints += [float(xi[j]), float(sigma)]
+    return [u, V] + joints
+
+
 def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
     """Scaled starting vector: body at rest, legs in their closed-form states."""
     x = np.zeros(problem.n_x)
     for i, (u, V) in enumerate(_rest_leg_states(case)):
-        x[problem.n_q + 2 * i] = u
-        x[problem.n_q + 2 * i + 1] = V
+        start = problem.leg_offsets[i]
+        kind = problem.kinds[i]
+        if isinstance(kind, MultiLegKind):
+            block = _multi_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
+                                     problem.force_scale)
+            x[start: start + len(block)] = block
+        else:
+            x[start] = u
+            x[start + 1] = V
     return x / problem.x_scale
 
 
@@ -115,8 +176,7 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
     opts = case.solver
     tol = opts.tol if tol is None else tol
     problem = get_problem(case)
-    p_legs = leg_parameters(case)
-    p_full = np.concatenate([environment_parameters(case, 1.0), p_legs])
+    p_full = parameter_vector(case, 1.0)
     t0 = time.perf_counter()
     deadline = t0 + opts.max_time_s
     # IPOPT's own tolerance is on the scaled residual; the polish and certificate below
@@ -145,7 +205,7 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
     x_rest = initial_point(problem, case)
     if not ok:
         if problem.n_q and problem.load_names:
-            p_rest = np.concatenate([environment_parameters(case, 0.0), p_legs])
+            p_rest = parameter_vector(case, 0.0)
             x_rest, rest_ok = run(x_rest, p_rest)
             if not rest_ok:
                 x_rest = initial_point(problem, case)
@@ -154,7 +214,7 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
         # Load stepping from rest: each step starts from the last certified state.
         x_step = x_rest
         for factor in _LOAD_STEPS:
-            p_step = np.concatenate([environment_parameters(case, factor), p_legs])
+            p_step = parameter_vector(case, factor)
             x_try, ok = run(x_step, p_step)
             if not ok:
                 break
@@ -301,11 +361,17 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
     env = case.environment
     legs = []
     n_par = len(LEG_PARAMS)
+    seg_table = np.atleast_2d(np.asarray(problem.segment_report(x, p)))
     for i, (leg, kind) in enumerate(zip(case.legs, problem.kinds)):
         row = np.atleast_2d(legs_out)[i]
+        if isinstance(kind, MultiLegKind):
+            rows = [dict(zip(SEGMENT_COLUMNS, r)) for r in seg_table if int(r[0]) == i]
+            legs.append(_multi_leg_result(problem, case, leg, kind, row, rows,
+                                          float(xp[problem.leg_offsets[i]]), p, i))
+            continue
         H, VF, HA, VA, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
         lt = leg.line_type
-        u = float(xp[problem.n_q + 2 * i])
+        u = float(xp[problem.leg_offsets[i]])
         start_i = len(ENV_PARAMS) + i * n_par
         anchor = tuple(float(v) for v in p[start_i: start_i + 3])
         fairlead = (gx, gy, leg.fairlead[2])
@@ -352,3 +418,70 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
     return Result(converged=certified, solver="ipopt", certificate=cert,
                   effects=list(problem.effects), body=body, legs=legs, loads=loads,
                   case_name=case.name, state=x.copy(), notes=tuple(notes))
+
+
+def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult:
+    """The result of a multi-segment leg: CONTRACT fields, joints, segments, one profile."""
+    env = case.environment
+    H, VF, HA, VA, grounded, _, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
+    start_i = len(ENV_PARAMS) + i * len(LEG_PARAMS)
+    anchor = tuple(float(v) for v in p[start_i: start_i + 3])
+    fairlead = (gx, gy, leg.fairlead[2])
+    ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    parts = {k: [] for k in ("x", "z", "tension")}
+    segments, joints = [], []
+    td = None
+    for k, (seg, sk, r) in enumerate(zip(leg.segments, kind.segments, rows)):
+        lt = seg.line_type
+        if sk.block == "leg" and sk.leg.contact:
+            prof = leg_profile(sk.leg, H=r["H"], V=r["VF"], L=seg.length,
+                               w=lt.weight_in_water, ea=lt.ea,
+                               mu=env.seabed.friction if sk.leg.friction else 0.0,
+                               X=r["X"], Z=r["Z"], n=_PROFILE_POINTS)
+        else:
+            prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
+                                   ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
+                                   n=_PROFILE_POINTS)
+        sl = slice(1, None) if k else slice(None)
+        parts["x"].append(r["lower_xi"] + prof["x"][sl])
+        parts["z"].append(r["lower_z"] + prof["z"][sl])
+        parts["tension"].append(prof["tension"][sl])
+        if r["grounded"] > 0:
+            td = r["lower_xi"] + r["X"] - r["suspended_x"]
+        top = math.hypot(r["H"], r["VF"])
+        bottom = math.hypot(r["HA"], r["VA"])
+        segments.append({"type": lt.name, "length_m": seg.length,
+                         "top_tension_N": top, "bottom_tension_N": bottom,
+                         "horizontal_tension_N": r["H"], "top_vertical_N": r["VF"],
+                         "bottom_vertical_N": r["VA"], "grounded_length_m": r["grounded"],
+                         "max_tension_N": float(np.max(prof["tension"])),
+                         "utilisation": (float(np.max(prof["tension"])) / lt.mbl
+                                         if lt.mbl else None)})
+        if k > 0:
+            clump = leg.joint_clumps[k - 1]
+            joints.append({"position_m": [anchor[0] + ux * r["lower_xi"],
+                                          anchor[1] + uy * r["lower_xi"], r["lower_z"]],
+                           "height_above_seabed_m": r["lower_h"],
+                           "on_seabed": bool(rows[k - 1]["joint_reaction"] > 0
+                                             or r["lower_h"] <= 0),
+                           "seabed_reaction_N": rows[k - 1]["joint_reaction"],
+                           "clump_weight_N": clump.weight if clump is not None else 0.0})
+    xs = np.concatenate(parts["x"])
+    profile = {"x_m": anchor[0] + ux * xs, "y_m": anchor[1] + uy * xs,
+               "z_m": np.concatenate(parts["z"]), "tension_N": np.concatenate(parts["tension"])}
+    first = rows[0]
+    uplift = VA > 0 and first["grounded"] <= 0
+    mbl = min((seg.line_type.mbl for seg in leg.segments if seg.line_type.mbl), default=None)
+    return LegResult(
+        name=leg.name,
+        fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+        fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, max(VA, 0.0)),
+        anchor_horizontal_N=HA, anchor_vertical_N=max(VA, 0.0),
+        grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
+        uplift=bool(uplift), slack=bool(u < 0.0),
+        uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        anchor=anchor, fairlead=fairlead,
+        touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2] + 0.0)
+                         if td is not None else None),
+        mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints))

@@ -15,13 +15,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
+from typing import Optional
 
 import casadi as ca
 import numpy as np
 
 from ..model import DEGREES_OF_FREEDOM, Case, Leg
 from ..physics import loads as body_load_models
-from ..physics.catenary import LegKind, leg_function
+from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
+                                straight_segment_function)
 
 #: Environment parameter layout (angles in radians).
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
@@ -30,21 +33,113 @@ ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
 LEG_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
               "length", "weight", "ea_inv", "friction")
 
+#: Per-segment parameters of a multi-segment leg, and per joint the clump's net weight.
+SEGMENT_PARAMS = ("length", "weight", "ea_inv")
+#: Seabed parameters, present when some leg has joints (free nodes that may rest on it).
+SEABED_PARAMS = ("depth",)
+
+#: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment leg, its
+#: tensions [N] (top H and V, pull on its lower end HA and signed VA), grounded length and
+#: horizontal extents [m], span residuals [m] and spans [m], its lower node (height above
+#: the seabed, distance from the anchor, z), the unbalanced vertical force and seabed
+#: reaction of the joint at its top [N] (0 for the top segment), and its mismatch as a force.
+SEGMENT_COLUMNS = ("leg", "segment", "H", "VF", "HA", "VA", "grounded", "suspended_x",
+                   "descent_x", "rX", "rZ", "X", "Z", "lower_h", "lower_xi", "lower_z",
+                   "joint_unbalanced", "joint_reaction", "mismatch_N")
+
 #: Yaw is bounded to keep the solver away from the mirrored equilibrium with the lines
 #: crossing under the hull (yaw near 180 deg, REFERENCE.md section 1).
 YAW_LIMIT = math.pi / 2
 _X_FLOOR = 1e-12
 
 
-def leg_kind(case: Case, leg: Leg) -> LegKind:
-    """The physics a leg needs, from what the case declares."""
+@dataclass(frozen=True)
+class SegmentKind:
+    """Which block a segment of a multi-segment leg uses.
+
+    ``block`` is ``"leg"`` (the leg block of :func:`leg_function` with ``leg``: the anchor
+    segment on the seabed, or a buoyant segment that never touches it), ``"lifted"`` (a
+    sinking segment whose lower end may be above the seabed) or ``"straight"`` (weightless).
+    """
+
+    block: str
+    elastic: bool
+    leg: Optional[LegKind] = None
+
+
+@dataclass(frozen=True)
+class MultiLegKind:
+    """The physics of a multi-segment leg: one :class:`SegmentKind` per segment."""
+
+    segments: tuple
+
+    @property
+    def n_joints(self) -> int:
+        return len(self.segments) - 1
+
+    @property
+    def n_unknowns(self) -> int:
+        return 2 + 2 * self.n_joints
+
+    @property
+    def contact(self) -> bool:
+        return any(s.block == "lifted" or (s.leg is not None and s.leg.contact)
+                   for s in self.segments)
+
+    @property
+    def friction(self) -> bool:
+        return any(s.leg is not None and s.leg.friction for s in self.segments)
+
+    @property
+    def elastic(self) -> bool:
+        return any(s.elastic for s in self.segments)
+
+    @property
+    def neutral(self) -> bool:
+        return False
+
+
+def _can_ground(kind: SegmentKind) -> bool:
+    """Whether a segment's top can arrive along the seabed (a sinking segment)."""
+    return kind.block == "lifted" or (kind.leg is not None and kind.leg.contact)
+
+
+def _on_seabed(case: Case, leg: Leg) -> bool:
+    return leg.anchor[2] <= -case.environment.depth + 1e-9
+
+
+def leg_kind(case: Case, leg: Leg):
+    """The physics a leg needs, from what the case declares.
+
+    A :class:`LegKind` for a one-segment leg (the core problem, unchanged), a
+    :class:`MultiLegKind` for a leg of several segments.
+    """
+    if leg.multi_segment:
+        return _multi_leg_kind(case, leg)
     lt = leg.line_type
     w = lt.weight_in_water
-    on_seabed = leg.anchor[2] <= -case.environment.depth + 1e-9
-    contact = on_seabed and w > 0
+    contact = _on_seabed(case, leg) and w > 0
     return LegKind(elastic=lt.elastic, contact=contact,
                    friction=contact and case.environment.seabed.friction > 0,
                    neutral=(w == 0))
+
+
+def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
+    kinds = []
+    for k, seg in enumerate(leg.segments):
+        lt = seg.line_type
+        w = lt.weight_in_water
+        if w == 0:
+            kinds.append(SegmentKind("straight", lt.elastic))
+        elif w < 0:
+            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False)))
+        elif k == 0 and _on_seabed(case, leg):
+            # Friction acts on the anchor segment's grounded length only (README).
+            kinds.append(SegmentKind("leg", lt.elastic, LegKind(
+                lt.elastic, contact=True, friction=case.environment.seabed.friction > 0)))
+        else:
+            kinds.append(SegmentKind("lifted", lt.elastic))
+    return MultiLegKind(tuple(kinds))
 
 
 def structure_key(case: Case) -> tuple:
@@ -84,6 +179,30 @@ def leg_parameters(case: Case) -> np.ndarray:
     return np.asarray(rows, dtype=float).reshape(-1)
 
 
+def segment_parameters(case: Case) -> np.ndarray:
+    """Parameters of the multi-segment legs (empty for a scene of one-segment legs).
+
+    The seabed depth (``SEABED_PARAMS``), then per multi-segment leg ``SEGMENT_PARAMS`` for
+    each segment and the net clump weight [N] of each joint.
+    """
+    multi = [leg for leg in case.legs if leg.multi_segment]
+    if not multi:
+        return np.zeros(0)
+    values = [case.environment.depth]
+    for leg in multi:
+        for seg in leg.segments:
+            lt = seg.line_type
+            values += [seg.length, lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0]
+        values += [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
+    return np.asarray(values, dtype=float)
+
+
+def parameter_vector(case: Case, load_factor: float = 1.0) -> np.ndarray:
+    """The full parameter vector ``p`` of ``case``'s problem: environment, legs, segments."""
+    return np.concatenate([environment_parameters(case, load_factor), leg_parameters(case),
+                           segment_parameters(case)])
+
+
 class EquilibriumProblem:
     """The symbolic problem of one case structure, built once.
 
@@ -91,14 +210,26 @@ class EquilibriumProblem:
     ----------
     free : tuple of str
         Solved degrees of freedom, in ``DEGREES_OF_FREEDOM`` order.
-    kinds : list of LegKind
+    kinds : list of LegKind or MultiLegKind
     n_q, n_x, n_p : int
         Numbers of body unknowns, all unknowns and parameters.
+    leg_offsets : list of int
+        Index in ``x`` of each leg's first unknown. A one-segment leg has ``(u, V)``; a
+        multi-segment leg has ``u`` and the fairlead's ``V``, then per joint its horizontal
+        distance from the anchor ``xi`` [m] in the leg's plane and a signed force ``sigma``
+        [N]: the top vertical tension of the segment below is ``max(sigma, 0)`` and the
+        seabed's reaction on the joint ``max(-sigma, 0)`` (see the module notes).
     residual : casadi.Function
         ``(x, p) -> g`` scaled residuals (legs first, then body balance).
     report : casadi.Function
         ``(x, p) ->`` per-leg end forces, spans and Jacobian blocks, and the body's
-        unbalanced load, used for the certificate and the result.
+        unbalanced load, used for the certificate and the result. For a multi-segment leg
+        the row holds the top segment's tensions, the anchor segment's anchor forces, the
+        total grounded length and the leg's spans; its residual columns (6, 7) hold the
+        largest force mismatch [N] of its segments and joints and its Jacobian block
+        (14-17) is the identity, so that ``solve(J, e)`` is that force.
+    segment_report : casadi.Function
+        ``(x, p) ->`` one row per segment of the multi-segment legs (``SEGMENT_COLUMNS``).
     effects : list of str
         The physical effects this problem simulates.
     """
@@ -110,13 +241,19 @@ class EquilibriumProblem:
         self.kinds = [leg_kind(case, leg) for leg in case.legs]
         self.n_legs = len(case.legs)
         self.n_q = len(self.free)
-        self.n_x = self.n_q + 2 * self.n_legs
         self.force_scale = force_scale
         self.length_scale = length_scale
         self.moment_scale = force_scale * max(length_scale, _body_radius(case))
-        self.x_scale = np.array(
-            [length_scale if d != "yaw" else 1.0 for d in self.free]
-            + [force_scale] * (2 * self.n_legs))
+        scale = [length_scale if d != "yaw" else 1.0 for d in self.free]
+        self.leg_offsets = []
+        for kind in self.kinds:
+            self.leg_offsets.append(len(scale))
+            if isinstance(kind, MultiLegKind):
+                scale += [force_scale] * 2 + [length_scale, force_scale] * kind.n_joints
+            else:
+                scale += [force_scale] * 2
+        self.n_x = len(scale)
+        self.x_scale = np.array(scale, dtype=float)
         self.effects = self._effects()
         self._build()
 
@@ -132,12 +269,22 @@ class EquilibriumProblem:
             effects.append("seabed_contact")
         if any(k.friction for k in self.kinds):
             effects.append("seabed_friction")
-        if any(leg.line_type.weight_in_water < 0 for leg in case.legs):
+        types = [seg.line_type for leg in case.legs for seg in leg.segments]
+        if any(lt.weight_in_water < 0 for lt in types):
             effects.append("buoyant_line")
-        if any(k.neutral for k in self.kinds):
+        if any(k.neutral for k in self.kinds) or any(
+                s.block == "straight" for k in self.kinds if isinstance(k, MultiLegKind)
+                for s in k.segments):
             effects.append("neutral_line")
-        if any(leg.line_type.sealed for leg in case.legs):
+        if any(lt.sealed for lt in types):
             effects.append("wall_tension")
+        if any(leg.multi_segment for leg in case.legs):
+            effects.append("multi_segment")
+        clumps = [c for leg in case.legs for c in leg.joint_clumps if c is not None]
+        if any(c.weight > 0 for c in clumps):
+            effects.append("clump_weight")
+        if any(c.weight < 0 for c in clumps):
+            effects.append("buoy")
         if case.body is not None:
             effects += [("constant_force" if e == "force" else e)
                         for e in body_load_models.effect_names(case.body.loads, case.environment)]
@@ -149,9 +296,14 @@ class EquilibriumProblem:
         x = xs * ca.DM(self.x_scale)
         env = ca.SX.sym("env", len(ENV_PARAMS))
         legp = ca.SX.sym("legp", len(LEG_PARAMS) * self.n_legs)
-        p = ca.vertcat(env, legp)
+        n_seg_params = len(segment_parameters(case))
+        segp = ca.SX.sym("segp", n_seg_params)
+        p = ca.vertcat(env, legp, segp)
         self.n_p = p.numel()
         E = dict(zip(ENV_PARAMS, ca.vertsplit(env)))
+        seg_values = ca.vertsplit(segp) if n_seg_params else []
+        seabed = dict(zip(SEABED_PARAMS, seg_values[:len(SEABED_PARAMS)]))
+        seg_cursor = len(SEABED_PARAMS)
 
         q = {d: 0 for d in DEGREES_OF_FREEDOM}
         for i, d in enumerate(self.free):
@@ -159,11 +311,11 @@ class EquilibriumProblem:
         cy, sy = ca.cos(q["yaw"]), ca.sin(q["yaw"])
 
         fx_total, fy_total, mz_total = 0, 0, 0
-        leg_res, leg_out = [], []
+        leg_res, leg_out, seg_rows = [], [], []
         for i, kind in enumerate(self.kinds):
             P = dict(zip(LEG_PARAMS, ca.vertsplit(legp[i * len(LEG_PARAMS):
                                                        (i + 1) * len(LEG_PARAMS)])))
-            u, V = x[self.n_q + 2 * i], x[self.n_q + 2 * i + 1]
+            iu = self.leg_offsets[i]
             if case.body is not None:
                 rx = cy * P["fair_x"] - sy * P["fair_y"]
                 ry = sy * P["fair_x"] + cy * P["fair_y"]
@@ -176,22 +328,32 @@ class EquilibriumProblem:
             # X by less than 1e-18 m at any span that matters.
             X = ca.sqrt(dx**2 + dy**2 + _X_FLOOR**2)
             Z = P["fair_z"] - P["anchor_z"]
-            out = leg_function(kind).call(dict(X=X, Z=Z, u=u, V=V, L=P["length"],
-                                               w=P["weight"], ea_inv=P["ea_inv"],
-                                               mu=P["friction"]))
-            scale = 1.0 / P["length"]
-            leg_res += [out["rX"] * scale, out["rZ"] * scale]
+            if isinstance(kind, MultiLegKind):
+                n_par = 3 * len(kind.segments) + kind.n_joints
+                values = seg_values[seg_cursor: seg_cursor + n_par]
+                seg_cursor += n_par
+                res, row, rows = self._multi_leg(i, kind, x, xs, iu, P, values, seabed, X, Z)
+                leg_res += res
+                seg_rows += rows
+                H = row["H"]
+            else:
+                u, V = x[iu], x[iu + 1]
+                out = leg_function(kind).call(dict(X=X, Z=Z, u=u, V=V, L=P["length"],
+                                                   w=P["weight"], ea_inv=P["ea_inv"],
+                                                   mu=P["friction"]))
+                scale = 1.0 / P["length"]
+                leg_res += [out["rX"] * scale, out["rZ"] * scale]
+                J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
+                                ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
+                row = dict(out, J=ca.reshape(J, 4, 1))
+                H = out["H"]
             # The line pulls the fairlead horizontally toward the anchor with H.
-            fx, fy = -out["H"] * dx / X, -out["H"] * dy / X
+            fx, fy = -H * dx / X, -H * dy / X
             fx_total, fy_total = fx_total + fx, fy_total + fy
             mz_total = mz_total + rx * fy - ry * fx
-            iu = self.n_q + 2 * i
-            J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
-                            ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
-            leg_out.append(ca.vertcat(out["H"], out["VF"], out["HA"], out["VA"],
-                                      out["grounded"], out["suspended_x"], out["rX"],
-                                      out["rZ"], X, Z, gx, gy, fx, fy,
-                                      ca.reshape(J, 4, 1)))
+            leg_out.append(ca.vertcat(row["H"], row["VF"], row["HA"], row["VA"],
+                                      row["grounded"], row["suspended_x"], row["rX"],
+                                      row["rZ"], X, Z, gx, gy, fx, fy, row["J"]))
 
         loads = {}
         if case.body is not None:
@@ -221,9 +383,93 @@ class EquilibriumProblem:
             [ca.horzcat(*leg_out).T if leg_out else ca.DM(),
              ca.vertcat(unbalanced["surge"], unbalanced["sway"], unbalanced["yaw"]),
              ca.vertcat(load_x, load_y, load_m), load_vec])
+        self.segment_report = ca.Function(
+            "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g, xs)])
         self._xs, self._p, self._g = xs, p, g
         self._nlp_solvers = {}
+
+    def _multi_leg(self, i, kind, x, xs, iu, P, values, seabed, X, Z):
+        """Residuals and report rows of a multi-segment leg (see the module notes)."""
+        n = len(kind.segments)
+        nj = kind.n_joints
+        seg = [dict(zip(SEGMENT_PARAMS, values[3 * k: 3 * k + 3])) for k in range(n)]
+        clump = values[3 * n: 3 * n + nj]
+        u, V_top = x[iu], x[iu + 1]
+        xi = [x[iu + 2 + 2 * j] for j in range(nj)]
+        sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
+        z_bed = -seabed["depth"]
+        Vs, N = [], []
+        for j in range(nj):
+            if _can_ground(kind.segments[j]):
+                Vs.append(ca.fmax(sigma[j], 0))
+                N.append(ca.fmax(-sigma[j], 0))
+            else:
+                Vs.append(sigma[j])
+                N.append(0 * sigma[j])
+        Vs.append(V_top)
+        node_xi = [0] + xi + [X]
+        node_z = [P["anchor_z"]]
+        outs, res, mismatch = [], [], []
+        for k, sk in enumerate(kind.segments):
+            Xk = node_xi[k + 1] - node_xi[k]
+            top = k == n - 1
+            # A joint's height is where its lower segment puts it: that segment's height
+            # equation defines it instead of being a residual.
+            Zk = P["fair_z"] - node_z[k] if top else 0
+            h = ca.fmax(node_z[k] - z_bed, 0)
+            L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
+            if sk.block == "leg":
+                o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
+                                                   ea_inv=c, mu=P["friction"]))
+                o["descent_x"] = 0 * u
+            elif sk.block == "lifted":
+                o = lifted_segment_function(sk.elastic).call(dict(
+                    X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c))
+            else:
+                o = straight_segment_function(sk.elastic).call(dict(
+                    X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c))
+            if top:
+                res += [o["rX"] / L, o["rZ"] / L]
+                e = ca.vertcat(o["rX"], o["rZ"])
+                J = ca.jacobian(e, ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
+                det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
+                delta = ca.vertcat(J[1, 1] * e[0] - J[0, 1] * e[1],
+                                   -J[1, 0] * e[0] + J[0, 0] * e[1]) / det
+                mismatch.append(ca.norm_2(delta))
+            else:
+                res.append(o["rX"] / L)
+                node_z.append(node_z[k] + o["rZ"])
+                o["rZ"] = 0 * u
+                dX = ca.jacobian(o["rX"], xs[iu]) / self.force_scale
+                # An inextensible segment lying straight on the seabed has dX = 0: use the
+                # scene's own stiffness scale then.
+                mismatch.append(ca.fabs(o["rX"]) / ca.fmax(
+                    ca.fabs(dX), self.length_scale / self.force_scale))
+            outs.append((o, Xk, node_z[k + 1] - node_z[k] if not top else Zk, h))
+        joint_force = []
+        for j in range(nj):
+            # Joint j joins segment j (below) and j + 1 (above): the upper segment pulls it
+            # with its signed lower-end force VA, the lower one down with its top tension.
+            unbalanced = outs[j + 1][0]["VA"] - Vs[j] - clump[j] + N[j]
+            res.append(unbalanced / self.force_scale)
+            mismatch.append(ca.fabs(unbalanced))
+            joint_force.append(unbalanced)
+        worst = mismatch[0]
+        for m in mismatch[1:]:
+            worst = ca.fmax(worst, m)
+        top, bottom = outs[-1][0], outs[0][0]
+        grounded = sum((o["grounded"] for o, _, _, _ in outs), 0 * u)
+        row = dict(H=top["H"], VF=top["VF"], HA=bottom["HA"], VA=bottom["VA"],
+                   grounded=grounded, suspended_x=top["suspended_x"], rX=worst, rZ=0 * u,
+                   J=ca.DM([1.0, 0.0, 0.0, 1.0]))
+        rows = []
+        for k, (o, Xk, Zk, h) in enumerate(outs):
+            rows.append(ca.vertcat(
+                i, k, o["H"], o["VF"], o["HA"], o["VA"], o["grounded"], o["suspended_x"],
+                o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
+                joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k]))
+        return res, row, rows
 
     # -- solvers --------------------------------------------------------------------
     def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
@@ -252,7 +498,7 @@ class EquilibriumProblem:
                 lb[i], ub[i] = -YAW_LIMIT, YAW_LIMIT
         for i, kind in enumerate(self.kinds):
             if not kind.contact and not kind.neutral:
-                lb[self.n_q + 2 * i] = 0.0      # a hanging catenary cannot go slack
+                lb[self.leg_offsets[i]] = 0.0   # a hanging catenary cannot go slack
         return lb, ub
 
 

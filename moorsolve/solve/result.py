@@ -46,7 +46,14 @@ class Certificate:
 
 @dataclass(frozen=True)
 class LegResult:
-    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md."""
+    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md.
+
+    A multi-segment leg adds ``segments`` (per segment, from the anchor: type, length, top
+    and bottom tension, horizontal tension, grounded length, largest tension, utilisation)
+    and ``joints`` (per joint: position, height above the seabed, seabed reaction, clump
+    weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
+    segment utilisation.
+    """
 
     name: str
     fairlead_tension_N: float
@@ -66,10 +73,15 @@ class LegResult:
     touchdown_point: Optional[tuple]
     mbl_N: Optional[float]
     profile: dict = field(repr=False)
+    segments: tuple = ()
+    joints: tuple = ()
 
     @property
     def utilisation(self) -> Optional[float]:
         """Largest tension over the minimum breaking load, when the MBL is known."""
+        if self.segments:
+            values = [s["utilisation"] for s in self.segments if s["utilisation"] is not None]
+            return max(values) if values else None
         if not self.mbl_N:
             return None
         return max(self.fairlead_tension_N, self.anchor_tension_N) / self.mbl_N
@@ -96,6 +108,9 @@ class LegResult:
             "mbl_N": self.mbl_N,
             "utilisation": self.utilisation,
         }
+        if self.segments:
+            d["segments"] = [dict(s) for s in self.segments]
+            d["joints"] = [dict(j) for j in self.joints]
         if profile:
             d["profile"] = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
                             for k, v in self.profile.items()}
