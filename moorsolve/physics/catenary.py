@@ -365,7 +365,7 @@ def _grounded_stretch(H, w, mu, LB, sg, c):
 #: linear form, so that derivatives stay finite at a lower end resting on the seabed.
 _T_FLOOR = 1e-24
 
-LIFTED_INPUTS = ("X", "Z", "h", "u", "V", "L", "w", "ea_inv")
+LIFTED_INPUTS = ("X", "Z", "h", "u", "V", "L", "w", "ea_inv", "mu")
 SEGMENT_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x", "descent_x")
 
 
@@ -391,7 +391,13 @@ def descent_force(H, h, w, ea_inv):
     return -t / ca.sqrt(ca.fmax(t, _T_FLOOR))
 
 
-def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv):
+def _hyp(a, b):
+    """``sqrt(a^2 + b^2)`` floored by 1e-9 N so that its derivative exists at (0, 0)."""
+    return ca.sqrt(a**2 + b**2 + _H_FLOOR**2)
+
+
+def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
+                             friction: bool = False):
     """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
 
     The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
@@ -405,8 +411,10 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv):
       upper end (the U under a buoyed joint, or a line between two points on the seabed);
     - slack (``u < 0``): as in the leg block, ``-u / w`` of loose line lies on the seabed.
 
-    With ``h = 0`` it is exactly the touchdown/suspended leg block. Seabed friction is not
-    applied here (see the multi-segment notes in the README).
+    With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
+    1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
+    ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
+    decays toward the lower end as in :func:`leg_equations`.
 
     Returns
     -------
@@ -422,19 +430,25 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv):
     VA = V - w * L
     V1 = descent_force(H, h, w, c)
     Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
-    Zs = (ca.sqrt(H**2 + V**2) - ca.sqrt(H**2 + VA**2)) / w + L * c * (V - w * L / 2)
+    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
     s1 = -V1 / w
     x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
     LB = L - s1 - V / w
     x_rise = (H / w) * ca.asinh(V / Hg) + H * (V / w) * c
     Xt = x1 + LB * (1 + H * c) + x_rise
-    Zt = -h + ca.sign(V) * (ca.sqrt(H**2 + V**2) - H) / w + c * V * ca.fabs(V) / (2 * w)
+    Zt = -h + ca.sign(V) * (_hyp(H, V) - _hyp(H, 0)) / w + c * V * ca.fabs(V) / (2 * w)
+    HA_t = H
+    if friction:
+        excess = LB - H / (mu * w)
+        if elastic:
+            Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
+        HA_t = ca.fmax(H - mu * w * LB, 0)
     loose = ca.fmax(-u, 0) / w
     suspended = VA >= V1
     return dict(
         rX=ca.if_else(suspended, Xs, Xt) - X - loose,
         rZ=ca.if_else(suspended, Zs, Zt) - Z,
-        H=H, VF=V, HA=H,
+        H=H, VF=V, HA=ca.if_else(suspended, H, HA_t),
         VA=ca.if_else(suspended, VA, V1),
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, x_rise),
@@ -458,11 +472,12 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
 
 
 @lru_cache(maxsize=None)
-def lifted_segment_function(elastic: bool) -> ca.Function:
+def lifted_segment_function(elastic: bool, friction: bool = False) -> ca.Function:
     """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
     args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
-    out = lifted_segment_equations(elastic, *args)
-    return ca.Function(f"segment_lifted_{'elastic' if elastic else 'inextensible'}", args,
+    out = lifted_segment_equations(elastic, *args, friction=friction)
+    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+    return ca.Function(f"segment_lifted_{tag}", args,
                        [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
                        list(SEGMENT_OUTPUTS))
 

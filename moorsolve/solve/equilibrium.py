@@ -128,6 +128,9 @@ def _multi_leg_start(case: Case, leg, kind: MultiLegKind, u: float, V: float,
         else:
             sigma = Vs[j]
         joints += [float(xi[j]), float(sigma)]
+    if kind.reversed_top:
+        top = leg.segments[-1]
+        V = top.line_type.weight_in_water * top.length - V
     return [u, V] + joints
 
 
@@ -365,7 +368,8 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
     for i, (leg, kind) in enumerate(zip(case.legs, problem.kinds)):
         row = np.atleast_2d(legs_out)[i]
         if isinstance(kind, MultiLegKind):
-            rows = [dict(zip(SEGMENT_COLUMNS, r)) for r in seg_table if int(r[0]) == i]
+            rows = [dict(zip(SEGMENT_COLUMNS, (float(v) for v in r)))
+                    for r in seg_table if int(r[0]) == i]
             legs.append(_multi_leg_result(problem, case, leg, kind, row, rows,
                                           float(xp[problem.leg_offsets[i]]), p, i))
             continue
@@ -414,7 +418,18 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
     notes = [f"leg {lr.name}: the line passes below the seabed (contact not modelled "
              f"for an anchor above the seabed or a buoyant line)"
              for lr, kind in zip(legs, problem.kinds)
-             if not kind.contact and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+             if not isinstance(kind, MultiLegKind) and not kind.contact
+             and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+    for lr in legs:
+        for j, joint in enumerate(lr.joints):
+            if joint["position_m"][2] > 0:
+                notes.append(f"leg {lr.name}: joint {j + 1} is {joint['position_m'][2]:.2f} m "
+                             "above the still-water level (its buoyancy is taken as fully "
+                             "submerged; the buoy is too large for this leg)")
+            if joint["seabed_reaction_N"] > 0 and joint["height_above_seabed_m"] > 1e-6:
+                notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
+                             f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
+                             "(a segment hanging down into a joint is outside the model)")
     return Result(converged=certified, solver="ipopt", certificate=cert,
                   effects=list(problem.effects), body=body, legs=legs, loads=loads,
                   case_name=case.name, state=x.copy(), notes=tuple(notes))
@@ -433,11 +448,18 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
     td = None
     for k, (seg, sk, r) in enumerate(zip(leg.segments, kind.segments, rows)):
         lt = seg.line_type
-        if sk.block == "leg" and sk.leg.contact:
-            prof = leg_profile(sk.leg, H=r["H"], V=r["VF"], L=seg.length,
-                               w=lt.weight_in_water, ea=lt.ea,
-                               mu=env.seabed.friction if sk.leg.friction else 0.0,
-                               X=r["X"], Z=r["Z"], n=_PROFILE_POINTS)
+        if sk.friction:
+            prof = leg_profile(LegKind(elastic=sk.elastic, contact=True, friction=True),
+                               H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
+                               ea=lt.ea, mu=env.seabed.friction, X=r["X"], Z=r["Z"],
+                               n=_PROFILE_POINTS)
+        elif k == len(rows) - 1 and kind.reversed_top:
+            # Solved from the fairlead end: draw it from there, then turn it round.
+            back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water,
+                                   ea=lt.ea, h=max(leg.fairlead[2] + env.depth, 0.0),
+                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+            prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
+                    "tension": back["tension"][::-1]}
         else:
             prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                    ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
@@ -446,8 +468,6 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
         parts["x"].append(r["lower_xi"] + prof["x"][sl])
         parts["z"].append(r["lower_z"] + prof["z"][sl])
         parts["tension"].append(prof["tension"][sl])
-        if r["grounded"] > 0:
-            td = r["lower_xi"] + r["X"] - r["suspended_x"]
         top = math.hypot(r["H"], r["VF"])
         bottom = math.hypot(r["HA"], r["VA"])
         segments.append({"type": lt.name, "length_m": seg.length,
@@ -464,8 +484,9 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                            "height_above_seabed_m": r["lower_h"],
                            "on_seabed": bool(rows[k - 1]["joint_reaction"] > 0
                                              or r["lower_h"] <= 0),
-                           "seabed_reaction_N": rows[k - 1]["joint_reaction"],
+                           "seabed_reaction_N": max(rows[k - 1]["joint_reaction"], 0.0),
                            "clump_weight_N": clump.weight if clump is not None else 0.0})
+    td = _anchor_touchdown(rows, leg, kind)
     xs = np.concatenate(parts["x"])
     profile = {"x_m": anchor[0] + ux * xs, "y_m": anchor[1] + uy * xs,
                "z_m": np.concatenate(parts["z"]), "tension_N": np.concatenate(parts["tension"])}
@@ -485,3 +506,18 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
         touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2] + 0.0)
                          if td is not None else None),
         mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints))
+
+
+def _anchor_touchdown(rows, leg, kind):
+    """Distance from the anchor [m] where the line first leaves the seabed (None: uplift).
+
+    The grounded run starts at the anchor and continues through segments lying wholly on
+    the seabed; it ends in the first segment that lifts off.
+    """
+    for k, r in enumerate(rows):
+        reversed_top = k == len(rows) - 1 and kind.reversed_top
+        if r["grounded"] <= 0 or reversed_top or r["lower_h"] > 0:
+            return r["lower_xi"] if k else None
+        if r["grounded"] < leg.segments[k].length * (1 - 1e-12):
+            return r["lower_xi"] + r["X"] - r["suspended_x"]
+    return rows[-1]["lower_xi"] + rows[-1]["X"]

@@ -57,21 +57,29 @@ _X_FLOOR = 1e-12
 class SegmentKind:
     """Which block a segment of a multi-segment leg uses.
 
-    ``block`` is ``"leg"`` (the leg block of :func:`leg_function` with ``leg``: the anchor
-    segment on the seabed, or a buoyant segment that never touches it), ``"lifted"`` (a
-    sinking segment whose lower end may be above the seabed) or ``"straight"`` (weightless).
+    ``block`` is ``"leg"`` (the leg block of :func:`leg_function` with ``leg``: a buoyant
+    segment that never touches the seabed), ``"lifted"`` (a sinking segment whose lower end
+    may be above the seabed; ``friction`` for the anchor segment) or ``"straight"``
+    (weightless).
     """
 
     block: str
     elastic: bool
     leg: Optional[LegKind] = None
+    friction: bool = False
 
 
 @dataclass(frozen=True)
 class MultiLegKind:
-    """The physics of a multi-segment leg: one :class:`SegmentKind` per segment."""
+    """The physics of a multi-segment leg: one :class:`SegmentKind` per segment.
+
+    ``reversed_top``: the fairlead rests on the seabed and the top segment sinks, so that
+    segment is solved from the fairlead end (its block's lower end), where the line may lie
+    flat; the unknown ``V`` is then its vertical tension at the joint below.
+    """
 
     segments: tuple
+    reversed_top: bool = False
 
     @property
     def n_joints(self) -> int:
@@ -88,7 +96,7 @@ class MultiLegKind:
 
     @property
     def friction(self) -> bool:
-        return any(s.leg is not None and s.leg.friction for s in self.segments)
+        return any(s.friction for s in self.segments)
 
     @property
     def elastic(self) -> bool:
@@ -133,13 +141,13 @@ def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
             kinds.append(SegmentKind("straight", lt.elastic))
         elif w < 0:
             kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False)))
-        elif k == 0 and _on_seabed(case, leg):
-            # Friction acts on the anchor segment's grounded length only (README).
-            kinds.append(SegmentKind("leg", lt.elastic, LegKind(
-                lt.elastic, contact=True, friction=case.environment.seabed.friction > 0)))
         else:
-            kinds.append(SegmentKind("lifted", lt.elastic))
-    return MultiLegKind(tuple(kinds))
+            # Friction acts on the anchor segment's grounded length only (README).
+            friction = k == 0 and _on_seabed(case, leg) and case.environment.seabed.friction > 0
+            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction))
+    fairlead_on_seabed = leg.fairlead[2] <= -case.environment.depth + 1e-9
+    return MultiLegKind(tuple(kinds), reversed_top=fairlead_on_seabed and kinds[-1].block
+                        == "lifted")
 
 
 def structure_key(case: Case) -> tuple:
@@ -418,14 +426,18 @@ class EquilibriumProblem:
             # equation defines it instead of being a residual.
             Zk = P["fair_z"] - node_z[k] if top else 0
             h = ca.fmax(node_z[k] - z_bed, 0)
+            if top and kind.reversed_top:
+                # Solved from the fairlead (on the seabed) toward the joint below.
+                Zk = node_z[k] - P["fair_z"]
+                h = ca.fmax(P["fair_z"] - z_bed, 0)
             L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
             if sk.block == "leg":
                 o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
                                                    ea_inv=c, mu=P["friction"]))
                 o["descent_x"] = 0 * u
             elif sk.block == "lifted":
-                o = lifted_segment_function(sk.elastic).call(dict(
-                    X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c))
+                o = lifted_segment_function(sk.elastic, sk.friction).call(dict(
+                    X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"]))
             else:
                 o = straight_segment_function(sk.elastic).call(dict(
                     X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c))
@@ -446,6 +458,11 @@ class EquilibriumProblem:
                 # scene's own stiffness scale then.
                 mismatch.append(ca.fabs(o["rX"]) / ca.fmax(
                     ca.fabs(dX), self.length_scale / self.force_scale))
+            if top and kind.reversed_top:
+                # Back to the leg's orientation: the fairlead's vertical tension is minus the
+                # block's pull on its lower end; the joint is pulled down by the block's V.
+                o = dict(o, VF=-o["VA"], VA=-o["VF"])
+                Zk, h = -Zk, ca.fmax(node_z[k] - z_bed, 0)
             outs.append((o, Xk, node_z[k + 1] - node_z[k] if not top else Zk, h))
         joint_force = []
         for j in range(nj):
