@@ -431,8 +431,13 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
                 notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
                              f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
                              "(a segment hanging down into a joint is outside the model)")
+    # Clump weights are parameters: what they are depends on this case, not the structure.
+    effects = list(problem.effects)
+    clumps = [c.weight for leg in case.legs for c in leg.joint_clumps if c is not None]
+    effects += (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
+        ["buoy"] if any(w < 0 for w in clumps) else [])
     return Result(converged=certified, solver=solver, certificate=cert,
-                  effects=list(problem.effects), body=body, legs=legs, loads=loads,
+                  effects=effects, body=body, legs=legs, loads=loads,
                   case_name=case.name, state=x.copy(), notes=tuple(notes))
 
 

@@ -288,11 +288,6 @@ class EquilibriumProblem:
             effects.append("wall_tension")
         if any(leg.multi_segment for leg in case.legs):
             effects.append("multi_segment")
-        clumps = [c for leg in case.legs for c in leg.joint_clumps if c is not None]
-        if any(c.weight > 0 for c in clumps):
-            effects.append("clump_weight")
-        if any(c.weight < 0 for c in clumps):
-            effects.append("buoy")
         if case.body is not None:
             effects += [("constant_force" if e == "force" else e)
                         for e in body_load_models.effect_names(case.body.loads, case.environment)]
