@@ -9,6 +9,37 @@ degree of freedom. The problem is square; IPOPT solves it as a feasibility NLP.
 Everything that may change between solves of one scene is a parameter (environment speeds
 and headings, a load factor, the constant force, and per leg the anchor, fairlead, length,
 weight, compliance and friction), so one build serves a whole sweep.
+
+Multi-segment legs
+------------------
+A leg of several segments (chain-polyester-chain, clump weights, buoys) stays in the
+vertical plane through its anchor and fairlead: every load on it (weights, clumps, buoys,
+the seabed's reaction) is vertical and friction acts along the line, so the horizontal
+tension is the same in every segment and no force leaves the plane. The 2-D model is exact.
+Its unknowns are ``u`` (shared by all segments), the fairlead's ``V`` and per joint
+
+- ``xi``: the joint's horizontal distance from the anchor in the leg's plane [m];
+- ``sigma``: a signed force [N]. ``max(sigma, 0)`` is the vertical tension at the top of the
+  segment below the joint, ``max(-sigma, 0)`` the seabed's reaction on the joint.
+
+The joint's height is not an unknown: the segment below puts it there (its height
+equation defines it). Equations: each segment's span residual ``rX``, the top segment's
+``rZ``, and each joint's vertical balance ``VA_above - V_below - W_clump + N = 0``.
+
+Contact of a joint with the seabed is therefore the complementarity ``N * V_below = 0``
+written exactly with one signed unknown, the same device as the leg block's ``u`` (no
+penalty stiffness, no relaxation parameter, no MPCC). It was chosen over a contact
+complementarity on the joint's height because a segment lying flat up to a joint has
+``Z ~ V |V| / (2 H w)``: with ``V`` and the height as separate unknowns the Jacobian is
+singular exactly where a clump rests on the seabed. Here the segment below a grounded joint
+has ``V = 0`` and the reaction takes over linearly. A sinking segment's lower end may be
+lifted (a buoyed joint, a pile-head anchor): it then uses the two-sided touchdown block
+(:func:`~moorsolve.physics.catenary.lifted_segment_equations`), which also covers the U
+between two points above or on the seabed. When the fairlead itself rests on the seabed the
+top segment is solved from that end (``MultiLegKind.reversed_top``) for the same reason.
+Limits: a joint rests on the seabed only with the segment below arriving along it (not
+hanging down into it); seabed friction acts on the anchor segment only; a buoy's lift is
+constant (fully submerged). Scenes without multi-segment legs build exactly the core problem.
 """
 
 from __future__ import annotations
