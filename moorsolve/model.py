@@ -4,9 +4,9 @@ Frozen dataclasses, SI units throughout, degrees only in names ending ``_deg``. 
 :class:`Case` is what every other part of moorsolve consumes; ``moorsolve.io`` builds one
 from a case file and checks it. Nothing here imports CasADi.
 
-Coordinates: x, y horizontal, z up, z = 0 at the still-water level, flat seabed at
-z = -depth. ``toward_deg`` is the direction a wind, current or wave train travels toward,
-counter-clockwise from +x.
+Coordinates: x, y horizontal, z up, z = 0 at the still-water level, seabed at z = -depth
+(or a plane through that point at the origin, :class:`Seabed`). ``toward_deg`` is the
+direction a wind, current or wave train travels toward, counter-clockwise from +x.
 """
 
 from __future__ import annotations
@@ -143,9 +143,19 @@ class Waves:
 
 @dataclass(frozen=True)
 class Seabed:
-    """Seabed contact. ``friction`` is the Coulomb coefficient for line on seabed (0 = none)."""
+    """Seabed contact.
+
+    ``friction`` is the Coulomb coefficient for line on seabed (0 = none). ``gradient`` is
+    ``(dz/dx, dz/dy)`` of a plane seabed: its height is ``-depth + gx x + gy y``, so
+    ``depth`` is the water depth at the origin; ``(0, 0)`` is flat.
+    """
 
     friction: float = 0.0
+    gradient: tuple = (0.0, 0.0)
+
+    @property
+    def sloped(self) -> bool:
+        return any(g != 0.0 for g in self.gradient)
 
 
 @dataclass(frozen=True)
@@ -158,6 +168,11 @@ class Environment:
     wind: Optional[Flow] = None
     current: Optional[Flow] = None
     waves: Optional[Waves] = None
+
+    def seabed_z(self, x: float, y: float) -> float:
+        """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed)."""
+        gx, gy = self.seabed.gradient
+        return -self.depth + gx * x + gy * y
 
 
 # ---- body load models ---------------------------------------------------------------

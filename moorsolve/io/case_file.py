@@ -17,7 +17,8 @@ Schema (SI units, ``[...]`` lists)::
       water_density: > 0 [kg/m^3]              default 1025
       air_density: > 0 [kg/m^3]                default 1.225
       gravity: > 0 [m/s^2]                     default 9.80665
-      seabed: {friction: >= 0}                 default 0
+      seabed: {friction: >= 0,                 default 0
+               gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
       wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise
       waves: {hs: >= 0 [m], toward_deg}        optional
     line_types:                                required, at least one
@@ -75,6 +76,8 @@ __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
 
 #: Highest fairlead allowed [m above still water]; catches a unit slip (mm for m) early.
 FAIRLEAD_Z_MAX = 1000.0
+#: Steepest seabed accepted (rise per metre): 45 deg. A chain does not rest on a steeper one.
+MAX_GRADIENT = 1.0
 #: The deepest ocean is under 11 km; a larger depth is a unit mistake.
 MAX_DEPTH = 12_000.0
 #: Longer than any mooring line ever laid: a unit mistake.
@@ -210,8 +213,21 @@ def _environment(raw, path: str) -> Environment:
     seabed = Seabed()
     if "seabed" in m:
         sub = _join(path, "seabed")
-        s = _mapping(m["seabed"], sub, optional=("friction",))
-        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0))
+        s = _mapping(m["seabed"], sub, optional=("friction", "gradient"))
+        gradient = (0.0, 0.0)
+        if "gradient" in s:
+            gpath = _join(sub, "gradient")
+            items = _sequence(s["gradient"], gpath, "[dz/dx, dz/dy]")
+            if len(items) != 2:
+                raise CaseError(gpath, f"{show_value(s['gradient'])} has {len(items)} values; "
+                                       "it must be [dz/dx, dz/dy]")
+            gradient = tuple(_quantity(v, _join(gpath, i), "dimensionless", ge=-MAX_GRADIENT,
+                                       le=MAX_GRADIENT) for i, v in enumerate(items))
+            if math.hypot(*gradient) > MAX_GRADIENT:
+                raise CaseError(gpath, f"slope {math.hypot(*gradient):.4g} must be <= "
+                                       f"{MAX_GRADIENT} (45 deg)")
+        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0),
+                        gradient=gradient)
     wind = None if m.get("wind") is None else _flow(m["wind"], _join(path, "wind"))
     current = None if m.get("current") is None else _flow(m["current"], _join(path, "current"))
     waves = None if m.get("waves") is None else _waves(m["waves"], _join(path, "waves"))
@@ -480,15 +496,22 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
     name = _name(m["name"], _join(path, "name"), "leg name")
     depth = environment.depth
     seabed_tol = 1e-9 * max(depth, 1.0)  # unit conversions may leave the seabed z a few ulp off
+    sloped = environment.seabed.sloped
+    allowed = "must be on or above the (sloped) seabed" if sloped else "must be >= -depth"
 
     fpath = _join(path, "fairlead")
     fairlead = _point(m["fairlead"], fpath, (3,))
     fz = fairlead[2]
-    if fz < -depth - seabed_tol:
+    bed = environment.seabed_z(fairlead[0], fairlead[1])
+    if bed >= 0:
+        raise CaseError(fpath, f"the sloped seabed is at z = {format_si(bed, 'length')} under "
+                               "this fairlead, not under water; reduce environment.seabed."
+                               "gradient or move the leg")
+    if fz < bed - seabed_tol:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is below "
-                                         f"the seabed (z = {format_si(-depth, 'length')}); it "
-                                         "must be >= -depth")
-    fz = max(fz, -depth)
+                                         f"the seabed (z = {format_si(bed, 'length')}); it "
+                                         f"{allowed}")
+    fz = max(fz, bed)
     fairlead = fairlead[:2] + (fz,)
     if fz > FAIRLEAD_Z_MAX:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} must be <= "
@@ -496,16 +519,21 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
 
     apath = _join(path, "anchor")
     anchor = _point(m["anchor"], apath, (2, 3))
+    bed = environment.seabed_z(anchor[0], anchor[1])
+    if bed >= 0:
+        raise CaseError(apath, f"the sloped seabed is at z = {format_si(bed, 'length')} at "
+                               "this anchor, not under water; reduce environment.seabed."
+                               "gradient or move the anchor")
     if len(anchor) == 2:
-        anchor = anchor + (-depth,)
+        anchor = anchor + (bed,)
     else:
         az = anchor[2]
-        if az < -depth - seabed_tol:
+        if az < bed - seabed_tol:
             raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is below the "
-                                             f"seabed (z = {format_si(-depth, 'length')}); it "
-                                             "must be >= -depth")
-        if az < -depth:
-            anchor = anchor[:2] + (-depth,)
+                                             f"seabed (z = {format_si(bed, 'length')}); it "
+                                             f"{allowed}")
+        if az < bed:
+            anchor = anchor[:2] + (bed,)
         if anchor[2] > fz:
             raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is above "
                                              f"the fairlead (z = {format_si(fz, 'length')}); the "
@@ -513,6 +541,10 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
 
     spath = _join(path, "segments")
     segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    if sloped and len(segments) > 1:
+        raise CaseError(spath, f"{len(segments)} segments on a sloped seabed: multi-segment legs "
+                               "need a flat seabed (environment.seabed.gradient [0, 0]); a "
+                               "sloped seabed takes one-segment legs")
     if all(seg.line_type.ea is None for seg in segments):
         # Body at zero offset: the body-frame fairlead is its global position.
         distance = math.dist(anchor, fairlead)

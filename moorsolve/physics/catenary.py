@@ -48,12 +48,15 @@ class LegKind:
         Seabed friction acts on the grounded length (needs ``contact``).
     neutral : bool
         Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
+    sloped : bool
+        The anchor rests on a sloped seabed (:func:`sloped_leg_equations`; needs ``contact``).
     """
 
     elastic: bool
     contact: bool
     friction: bool = False
     neutral: bool = False
+    sloped: bool = False
 
     @property
     def tag(self) -> str:
@@ -64,6 +67,8 @@ class LegKind:
             parts.append("contact")
             if self.friction:
                 parts.append("friction")
+            if self.sloped:
+                parts.append("sloped")
         else:
             parts.append("suspended")
         return "_".join(parts)
@@ -537,3 +542,150 @@ def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
     x = np.where(s < s1, x_desc, np.where(s <= s2, x_ground, x_rise))
     z = np.where(s < s1, z_desc, np.where(s <= s2, -h, z_rise))
     return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+
+
+# ---- a leg on a sloped seabed -------------------------------------------------------------
+
+SLOPED_INPUTS = LEG_INPUTS + ("t",)
+
+
+def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv, mu, t):
+    """A sinking leg whose anchor is on a seabed of slope ``t = tan(theta)`` in its plane.
+
+    ``t`` is the seabed's rise per metre along the leg's horizontal direction (anchor toward
+    fairlead), so the seabed in the leg's vertical plane is ``z = t x`` from the anchor.
+    Regimes, chosen in the graph:
+
+    - suspended (``V_A >= H t``): the line leaves the anchor at least as steeply as the
+      seabed; the ordinary elastic catenary;
+    - touchdown (``V_A < H t``): ``L_B = L - (V - H t)/w`` lies on the slope; the line
+      leaves it tangentially, where the vertical tension is ``H t`` and the tension
+      ``H sqrt(1 + t^2)``;
+    - slack (``u < 0``): ``H = 0``; the line hangs vertically from the fairlead onto the
+      slope and ``-u/w`` of it lies loose on the slope.
+
+    On the slope the tension falls from the touchdown toward the anchor by
+    ``k = w (sin(theta) + mu cos(theta))`` per metre (the weight's component along the slope,
+    and fully mobilised friction), down to zero at most: ``T_A = max(H sqrt(1+t^2) - k L_B,
+    0)``; with ``theta < 0`` (seabed falling toward the fairlead) and little friction the
+    tension grows toward the anchor instead. The anchor force is ``T_A`` along the slope.
+
+    Notes
+    -----
+    Suspended part from the touchdown (Merkin 1980, seed 004, sections 2.1, 2.3, integrated
+    from the vertical tension ``H t`` instead of 0)::
+
+        X_s = (H/w)[asinh(V/H) - asinh(t)] + H L_s/EA,   L_s = (V - H t)/w
+        Z_s = [sqrt(H^2+V^2) - H sqrt(1+t^2)]/w + (V^2 - H^2 t^2)/(2 w EA)
+
+    The grounded part adds ``(L_B + stretch)(cos, sin)(theta)`` with the stretch
+    ``int T/EA ds`` over the slope. With ``t = 0`` this is :func:`leg_equations`.
+    The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
+    the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
+    """
+    H = ca.fmax(u, 0)
+    Hg = ca.fmax(H, _H_FLOOR)
+    c = ea_inv if elastic else 0
+    sec = ca.sqrt(1 + t**2)
+    cos_t, sin_t = 1 / sec, t / sec
+    VA = V - w * L
+    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
+    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
+
+    Vtd = H * t
+    loose = ca.fmax(-u, 0) / w
+    LB = L - (V - Vtd) / w
+    Ls = L - LB
+    x_susp = (H / w) * (ca.asinh(V / Hg) - ca.asinh(t)) + H * Ls * c
+    # Rise of the suspended part; below V = Vtd (a negative suspended length, outside the
+    # regime) a monotone continuation, so that no false root appears there (for H = 0 it
+    # is the sgn(V) form of the leg block).
+    z_susp = ca.if_else(V >= Vtd,
+                        (_hyp(H, V) - _hyp(H, Vtd)) / w + c * (V**2 - Vtd**2) / (2 * w),
+                        (V - Vtd) / w + c * (V * ca.fabs(V) - Vtd * ca.fabs(Vtd)) / (2 * w))
+    k = w * (sin_t + (mu * cos_t if friction else 0))
+    T_td = H * sec
+    TA_raw = T_td - k * LB
+    if elastic:
+        # Stretch of the grounded part: the tension is max(TA_raw + k s, 0) along it.
+        k_pos = ca.fmax(k, 1e-300)
+        s0 = ca.if_else(k > 0, ca.fmin(ca.fmax(-TA_raw / k_pos, 0), LB), 0)
+        ground_stretch = c * (TA_raw * (LB - s0) + k * (LB**2 - s0**2) / 2)
+    else:
+        ground_stretch = 0
+    on_ground = LB - loose + ground_stretch
+    Xt = on_ground * cos_t + x_susp
+    Zt = on_ground * sin_t + z_susp
+    TA = ca.fmax(TA_raw, 0)
+    suspended = VA >= Vtd
+    return dict(
+        rX=ca.if_else(suspended, Xs, Xt) - X,
+        rZ=ca.if_else(suspended, Zs, Zt) - Z,
+        H=H, VF=V,
+        HA=ca.if_else(suspended, H, TA * cos_t),
+        VA=ca.if_else(suspended, VA, TA * sin_t),
+        grounded=ca.if_else(suspended, 0, LB),
+        suspended_x=ca.if_else(suspended, Xs, x_susp),
+    )
+
+
+@lru_cache(maxsize=None)
+def sloped_leg_function(elastic: bool, friction: bool) -> ca.Function:
+    """:func:`sloped_leg_equations` as a ``casadi.Function`` (inputs ``SLOPED_INPUTS``)."""
+    args = [ca.SX.sym(n) for n in SLOPED_INPUTS]
+    out = sloped_leg_equations(elastic, friction, *args)
+    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+    return ca.Function(f"leg_sloped_{tag}", args, [out[k] for k in LEG_OUTPUTS],
+                       list(SLOPED_INPUTS), list(LEG_OUTPUTS))
+
+
+def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
+                       mu: float, t: float, X: float, Z: float, n: int = 101) -> dict:
+    """Points and tension along a solved leg on a sloped seabed (see :func:`leg_profile`)."""
+    c = 1.0 / ea if ea else 0.0
+    s = np.linspace(0.0, L, n)
+    sec = np.sqrt(1 + t * t)
+    cos_t, sin_t = 1 / sec, t / sec
+    VA = V - w * L
+    if VA >= H * t:
+        Tv = VA + w * s
+        if H > 0:
+            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
+            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+        else:
+            x = np.zeros_like(s)
+            z = s + w * s**2 / 2 * c
+        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+    LB = L - (V - H * t) / w
+    k = w * (sin_t + mu * cos_t)
+    TA_raw = H * sec - k * LB
+    sg = np.minimum(s, LB)
+    Tg = np.maximum(TA_raw + k * sg, 0.0)
+    if c:
+        # Cumulative stretch along the slope, by the trapezoid rule on a fine grid.
+        fine = np.linspace(0.0, LB, 2001)
+        Tf = np.maximum(TA_raw + k * fine, 0.0)
+        cum = np.concatenate([[0.0], np.cumsum((Tf[1:] + Tf[:-1]) / 2 * np.diff(fine))]) * c
+        stretch = np.interp(sg, fine, cum)
+        stretch_td = cum[-1]
+    else:
+        stretch = np.zeros_like(s)
+        stretch_td = 0.0
+    if H > 0:
+        Tv = H * t + w * (s - LB)
+        xs = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(t)) + H * (s - LB) * c
+        zs = (np.hypot(H, Tv) - H * sec) / w + (Tv**2 - (H * t) ** 2) / (2 * w) * c
+        ground = s <= LB
+        x = np.where(ground, (sg + stretch) * cos_t, (LB + stretch_td) * cos_t + xs)
+        z = np.where(ground, (sg + stretch) * sin_t, (LB + stretch_td) * sin_t + zs)
+        tension = np.where(ground, Tg, np.hypot(H, Tv))
+    else:
+        # Slack: loose on the slope up to below the fairlead, then hanging straight.
+        foot = X / cos_t
+        ground = s <= LB
+        along = np.minimum(sg, foot)
+        hang = np.maximum(s - LB, 0.0)
+        x = np.where(ground, along * cos_t, X)
+        z = np.where(ground, along * sin_t, X * t + hang + w * hang**2 / 2 * c)
+        tension = np.where(ground, 0.0, w * hang)
+    return dict(s=s, x=x, z=z, tension=tension)

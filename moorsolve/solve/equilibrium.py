@@ -26,7 +26,8 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from ..physics.catenary import LegKind, initial_state, leg_profile, segment_profile
+from ..physics.catenary import (LegKind, initial_state, leg_profile, segment_profile,
+                                sloped_leg_profile)
 from ..physics.wall_tension import wall_tension
 from .newton import STATUS_TEXT
 from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, EquilibriumProblem,
@@ -381,9 +382,16 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
         fairlead = (gx, gy, leg.fairlead[2])
         ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
         td = max(X - susp_x, 0.0) if grounded > 0 else 0.0
-        prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
-                           mu=env.seabed.friction if kind.friction else 0.0, X=X, Z=Z,
-                           n=_PROFILE_POINTS)
+        slope = 0.0
+        if kind.sloped:
+            slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
+            prof = sloped_leg_profile(H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
+                                      mu=env.seabed.friction if kind.friction else 0.0,
+                                      t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
+        else:
+            prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water,
+                               ea=lt.ea, mu=env.seabed.friction if kind.friction else 0.0,
+                               X=X, Z=Z, n=_PROFILE_POINTS)
         profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
                    "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
         if lt.sealed and lt.diameter:
@@ -405,8 +413,8 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
             uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
             fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
             anchor=anchor, fairlead=fairlead,
-            touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2])
-                             if grounded > 0 else None),
+            touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td,
+                              anchor[2] + slope * td) if grounded > 0 else None),
             mbl_N=lt.mbl, profile=profile))
     body = None
     if case.body is not None:

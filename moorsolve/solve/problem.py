@@ -55,7 +55,7 @@ import numpy as np
 from ..model import DEGREES_OF_FREEDOM, Case, Leg
 from ..physics import loads as body_load_models
 from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
-                                straight_segment_function)
+                                sloped_leg_function, straight_segment_function)
 
 #: Environment parameter layout (angles in radians).
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
@@ -67,7 +67,7 @@ LEG_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
 #: Per-segment parameters of a multi-segment leg, and per joint the clump's net weight.
 SEGMENT_PARAMS = ("length", "weight", "ea_inv")
 #: Seabed parameters, present when some leg has joints (free nodes that may rest on it).
-SEABED_PARAMS = ("depth",)
+SEABED_PARAMS = ("depth", "gradient_x", "gradient_y")
 
 #: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment leg, its
 #: tensions [N] (top H and V, pull on its lower end HA and signed VA), grounded length and
@@ -144,7 +144,8 @@ def _can_ground(kind: SegmentKind) -> bool:
 
 
 def _on_seabed(case: Case, leg: Leg) -> bool:
-    return leg.anchor[2] <= -case.environment.depth + 1e-9
+    bed = case.environment.seabed_z(leg.anchor[0], leg.anchor[1])
+    return leg.anchor[2] <= bed + 1e-9 * max(case.environment.depth, 1.0)
 
 
 def leg_kind(case: Case, leg: Leg):
@@ -160,7 +161,7 @@ def leg_kind(case: Case, leg: Leg):
     contact = _on_seabed(case, leg) and w > 0
     return LegKind(elastic=lt.elastic, contact=contact,
                    friction=contact and case.environment.seabed.friction > 0,
-                   neutral=(w == 0))
+                   neutral=(w == 0), sloped=contact and case.environment.seabed.sloped)
 
 
 def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
@@ -219,15 +220,15 @@ def leg_parameters(case: Case) -> np.ndarray:
 
 
 def segment_parameters(case: Case) -> np.ndarray:
-    """Parameters of the multi-segment legs (empty for a scene of one-segment legs).
+    """Seabed and multi-segment parameters (empty for a flat scene of one-segment legs).
 
-    The seabed depth (``SEABED_PARAMS``), then per multi-segment leg ``SEGMENT_PARAMS`` for
-    each segment and the net clump weight [N] of each joint.
+    The seabed (``SEABED_PARAMS``), then per multi-segment leg ``SEGMENT_PARAMS`` for each
+    segment and the net clump weight [N] of each joint.
     """
     multi = [leg for leg in case.legs if leg.multi_segment]
-    if not multi:
+    if not multi and not case.environment.seabed.sloped:
         return np.zeros(0)
-    values = [case.environment.depth]
+    values = [case.environment.depth, *case.environment.seabed.gradient]
     for leg in multi:
         for seg in leg.segments:
             lt = seg.line_type
@@ -308,6 +309,8 @@ class EquilibriumProblem:
             effects.append("seabed_contact")
         if any(k.friction for k in self.kinds):
             effects.append("seabed_friction")
+        if any(getattr(k, "sloped", False) for k in self.kinds):
+            effects.append("sloped_seabed")
         types = [seg.line_type for leg in case.legs for seg in leg.segments]
         if any(lt.weight_in_water < 0 for lt in types):
             effects.append("buoyant_line")
@@ -373,9 +376,14 @@ class EquilibriumProblem:
                 H = row["H"]
             else:
                 u, V = x[iu], x[iu + 1]
-                out = leg_function(kind).call(dict(X=X, Z=Z, u=u, V=V, L=P["length"],
-                                                   w=P["weight"], ea_inv=P["ea_inv"],
-                                                   mu=P["friction"]))
+                args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"],
+                            ea_inv=P["ea_inv"], mu=P["friction"])
+                if kind.sloped:
+                    # The seabed's rise per metre along the leg, anchor toward fairlead.
+                    args["t"] = (seabed["gradient_x"] * dx + seabed["gradient_y"] * dy) / X
+                    out = sloped_leg_function(kind.elastic, kind.friction).call(args)
+                else:
+                    out = leg_function(kind).call(args)
                 scale = 1.0 / P["length"]
                 leg_res += [out["rX"] * scale, out["rZ"] * scale]
                 J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
