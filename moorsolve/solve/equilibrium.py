@@ -404,8 +404,10 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
         legs.append(LegResult(
             name=leg.name,
             fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+            # On a slope the anchor is pulled along it: the upward part is reported (0 when
+            # it pulls down-slope), the tension is the whole pull.
             fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
-            anchor_horizontal_N=HA, anchor_vertical_N=VA,
+            anchor_horizontal_N=HA, anchor_vertical_N=max(VA, 0.0) if kind.sloped else VA,
             grounded_length_m=grounded, touchdown_from_anchor_m=td,
             # Slack: no horizontal tension and line loose on the seabed (or, for a
             # weightless line, longer than its chord); a vertical taut leg is not slack.
