@@ -20,6 +20,22 @@ DEGREES_OF_FREEDOM = ("surge", "sway", "yaw")
 
 
 @dataclass(frozen=True)
+class LineDrag:
+    """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
+
+    Per unit stretched length, with ``q = rho d / 2``, ``U_n`` and ``U_t`` the flow's
+    components normal and tangential to the line and ``chi`` the angle of attack:
+    normal ``q normal |U_n| U_n`` (``normal sin^2 chi`` times ``q v^2``; Merkin's fit is
+    1.1), tangential ``q tangential |U_t| U_t`` (skin friction, on the diameter), and side
+    ``q side |U_n| |U_t|`` normal to both line and flow (laid ropes; sign by lay).
+    """
+
+    normal: float
+    tangential: float = 0.0
+    side: float = 0.0
+
+
+@dataclass(frozen=True)
 class LineType:
     """Properties of one kind of line.
 
@@ -35,6 +51,8 @@ class LineType:
         Minimum breaking load [N].
     diameter : float or None
         Outer (hydrodynamic) diameter [m]; needed for wall tension and line drag.
+    drag : LineDrag or None
+        Drag coefficients: in a case with a current the leg is then discretised.
     sealed : bool
         True for a line whose wall keeps water out of its cross-section (cable, pipe,
         sheathed rope). Its wall tension differs from the effective tension by the
@@ -47,6 +65,7 @@ class LineType:
     mbl: Optional[float] = None
     diameter: Optional[float] = None
     sealed: bool = False
+    drag: Optional[LineDrag] = None
 
     @property
     def elastic(self) -> bool:
@@ -127,10 +146,17 @@ class Leg:
 
 @dataclass(frozen=True)
 class Flow:
-    """A uniform wind or current: speed [m/s] toward ``toward_deg``."""
+    """A wind or current: speed [m/s] toward ``toward_deg``.
+
+    A current may carry a ``profile`` of ``(z, speed)`` rows (z ascending, m and m/s) that
+    the lines see, interpolated linearly and held constant beyond its ends; ``speed`` is
+    then what the body's load models see. Without a profile the lines see ``speed`` at
+    every depth.
+    """
 
     speed: float
     toward_deg: float = 0.0
+    profile: Optional[tuple] = None
 
 
 @dataclass(frozen=True)
@@ -305,11 +331,14 @@ class SolverOptions:
     """Solver settings a case may carry; the CLI's ``--tol`` overrides ``tol``.
 
     ``tol`` is the certified force residual relative to the largest line tension.
+    ``line_elements`` is the number of elements of a discretised leg (one in a current with
+    drag data).
     """
 
     tol: float = 1e-9
     max_iter: int = 200
     max_time_s: float = 5.0
+    line_elements: int = 20
 
 
 @dataclass(frozen=True)

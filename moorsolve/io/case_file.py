@@ -19,11 +19,13 @@ Schema (SI units, ``[...]`` lists)::
       gravity: > 0 [m/s^2]                     default 9.80665
       seabed: {friction: >= 0,                 default 0
                gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
-      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise
+      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise, plus an optional
+                                               profile: [[z <= 0, speed], ...] z ascending
       waves: {hs: >= 0 [m], toward_deg}        optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
-             sealed: bool}
+             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
+                                               drag needs a diameter
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
@@ -35,7 +37,8 @@ Schema (SI units, ``[...]`` lists)::
                                                from the anchor up; a clump item sits between
                                                two segments; CLUMP is {mass: kg >= 0,
                                                volume: m^3 >= 0} or {weight: N} (< 0: buoy)
-    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
+    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0,
+             line_elements: int 2..400 (default 20)}
 """
 
 from __future__ import annotations
@@ -64,6 +67,7 @@ from ..model import (
     HuTangDrift,
     HuTangWind,
     Leg,
+    LineDrag,
     LineType,
     Seabed,
     Segment,
@@ -82,6 +86,9 @@ MAX_GRADIENT = 1.0
 MAX_DEPTH = 12_000.0
 #: Longer than any mooring line ever laid: a unit mistake.
 MAX_LINE_LENGTH = 100_000.0
+
+#: Most elements of a discretised leg: beyond it the build time, not the accuracy, grows.
+MAX_LINE_ELEMENTS = 400
 
 #: Largest ``solver.max_iter``: IPOPT takes it as a C int.
 MAX_ITER_LIMIT = 2**31 - 1
@@ -187,11 +194,33 @@ def _centre(m: dict, path: str) -> tuple:
 # ---- environment ------------------------------------------------------------------------
 
 
-def _flow(raw, path: str) -> Flow:
-    m = _mapping(raw, path, required=("speed",), optional=("toward_deg",))
+def _flow(raw, path: str, profile: bool = False) -> Flow:
+    m = _mapping(raw, path, required=("speed",),
+                 optional=("toward_deg", "profile") if profile else ("toward_deg",))
     speed = _quantity(m["speed"], _join(path, "speed"), "speed", ge=0)
     toward = _field(m, path, "toward_deg", "angle", 0.0)
-    return Flow(speed=speed, toward_deg=toward)
+    rows = None
+    if m.get("profile") is not None:
+        ppath = _join(path, "profile")
+        items = _sequence(m["profile"], ppath, "a list of rows [z, speed] (z <= 0, ascending)")
+        if not items:
+            raise CaseError(ppath, "no rows; a current profile needs at least one [z, speed]")
+        rows = []
+        for i, item in enumerate(items):
+            rpath = _join(ppath, i)
+            row = _sequence(item, rpath, "a row [z, speed]")
+            if len(row) != 2:
+                raise CaseError(rpath, f"{show_value(item)} has {len(row)} values; a row is "
+                                       "[z, speed]")
+            z = _quantity(row[0], _join(rpath, 0), "length", le=0)
+            v = _quantity(row[1], _join(rpath, 1), "speed", ge=0)
+            if rows and not z > rows[-1][0]:
+                raise CaseError(_join(rpath, 0), f"z = {format_si(z, 'length')} must be above "
+                                                 "the previous row's (z ascending, from the "
+                                                 "seabed up to the surface)")
+            rows.append((z, v))
+        rows = tuple(rows)
+    return Flow(speed=speed, toward_deg=toward, profile=rows)
 
 
 def _waves(raw, path: str) -> Waves:
@@ -229,7 +258,8 @@ def _environment(raw, path: str) -> Environment:
         seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0),
                         gradient=gradient)
     wind = None if m.get("wind") is None else _flow(m["wind"], _join(path, "wind"))
-    current = None if m.get("current") is None else _flow(m["current"], _join(path, "current"))
+    current = (None if m.get("current") is None
+               else _flow(m["current"], _join(path, "current"), profile=True))
     waves = None if m.get("waves") is None else _waves(m["waves"], _join(path, "waves"))
     return Environment(depth=depth, water_density=water_density, air_density=air_density,
                        gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves)
@@ -238,9 +268,17 @@ def _environment(raw, path: str) -> Environment:
 # ---- line types -------------------------------------------------------------------------
 
 
+def _line_drag(raw, path: str) -> LineDrag:
+    m = _mapping(raw, path, required=("normal",), optional=("tangential", "side"))
+    normal = _quantity(m["normal"], _join(path, "normal"), "dimensionless", ge=0, le=10)
+    tangential = _field(m, path, "tangential", "dimensionless", 0.0, ge=0, le=10)
+    side = _field(m, path, "side", "dimensionless", 0.0, ge=-10, le=10)
+    return LineDrag(normal=normal, tangential=tangential, side=side)
+
+
 def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
     m = _mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed"))
+                 optional=("ea", "mbl", "diameter", "sealed", "drag"))
     weight = weight_per_length_to_si(m["weight_in_water"], gravity,
                                      _join(path, "weight_in_water"))
     ea = _nullable(m, path, "ea", "force", gt=0)
@@ -255,8 +293,13 @@ def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
         raise CaseError(_join(path, "diameter"),
                         "sealed line needs a diameter (its wall tension depends on the outer "
                         "area); give diameter > 0 [m]")
+    drag = None if m.get("drag") is None else _line_drag(m["drag"], _join(path, "drag"))
+    if drag is not None and diameter is None:
+        raise CaseError(_join(path, "diameter"),
+                        "a line type with drag needs a diameter (the flow force scales with "
+                        "it); give diameter > 0 [m]")
     return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
-                    sealed=sealed)
+                    sealed=sealed, drag=drag)
 
 
 def _line_types(raw, path: str, gravity: float) -> dict:
@@ -579,7 +622,7 @@ def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
 
 
 def _solver(raw, path: str) -> SolverOptions:
-    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s"))
+    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s", "line_elements"))
     defaults = SolverOptions()
     tol = _field(m, path, "tol", "dimensionless", defaults.tol, gt=0, lt=1)
     max_iter = defaults.max_iter
@@ -593,7 +636,17 @@ def _solver(raw, path: str) -> SolverOptions:
         if not 1 <= max_iter <= MAX_ITER_LIMIT:
             raise CaseError(ipath, f"{max_iter} must be an integer from 1 to {MAX_ITER_LIMIT}")
     max_time = _field(m, path, "max_time_s", "time", defaults.max_time_s, gt=0)
-    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time)
+    elements = defaults.line_elements
+    if "line_elements" in m:
+        raw_n = m["line_elements"]
+        epath = _join(path, "line_elements")
+        if isinstance(raw_n, bool) or not isinstance(raw_n, numbers.Integral) \
+                or not 2 <= raw_n <= MAX_LINE_ELEMENTS:
+            raise CaseError(epath, f"{show_value(raw_n)} must be an integer from 2 to "
+                                   f"{MAX_LINE_ELEMENTS}")
+        elements = int(raw_n)
+    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time,
+                         line_elements=elements)
 
 
 # ---- the case ---------------------------------------------------------------------------

@@ -31,7 +31,7 @@ from ..physics.catenary import (LegKind, initial_state, leg_profile, segment_pro
 from ..physics.wall_tension import wall_tension
 from .newton import STATUS_TEXT
 from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, EquilibriumProblem,
-                      MultiLegKind, _can_ground, leg_kind, parameter_vector, structure_key)
+                      DiscreteLegKind, MultiLegKind, _can_ground, discretised, leg_kind, parameter_vector, structure_key)
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -64,6 +64,8 @@ def _scales(case: Case) -> tuple[float, float]:
                 + sum(abs(c.weight) for c in leg.joint_clumps if c is not None)
                 for leg in case.legs]
     tensions += [math.hypot(max(u, 0.0), V) for u, V in _rest_leg_states(case)]
+    tensions += [_line_load(case, leg)[0] * leg.length for leg in case.legs
+                 if discretised(case, leg)]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
 
@@ -75,7 +77,7 @@ def _rest_leg_states(case: Case):
         fx, fy, fz = leg.fairlead
         X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
         Z = fz - leg.anchor[2]
-        if leg.multi_segment:
+        if leg.multi_segment or discretised(case, leg):
             kind, w = _equivalent_line(case, leg)
             states.append(initial_state(kind, X, Z, leg.length, w, None))
             continue
@@ -90,7 +92,8 @@ def _equivalent_line(case: Case, leg) -> tuple:
     total = sum(seg.line_type.weight_in_water * seg.length for seg in leg.segments)
     total += sum(c.weight for c in leg.joint_clumps if c is not None)
     w = total / leg.length
-    on_seabed = leg.anchor[2] <= -case.environment.depth + 1e-9
+    bed = case.environment.seabed_z(leg.anchor[0], leg.anchor[1])
+    on_seabed = leg.anchor[2] <= bed + 1e-9 * max(case.environment.depth, 1.0)
     return LegKind(elastic=False, contact=on_seabed and w > 0, neutral=(w == 0)), w
 
 
@@ -145,6 +148,10 @@ def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
         if isinstance(kind, MultiLegKind):
             block = _multi_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
                                      problem.force_scale)
+            x[start: start + len(block)] = block
+        elif isinstance(kind, DiscreteLegKind):
+            block = _discrete_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
+                                        problem.force_scale)
             x[start: start + len(block)] = block
         else:
             x[start] = u
@@ -366,8 +373,13 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
     legs = []
     n_par = len(LEG_PARAMS)
     seg_table = np.atleast_2d(np.asarray(problem.segment_report(x, p)))
+    node_table = np.atleast_2d(np.asarray(problem.node_report(x, p)))
     for i, (leg, kind) in enumerate(zip(case.legs, problem.kinds)):
         row = np.atleast_2d(legs_out)[i]
+        if isinstance(kind, DiscreteLegKind):
+            nodes = np.array([r for r in node_table if int(r[0]) == i])
+            legs.append(_discrete_leg_result(case, leg, kind, row, nodes, p, i))
+            continue
         if isinstance(kind, MultiLegKind):
             rows = [dict(zip(SEGMENT_COLUMNS, (float(v) for v in r)))
                     for r in seg_table if int(r[0]) == i]
@@ -522,6 +534,141 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
         touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2] + 0.0)
                          if td is not None else None),
         mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints))
+
+
+def _line_load(case: Case, leg) -> tuple:
+    """Typical load per length on a discretised leg [N/m]: its size and unit direction.
+
+    The mean submerged weight (clumps spread) and the normal flow force of the current at
+    mid-depth on a line across it.
+    """
+    _, w = _equivalent_line(case, leg)
+    env = case.environment
+    cur = env.current
+    speed = cur.speed
+    if cur.profile:
+        zs, vs = zip(*cur.profile)
+        speed = float(np.interp(-env.depth / 2, zs, vs))
+    drag = sum(0.5 * env.water_density * (seg.line_type.diameter or 0.0)
+               * (seg.line_type.drag.normal if seg.line_type.drag else 0.0) * speed**2
+               * seg.length for seg in leg.segments) / leg.length
+    th = math.radians(cur.toward_deg)
+    q = np.array([drag * math.cos(th), drag * math.sin(th), -w])
+    size = float(np.linalg.norm(q))
+    return size, (q / size if size > 0 else np.array([0.0, 0.0, -1.0]))
+
+
+def _discrete_leg_start(case: Case, leg, kind, u: float, V: float, length_scale: float,
+                        force_scale: float) -> list:
+    """Start of a lumped-node leg from a closed-form catenary under its typical load.
+
+    Without a significant flow force the nodes sit on the equivalent line's catenary with its
+    seabed contact. When the flow force is a tenth of the weight or more, the line is drawn
+    as the catenary of the combined load (weight plus flow force at mid-depth) in the plane
+    of the chord and that load, which keeps a weightless tether in a current from starting
+    straight and tensionless. Element tensions are the catenary's at the element midpoints;
+    a node on or below the seabed starts pressed onto it by its share of the weight.
+    """
+    eq_kind, w_eq = _equivalent_line(case, leg)
+    env = case.environment
+    A = np.array(leg.anchor, dtype=float)
+    F = np.array(leg.fairlead, dtype=float)
+    size, down = _line_load(case, leg)
+    drag_led = size > 0 and abs(size * down[2] + w_eq) >= 0.1 * max(abs(w_eq), 1e-300) \
+        and abs(down[2]) < 0.995
+    if drag_led:
+        chord = F - A
+        along = float(chord @ down)
+        perp = chord - along * down
+        Xp = float(np.linalg.norm(perp))
+        e_perp = perp / Xp if Xp > 1e-12 else np.cross(down, [0.0, 0.0, 1.0])
+        kind_q = LegKind(elastic=False, contact=False)
+        Hq, Vq = initial_state(kind_q, Xp, -along, leg.length, size, None)
+        prof = leg_profile(kind_q, H=max(Hq, 0.0), V=Vq, L=leg.length, w=size, ea=None,
+                           mu=0.0, X=Xp, Z=-along, n=401)
+        points = (A[None, :] + prof["x"][:, None] * e_perp[None, :]
+                  - prof["z"][:, None] * down[None, :])
+    else:
+        X = math.hypot(*(F - A)[:2])
+        ux, uy = ((F[0] - A[0]) / X, (F[1] - A[1]) / X) if X > 1e-12 else (1.0, 0.0)
+        prof = leg_profile(eq_kind, H=max(u, 0.0), V=V, L=leg.length, w=w_eq, ea=None,
+                           mu=0.0, X=X, Z=F[2] - A[2], n=401)
+        points = np.stack([A[0] + ux * prof["x"], A[1] + uy * prof["x"], A[2] + prof["z"]],
+                          axis=1)
+    lengths, weights = [], []
+    for seg, m in zip(leg.segments, kind.elements):
+        lengths += [seg.length / m] * m
+        weights += [seg.line_type.weight_in_water * seg.length / m] * m
+    arc = np.concatenate([[0.0], np.cumsum(lengths)])
+    mid = (arc[1:] + arc[:-1]) / 2
+    floor = max(1e-6 * force_scale, 0.05 * size * leg.length)
+    tensions = np.maximum(np.interp(mid, prof["s"], prof["tension"]), floor)
+    k_N = force_scale / length_scale
+    block = list(tensions)
+    for j in range(1, kind.n_elements):
+        px, py, z = (float(np.interp(arc[j], prof["s"], points[:, c])) for c in range(3))
+        above = z - env.seabed_z(px, py)
+        if above <= 1e-6 * max(env.depth, 1.0):
+            zeta = -max((weights[j - 1] + weights[j]) / 2, 1e-6 * force_scale) / k_N
+        else:
+            zeta = above
+        block += [px, py, zeta]
+    return block
+
+
+def _discrete_leg_result(case, leg, kind, row, nodes, p, i) -> LegResult:
+    """The result of a lumped-node leg: CONTRACT fields, a 3-D profile through its nodes."""
+    env = case.environment
+    H, VF, HA, VA_raw, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
+    start_i = len(ENV_PARAMS) + i * len(LEG_PARAMS)
+    anchor = tuple(float(v) for v in p[start_i: start_i + 3])
+    fairlead = (gx, gy, leg.fairlead[2])
+    on_bed = anchor[2] <= env.seabed_z(anchor[0], anchor[1]) + 1e-9 * max(env.depth, 1.0)
+    flags = nodes[:, 7] > 0.5
+    # The anchor's vertical pull: the seabed takes a downward one when the anchor lies on it.
+    VA = max(VA_raw, 0.0) if on_bed else VA_raw
+    td = X - susp_x if (on_bed and flags[1]) else None
+    profile = {"x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
+               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy()}
+    segments, joints = [], []
+    start = 0
+    for k, (seg, m) in enumerate(zip(leg.segments, kind.elements)):
+        part = nodes[start: start + m + 1]
+        lt = seg.line_type
+        segments.append({"type": lt.name, "length_m": seg.length, "elements": m,
+                         "top_tension_N": float(part[-1, 5]),
+                         "bottom_tension_N": float(part[0, 5]),
+                         "max_tension_N": float(np.max(part[:, 5])),
+                         "utilisation": float(np.max(part[:, 5])) / lt.mbl if lt.mbl else None})
+        start += m
+        if k < len(leg.segments) - 1:
+            clump = leg.joint_clumps[k]
+            node = nodes[start]
+            joints.append({"position_m": [float(v) for v in node[2:5]],
+                           "height_above_seabed_m": float(node[4] - env.seabed_z(node[2],
+                                                                                 node[3])),
+                           "on_seabed": bool(node[7] > 0.5),
+                           "seabed_reaction_N": float(node[6]),
+                           "clump_weight_N": clump.weight if clump is not None else 0.0})
+    uplift = VA_raw > 0 and not (on_bed and flags[1])
+    mbl = min((seg.line_type.mbl for seg in leg.segments if seg.line_type.mbl), default=None)
+    u_dir = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    return LegResult(
+        name=leg.name,
+        fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+        fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
+        anchor_horizontal_N=HA, anchor_vertical_N=VA,
+        grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
+        uplift=bool(uplift), slack=bool(H <= 1e-9 * max(abs(VF), 1.0)),
+        uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        anchor=anchor, fairlead=fairlead,
+        touchdown_point=((anchor[0] + u_dir[0] * td, anchor[1] + u_dir[1] * td,
+                          env.seabed_z(anchor[0] + u_dir[0] * td, anchor[1] + u_dir[1] * td))
+                         if td is not None else None),
+        mbl_N=mbl, profile=profile,
+        segments=tuple(segments) if leg.multi_segment else (),
+        joints=tuple(joints))
 
 
 def _anchor_touchdown(rows, leg, kind):

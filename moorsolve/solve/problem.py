@@ -66,6 +66,8 @@ LEG_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
 
 #: Per-segment parameters of a multi-segment leg, and per joint the clump's net weight.
 SEGMENT_PARAMS = ("length", "weight", "ea_inv")
+#: Per-segment parameters of a discretised leg.
+DISCRETE_PARAMS = ("length", "weight", "ea_inv", "diameter", "normal", "tangential", "side")
 #: Seabed parameters, present when some leg has joints (free nodes that may rest on it).
 SEABED_PARAMS = ("depth", "gradient_x", "gradient_y")
 
@@ -148,12 +150,65 @@ def _on_seabed(case: Case, leg: Leg) -> bool:
     return leg.anchor[2] <= bed + 1e-9 * max(case.environment.depth, 1.0)
 
 
+@dataclass(frozen=True)
+class DiscreteLegKind:
+    """A leg discretised into lumped nodes because a current drags on its line.
+
+    ``elements`` holds the number of elements of each segment (anchor first);
+    ``elastic_segments`` whether each segment stretches; ``profile_rows`` the number of rows of the current
+    profile (0: uniform current); ``side`` whether any segment has a side-force coefficient.
+    """
+
+    elements: tuple
+    elastic_segments: tuple
+    profile_rows: int = 0
+    side: bool = False
+
+    @property
+    def elastic(self) -> bool:
+        return any(self.elastic_segments)
+
+    @property
+    def n_elements(self) -> int:
+        return sum(self.elements)
+
+    @property
+    def n_unknowns(self) -> int:
+        return self.n_elements + 3 * (self.n_elements - 1)
+
+    @property
+    def contact(self) -> bool:
+        return True
+
+    friction = False
+    neutral = False
+    sloped = False
+
+
+def discretised(case: Case, leg: Leg) -> bool:
+    """Whether a leg is modelled as a lumped-node line: the case has a current and one of
+    its line types gives drag data."""
+    return case.environment.current is not None and any(
+        seg.line_type.drag is not None for seg in leg.segments)
+
+
 def leg_kind(case: Case, leg: Leg):
     """The physics a leg needs, from what the case declares.
 
     A :class:`LegKind` for a one-segment leg (the core problem, unchanged), a
-    :class:`MultiLegKind` for a leg of several segments.
+    :class:`MultiLegKind` for a leg of several segments, a :class:`DiscreteLegKind` for a
+    leg whose line feels the current.
     """
+    if discretised(case, leg):
+        n = case.solver.line_elements
+        counts = tuple(max(1, round(n * seg.length / leg.length)) for seg in leg.segments)
+        profile = case.environment.current.profile
+        return DiscreteLegKind(
+            elements=counts,
+            elastic_segments=tuple(seg.line_type.elastic for seg in leg.segments),
+            profile_rows=len(profile) if profile else 0,
+            side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
+                     for seg in leg.segments))
     if leg.multi_segment:
         return _multi_leg_kind(case, leg)
     lt = leg.line_type
@@ -225,8 +280,10 @@ def segment_parameters(case: Case) -> np.ndarray:
     The seabed (``SEABED_PARAMS``), then per multi-segment leg ``SEGMENT_PARAMS`` for each
     segment and the net clump weight [N] of each joint.
     """
-    multi = [leg for leg in case.legs if leg.multi_segment]
-    if not multi and not case.environment.seabed.sloped:
+    kinds = [leg_kind(case, leg) for leg in case.legs]
+    multi = [leg for leg, k in zip(case.legs, kinds) if isinstance(k, MultiLegKind)]
+    discrete = [leg for leg, k in zip(case.legs, kinds) if isinstance(k, DiscreteLegKind)]
+    if not multi and not discrete and not case.environment.seabed.sloped:
         return np.zeros(0)
     values = [case.environment.depth, *case.environment.seabed.gradient]
     for leg in multi:
@@ -234,6 +291,16 @@ def segment_parameters(case: Case) -> np.ndarray:
             lt = seg.line_type
             values += [seg.length, lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0]
         values += [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
+    for leg in discrete:
+        for seg in leg.segments:
+            lt = seg.line_type
+            drag = lt.drag
+            values += [seg.length, lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0,
+                       lt.diameter or 0.0, drag.normal if drag else 0.0,
+                       drag.tangential if drag else 0.0, drag.side if drag else 0.0]
+        values += [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
+    if discrete and case.environment.current.profile:
+        values += [v for row in case.environment.current.profile for v in row]
     return np.asarray(values, dtype=float)
 
 
@@ -290,6 +357,9 @@ class EquilibriumProblem:
             self.leg_offsets.append(len(scale))
             if isinstance(kind, MultiLegKind):
                 scale += [force_scale] * 2 + [length_scale, force_scale] * kind.n_joints
+            elif isinstance(kind, DiscreteLegKind):
+                scale += [force_scale] * kind.n_elements
+                scale += [length_scale] * (3 * (kind.n_elements - 1))
             else:
                 scale += [force_scale] * 2
         self.n_x = len(scale)
@@ -322,6 +392,8 @@ class EquilibriumProblem:
             effects.append("wall_tension")
         if any(leg.multi_segment for leg in case.legs):
             effects.append("multi_segment")
+        if any(isinstance(k, DiscreteLegKind) for k in self.kinds):
+            effects.append("line_drag")
         if case.body is not None:
             effects += [("constant_force" if e == "force" else e)
                         for e in body_load_models.effect_names(case.body.loads, case.environment)]
@@ -341,6 +413,18 @@ class EquilibriumProblem:
         seg_values = ca.vertsplit(segp) if n_seg_params else []
         seabed = dict(zip(SEABED_PARAMS, seg_values[:len(SEABED_PARAMS)]))
         seg_cursor = len(SEABED_PARAMS)
+        n_multi = sum(3 * len(k.segments) + k.n_joints for k in self.kinds
+                      if isinstance(k, MultiLegKind))
+        disc_cursor = seg_cursor + n_multi
+        n_disc = sum(len(DISCRETE_PARAMS) * len(k.elements) + len(k.elements) - 1
+                     for k in self.kinds if isinstance(k, DiscreteLegKind))
+        profile = None
+        rows = next((k.profile_rows for k in self.kinds if isinstance(k, DiscreteLegKind)), 0)
+        if rows:
+            flat = seg_values[disc_cursor + n_disc: disc_cursor + n_disc + 2 * rows]
+            profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
+        current = dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
+                       factor=E["load_factor"])
 
         q = {d: 0 for d in DEGREES_OF_FREEDOM}
         for i, d in enumerate(self.free):
@@ -348,7 +432,7 @@ class EquilibriumProblem:
         cy, sy = ca.cos(q["yaw"]), ca.sin(q["yaw"])
 
         fx_total, fy_total, mz_total = 0, 0, 0
-        leg_res, leg_out, seg_rows = [], [], []
+        leg_res, leg_out, seg_rows, node_rows = [], [], [], []
         leg_force, tensions = [], []
         for i, kind in enumerate(self.kinds):
             P = dict(zip(LEG_PARAMS, ca.vertsplit(legp[i * len(LEG_PARAMS):
@@ -374,6 +458,15 @@ class EquilibriumProblem:
                 leg_res += res
                 seg_rows += rows
                 H = row["H"]
+            elif isinstance(kind, DiscreteLegKind):
+                n_par = len(DISCRETE_PARAMS) * len(kind.elements) + len(kind.elements) - 1
+                values = seg_values[disc_cursor: disc_cursor + n_par]
+                disc_cursor += n_par
+                res, row, rows = self._discrete_leg(i, kind, x, iu, P, values, seabed,
+                                                    current, (gx, gy), X, Z)
+                leg_res += res
+                node_rows += rows
+                H = row["H"]
             else:
                 u, V = x[iu], x[iu + 1]
                 args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"],
@@ -390,11 +483,12 @@ class EquilibriumProblem:
                                 ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
                 row = dict(out, J=ca.reshape(J, 4, 1))
                 H = out["H"]
-            # The line pulls the fairlead horizontally toward the anchor with H.
-            fx, fy = -H * dx / X, -H * dy / X
+            # The line pulls the fairlead horizontally toward the anchor with H (a
+            # discretised line in a current also sideways: it gives its own force).
+            fx, fy = (row["fx"], row["fy"]) if "fx" in row else (-H * dx / X, -H * dy / X)
             fx_total, fy_total = fx_total + fx, fy_total + fy
             mz_total = mz_total + rx * fy - ry * fx
-            if isinstance(kind, MultiLegKind):
+            if isinstance(kind, (MultiLegKind, DiscreteLegKind)):
                 # The row's residual is already the largest mismatch force of the leg.
                 leg_force.append(row["rX"])
             else:
@@ -435,6 +529,8 @@ class EquilibriumProblem:
              ca.vertcat(load_x, load_y, load_m), load_vec])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
+        self.node_report = ca.Function(
+            "node_report", [xs, p], [ca.horzcat(*node_rows).T if node_rows else ca.DM()])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g, xs)])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
@@ -566,6 +662,11 @@ class EquilibriumProblem:
                 o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
                 joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k]))
         return res, row, rows
+
+    def _discrete_leg(self, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z):
+        """Residuals and report rows of a lumped-node leg (see :mod:`.discrete` notes)."""
+        from .discrete import discrete_leg
+        return discrete_leg(self, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z)
 
     # -- solvers --------------------------------------------------------------------
     def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
