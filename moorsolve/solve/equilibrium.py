@@ -17,6 +17,7 @@ found by :func:`_diagnose` and the best residual reached.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -30,8 +31,9 @@ from ..physics.catenary import (LegKind, initial_state, leg_profile, segment_pro
                                 sloped_leg_profile)
 from ..physics.wall_tension import wall_tension
 from .newton import STATUS_TEXT
-from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, EquilibriumProblem,
-                      DiscreteLegKind, MultiLegKind, _can_ground, discretised, leg_kind, parameter_vector, structure_key)
+from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
+                      EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
+                      parameter_vector, structure_key)
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -430,6 +432,10 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
             touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td,
                               anchor[2] + slope * td) if grounded > 0 else None),
             mbl_N=lt.mbl, profile=profile))
+    table = np.atleast_2d(legs_out)
+    legs = [dataclasses.replace(lr, fairlead_force=(float(table[i][12]), float(table[i][13]),
+                                                    -lr.fairlead_vertical_N))
+            for i, lr in enumerate(legs)]
     body = None
     if case.body is not None:
         body = {"x_m": q["surge"], "y_m": q["sway"], "yaw_deg": math.degrees(q["yaw"])}

@@ -155,8 +155,9 @@ class DiscreteLegKind:
     """A leg discretised into lumped nodes because a current drags on its line.
 
     ``elements`` holds the number of elements of each segment (anchor first);
-    ``elastic_segments`` whether each segment stretches; ``profile_rows`` the number of rows of the current
-    profile (0: uniform current); ``side`` whether any segment has a side-force coefficient.
+    ``elastic_segments`` whether each segment stretches; ``profile_rows`` the number of rows
+    of the current profile (0: uniform current); ``side`` whether any segment has a
+    side-force coefficient.
     """
 
     elements: tuple

@@ -52,7 +52,9 @@ class LegResult:
     and bottom tension, horizontal tension, grounded length, largest tension, utilisation)
     and ``joints`` (per joint: position, height above the seabed, seabed reaction, clump
     weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
-    segment utilisation.
+    segment utilisation. ``fairlead_force`` is the force [N] the line exerts on its
+    fairlead, global ``(Fx, Fy, Fz)``: along the leg's plane for an analytic leg, with a
+    sideways part for a line in a current.
     """
 
     name: str
@@ -75,6 +77,7 @@ class LegResult:
     profile: dict = field(repr=False)
     segments: tuple = ()
     joints: tuple = ()
+    fairlead_force: Optional[tuple] = None
 
     @property
     def utilisation(self) -> Optional[float]:
@@ -108,6 +111,8 @@ class LegResult:
             "mbl_N": self.mbl_N,
             "utilisation": self.utilisation,
         }
+        if self.fairlead_force is not None:
+            d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
         if self.segments:
             d["segments"] = [dict(s) for s in self.segments]
             d["joints"] = [dict(j) for j in self.joints]
