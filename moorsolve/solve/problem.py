@@ -233,6 +233,8 @@ class EquilibriumProblem:
         self._xs, self._p, self._g = xs, p, g
         self._nlp_solvers = {}
         self._newton = None
+        #: Closed-form starting points by leg parameters (see equilibrium.initial_point).
+        self.start_cache: dict[bytes, np.ndarray] = {}
 
     def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q):
         """``certificate(x, p) -> [force_N, moment_Nm, t_max_N]`` and the sweep summary.
