@@ -364,4 +364,4 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
              if not kind.contact and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
     return Result(converged=certified, solver=solver, certificate=cert,
                   effects=list(problem.effects), body=body, legs=legs, loads=loads,
-                  case_name=case.name, state=x.copy(), notes=tuple(notes))
+                  case_name=case.name, state=x.copy(), notes=tuple(notes), case=case)
