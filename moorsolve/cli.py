@@ -46,12 +46,15 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("-o", "--output", required=True, help="image file to write (.png, .pdf, .svg)")
     p.add_argument("--tol", type=_tolerance, default=None)
+    _add_check_commands(sub)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     args = _parser().parse_args(argv)
+    if args.command in _CHECK_COMMANDS:
+        return _CHECK_COMMANDS[args.command](args)
     from . import load_case, solve
     try:
         case = load_case(args.case)
@@ -108,6 +111,61 @@ def _write_plot(result, case, path: str) -> int:
             os.remove(tmp)
     print(f"wrote {path}")
     return EXIT_OK
+
+
+# ---- moorsolve check and the inverse problems (issue 5) ------------------------------------
+
+
+def _add_check_commands(sub) -> None:
+    from .checks import STANDARDS
+    p = sub.add_parser("check", help="mooring checks: intact and damaged conditions")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--standard", choices=STANDARDS, default=None,
+                   help="criteria table (default: the case's checks.standard, else api-rp-2sk)")
+    p.add_argument("--json", action="store_true", help="print the check as JSON")
+    p.add_argument("--report", default=None, help="write a self-contained HTML report")
+    p.add_argument("--no-damaged", action="store_true", help="intact condition only")
+    p.add_argument("--tol", type=_tolerance, default=None)
+
+
+def _print(text: str) -> None:
+    try:
+        print(text)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        sys.stdout = None
+
+
+def _run_check(args) -> int:
+    from . import load_case
+    from .checks import run_checks
+    try:
+        case = load_case(args.case)
+        if args.report is not None:
+            _check_report_path(args.report)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    report = run_checks(case, standard=args.standard, tol=args.tol,
+                        damaged=False if args.no_damaged else None)
+    from .io.check_report import check_json, format_check_table, write_html_report
+    if args.report is not None:
+        write_html_report(report, case, args.report)
+    _print(check_json(report) if args.json else format_check_table(report))
+    if args.report is not None and not args.json:
+        print(f"wrote {args.report}")
+    return EXIT_OK if report.passed else EXIT_NO_EQUILIBRIUM
+
+
+def _check_report_path(path: str) -> None:
+    if os.path.splitext(path)[1].lower() not in (".html", ".htm"):
+        raise CaseError("--report", f"{path!r} must end in .html")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise CaseError("--report", f"folder {folder!r} does not exist")
+
+
+_CHECK_COMMANDS = {"check": _run_check}
 
 
 if __name__ == "__main__":

@@ -136,7 +136,10 @@ class CheckReport:
             if not c.solved:
                 out.append(f"{c.name}: no equilibrium: {c.reason}")
             out += [f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
-                    f"{i.value:.4g} {i.unit} vs limit {i.limit:.4g} {i.unit}"
+                    f"{_show(i.value, i.unit)} > limit {_show(i.limit, i.unit)} ({i.criterion})"
+                    if i.check != "grounded length" else
+                    f"{c.name}: grounded length of {i.leg}: {_show(i.value, i.unit)} < "
+                    f"{_show(i.limit, i.unit)}"
                     for i in c.items if not i.passed]
         return out
 
@@ -156,6 +159,12 @@ class CheckReport:
             "conditions": [c.to_dict() for c in self.conditions],
             "failures": self.failures,
         }
+
+
+def _show(value: float, unit: str) -> str:
+    if not math.isfinite(value):
+        return "n/a"
+    return f"{value / 1e3:.1f} kN" if unit == "N" else f"{value:.2f} {unit}"
 
 
 def _damaged(value, fallback):
