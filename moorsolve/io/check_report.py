@@ -135,12 +135,12 @@ def render_html(report: CheckReport, case, images: dict) -> str:
     """
     env = case.environment
     verdict = "PASS" if report.passed else "FAIL"
-    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>Mooring check: "
-             f"{_e(report.case_name)}</title><style>{_STYLE}</style></head><body>",
+    parts = [(f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>Mooring check: "
+              f"{_e(report.case_name)}</title><style>{_STYLE}</style></head><body>"),
              f"<h1>Mooring check: {_e(report.case_name)}</h1>",
-             f'<p class="{verdict.lower()}">Result: <b>{verdict}</b>: '
-             f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
-             f"conditions pass under {_e(report.standard)} (quasi-static analysis).</p>"]
+             (f'<p class="{verdict.lower()}">Result: <b>{verdict}</b>: '
+              f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
+              f"conditions pass under {_e(report.standard)} (quasi-static analysis).</p>")]
 
     # 1. Case summary.
     parts.append("<h2>1. Case</h2>")
@@ -234,10 +234,12 @@ def render_html(report: CheckReport, case, images: dict) -> str:
           f"{c.factor:.2f}", "-" if c.gamma_dyn is None else f"{c.gamma_dyn:.2f}",
           f"{c.capacity_factor:.2f} MBL", f"{c.required_safety_factor:.2f}", c.source,
           c.verified] for c in report.criteria], left=3))
-    limits = [f"offset limit intact {_opt(checks.offset_limit, 'm')}, damaged "
-              f"{_opt(checks.offset_limit_damaged or checks.offset_limit, 'm')}",
-              f"minimum grounded length intact {_opt(checks.min_grounded_length, 'm')}, "
-              f"damaged {_opt(checks.min_grounded_length_damaged or checks.min_grounded_length, 'm')}",
+    damaged_offset = checks.offset_limit_damaged or checks.offset_limit
+    damaged_grounded = checks.min_grounded_length_damaged or checks.min_grounded_length
+    limits = [(f"offset limit intact {_opt(checks.offset_limit, 'm')}, damaged "
+               f"{_opt(damaged_offset, 'm')}"),
+              (f"minimum grounded length intact {_opt(checks.min_grounded_length, 'm')}, "
+               f"damaged {_opt(damaged_grounded, 'm')}"),
               f"default anchor: {_anchor_text(default_anchor)}"]
     parts.append("<ul>" + "".join(f"<li>{_e(x)}</li>" for x in limits) + "</ul>")
     parts.append('<p class="note">The line tension is the larger of the fairlead and anchor '

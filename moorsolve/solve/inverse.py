@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
-from functools import lru_cache
+from functools import cache
 
 import casadi as ca
 import numpy as np
@@ -85,7 +85,7 @@ def _check_inputs(height, weight, ea, fairlead_tension, horizontal_tension):
                          f"vertical line to the seabed, w*height = {weight * height:.6g} N")
 
 
-@lru_cache(maxsize=None)
+@cache
 def _nlp(question: str, elastic: bool, given: str):
     """The NLP of one question, built once: ``x = [X, H, V, L]`` scaled, parameters
     ``p = [height, w, ea_inv, load, fixed, l_scale, f_scale]`` (``fixed``: anchor distance
@@ -168,8 +168,8 @@ def _solve(question, height, weight, ea, fairlead_tension, horizontal_tension, f
         order_length_m=L + order_extra, iterations=int(stats.get("iter_count", 0)))
 
 
-def minimum_anchor_distance(height: float, weight: float, *, fairlead_tension: float = None,
-                            horizontal_tension: float = None,
+def minimum_anchor_distance(height: float, weight: float, *, fairlead_tension: float | None = None,
+                            horizontal_tension: float | None = None,
                             ea: float | None = None) -> InverseResult:
     """Least anchor distance at which the load lifts no anchor (Hu & Tang Tables 1, 2, 4).
 
@@ -194,7 +194,7 @@ def minimum_anchor_distance(height: float, weight: float, *, fairlead_tension: f
 
 
 def required_chain_length(height: float, weight: float, grounded_length: float, *,
-                          fairlead_tension: float = None, horizontal_tension: float = None,
+                          fairlead_tension: float | None = None, horizontal_tension: float | None = None,
                           ea: float | None = None,
                           inboard_length: float = 0.0) -> InverseResult:
     """Least chain for a load that keeps ``grounded_length`` [m] on the seabed.
@@ -216,7 +216,7 @@ def required_chain_length(height: float, weight: float, grounded_length: float, 
 
 
 def uplift_at_distance(height: float, weight: float, anchor_distance: float, *,
-                       fairlead_tension: float = None, horizontal_tension: float = None,
+                       fairlead_tension: float | None = None, horizontal_tension: float | None = None,
                        ea: float | None = None) -> InverseResult:
     """Anchor uplift force and angle for a load with the anchor at a given distance
     (Hu & Tang Table 3: uplift allowed, e.g. on a sinker block).
