@@ -126,11 +126,12 @@ def _add_check_commands(sub) -> None:
     p.add_argument("--report", default=None, help="write a self-contained HTML report")
     p.add_argument("--no-damaged", action="store_true", help="intact condition only")
     p.add_argument("--tol", type=_tolerance, default=None)
-    for name, text in (("anchor-distance", "least anchor distance with no anchor uplift "
-                                           "(Hu & Tang Tables 1, 2, 4)"),
-                       ("chain-length", "least chain for a load keeping a grounded length"),
-                       ("uplift", "anchor uplift force and angle at a given anchor distance "
-                                  "(Hu & Tang Table 3)")):
+    inverse_help = {
+        "anchor-distance": "least anchor distance with no anchor uplift (Hu & Tang Tables 1, 2, 4)",
+        "chain-length": "least chain for a load keeping a grounded length",
+        "uplift": "anchor uplift force and angle at a given anchor distance (Hu & Tang Table 3)",
+    }
+    for name, text in inverse_help.items():
         p = sub.add_parser(name, help=text)
         p.add_argument("--height", required=True,
                        help="fairlead above the anchor, e.g. '20.85 m' (the water depth)")
@@ -233,12 +234,12 @@ def _run_inverse(args) -> int:
         f"anchor distance      {a.anchor_distance_m:12.4f} m",
         f"fairlead height      {a.height_m:12.4f} m",
         f"horizontal tension   {a.horizontal_tension_N / 1e3:12.4f} kN",
-        f"fairlead tension     {a.fairlead_tension_N / 1e3:12.4f} kN at "
-        f"{a.fairlead_angle_deg:.5f} deg",
-        f"line length          {a.length_m:12.4f} m (suspended {a.suspended_length_m:.4f}, "
-        f"grounded {a.grounded_length_m:.4f})",
-        f"anchor uplift        {a.anchor_vertical_N / 1e3:12.4f} kN at "
-        f"{a.uplift_angle_deg:.5f} deg",
+        (f"fairlead tension     {a.fairlead_tension_N / 1e3:12.4f} kN at "
+         f"{a.fairlead_angle_deg:.5f} deg"),
+        (f"line length          {a.length_m:12.4f} m (suspended {a.suspended_length_m:.4f}, "
+         f"grounded {a.grounded_length_m:.4f})"),
+        (f"anchor uplift        {a.anchor_vertical_N / 1e3:12.4f} kN at "
+         f"{a.uplift_angle_deg:.5f} deg"),
     ] + ([f"order length         {a.order_length_m:12.4f} m"]
          if args.command == "chain-length" else [])))
     return EXIT_OK

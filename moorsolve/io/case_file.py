@@ -23,6 +23,8 @@ Schema (SI units, ``[...]`` lists)::
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
              sealed: bool}
+      NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
+             weight_in_water, ea, mbl (override the catalogue), sealed}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
@@ -30,8 +32,13 @@ Schema (SI units, ``[...]`` lists)::
               wave_drift: {model: hu_tang | coefficient, ...}}
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
-         segments: [{type: NAME, length: > 0}]}
+         segments: [{type: NAME, length: > 0}], anchor_type: ANCHOR (optional)}
     solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
+    checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
+             offset_limit, offset_limit_damaged, min_grounded_length,
+             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
+    ANCHOR: {type: drag} | {type: deadweight, allowed_uplift [N]}
+            | {type: pile, allowed_uplift_angle_deg}
 """
 
 from __future__ import annotations
