@@ -168,7 +168,8 @@ def _solve(question, height, weight, ea, fairlead_tension, horizontal_tension, f
         order_length_m=L + order_extra, iterations=int(stats.get("iter_count", 0)))
 
 
-def minimum_anchor_distance(height: float, weight: float, *, fairlead_tension: float | None = None,
+def minimum_anchor_distance(height: float, weight: float, *,
+                            fairlead_tension: float | None = None,
                             horizontal_tension: float | None = None,
                             ea: float | None = None) -> InverseResult:
     """Least anchor distance at which the load lifts no anchor (Hu & Tang Tables 1, 2, 4).
@@ -194,7 +195,8 @@ def minimum_anchor_distance(height: float, weight: float, *, fairlead_tension: f
 
 
 def required_chain_length(height: float, weight: float, grounded_length: float, *,
-                          fairlead_tension: float | None = None, horizontal_tension: float | None = None,
+                          fairlead_tension: float | None = None,
+                          horizontal_tension: float | None = None,
                           ea: float | None = None,
                           inboard_length: float = 0.0) -> InverseResult:
     """Least chain for a load that keeps ``grounded_length`` [m] on the seabed.
@@ -216,7 +218,8 @@ def required_chain_length(height: float, weight: float, grounded_length: float, 
 
 
 def uplift_at_distance(height: float, weight: float, anchor_distance: float, *,
-                       fairlead_tension: float | None = None, horizontal_tension: float | None = None,
+                       fairlead_tension: float | None = None,
+                       horizontal_tension: float | None = None,
                        ea: float | None = None) -> InverseResult:
     """Anchor uplift force and angle for a load with the anchor at a given distance
     (Hu & Tang Table 3: uplift allowed, e.g. on a sinker block).
