@@ -9,9 +9,9 @@
 from .errors import CaseError, ConvergenceError, MoorsolveError
 from .io import load_case
 from .model import Case
-from .solve import Certificate, LegResult, Result, solve
+from .solve import Certificate, LegResult, Result, solve, sweep
 
 __version__ = "0.1.0"
 
-__all__ = ["load_case", "solve", "Case", "Result", "LegResult", "Certificate",
+__all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
            "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

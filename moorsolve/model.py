@@ -11,6 +11,7 @@ counter-clockwise from +x.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -332,3 +333,6 @@ class Case:
     body: Optional[Body] = None
     solver: SolverOptions = field(default_factory=SolverOptions)
     checks: Optional[Checks] = None
+    #: The validated case-file data it was built from (for sweeps that edit it by path);
+    #: None for a Case built in code.
+    source: Optional[Mapping] = field(default=None, compare=False, repr=False)

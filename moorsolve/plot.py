@@ -167,3 +167,54 @@ def utilisation_figure(report):
     ax = plot_utilisation(report)
     ax.figure.tight_layout()
     return ax.figure
+
+
+def plot_accuracy(rungs, axes=None):
+    """An accuracy ladder: error and solve time against the requested tolerance.
+
+    Left: worst tension error over the largest tension, per solver, with each simpler
+    model's error as a dashed line. Right: median solve time, the simpler models as dashed
+    lines (IPOPT at 1e-9).
+
+    Parameters
+    ----------
+    rungs : list of moorsolve.solve.accuracy.Rung
+    axes : pair of matplotlib Axes, optional
+
+    Returns
+    -------
+    pair of matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
+    ax_err, ax_time = axes
+    floor = 1e-17      # an exact match still needs a place on a log axis
+    markers = {"ipopt": "o", "newton": "s"}
+    for solver in sorted({r.solver for r in rungs if r.ladder == "tolerance"}):
+        pts = [r for r in rungs if r.ladder == "tolerance" and r.solver == solver
+               and np.isfinite(r.time_s)]
+        tols = [r.tol for r in pts]
+        ax_err.plot(tols, [max(r.tension_error_relative, floor) for r in pts],
+                    marker=markers.get(solver, "o"), label=solver)
+        ax_time.plot(tols, [r.time_s * 1e3 for r in pts], marker=markers.get(solver, "o"),
+                     label=solver)
+    for k, r in enumerate(r for r in rungs if r.ladder == "fidelity"
+                          and r.setting != "as declared" and np.isfinite(r.time_s)):
+        style = dict(color=f"C{k + 2}", linestyle="--", linewidth=1)
+        ax_err.axhline(max(r.tension_error_relative, floor), label=r.setting, **style)
+        ax_time.axhline(r.time_s * 1e3, label=r.setting, **style)
+    ax_err.plot([1e-12, 1e-4], [1e-12, 1e-4], color="0.6", linewidth=0.8,
+                label="error = tolerance")
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("requested tolerance (force residual / largest tension)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    ax_err.set_ylabel("worst tension error / largest tension")
+    ax_time.set_ylabel("solve time [ms], median from rest")
+    ax_err.set_title("Error against a 1e-12 reference")
+    ax_time.set_title("What it costs")
+    return axes

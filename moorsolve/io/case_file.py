@@ -43,6 +43,8 @@ Schema (SI units, ``[...]`` lists)::
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import math
 import numbers
 import re
@@ -739,13 +741,16 @@ def _read_yaml(path: Path):
     return data
 
 
-def load_case(source) -> Case:
+def load_case(source, *, keep_source: bool = True) -> Case:
     """Load and validate a mooring case.
 
     Parameters
     ----------
     source : str, pathlib.Path or mapping
         Path to a YAML case file, or a dictionary of the same shape.
+    keep_source : bool
+        Keep a copy of the case-file data as ``Case.source`` (what sweeps edit); a
+        caller that validates many throw-away variants may skip the copy.
 
     Returns
     -------
@@ -787,7 +792,12 @@ def load_case(source) -> Case:
         raise CaseError("", f"{show_value(source)} is not a case: give a path to a YAML file or a "
                             "dict")
     try:
-        return _build_case(data, default_name)
+        case = _build_case(data, default_name)
     except RecursionError:
         # A self-referencing or absurdly nested dict; report it as bad input.
         raise CaseError("", "the case is nested too deeply") from None
+    if not keep_source:
+        return case
+    source = copy.deepcopy(dict(data))
+    source["name"] = case.name
+    return dataclasses.replace(case, source=source)
