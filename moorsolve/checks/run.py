@@ -210,8 +210,13 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     kind = "intact" if removed is None else "damaged"
     name = "intact" if removed is None else f"damaged: {removed} removed"
     crit = criterion(checks.standard, kind, checks.consequence_class)
-    scene = case if removed is None else dataclasses.replace(
-        case, legs=tuple(leg for leg in case.legs if leg.name != removed))
+    scene = case
+    if removed is not None:
+        scene = dataclasses.replace(
+            case, legs=tuple(leg for leg in case.legs if leg.name != removed))
+        if "source" in {f.name for f in dataclasses.fields(case)}:
+            # The case-file data still lists the removed leg: drop it, not mislead.
+            scene = dataclasses.replace(scene, source=None)
     try:
         result = solve(scene, tol=tol, allow_overload=True)
     except ConvergenceError as exc:
