@@ -44,10 +44,14 @@ _PROFILE_POINTS = 51
 
 def get_problem(case: Case) -> EquilibriumProblem:
     """The built problem for ``case``'s structure, built on first use and cached."""
-    key = structure_key(case)
+    # The scales shape the solver's path (and, where a case has more than one
+    # equilibrium, which one it finds), so they are part of the key: a case gets the same
+    # problem whatever was solved before it. Rounding them to powers of two lets cases
+    # that differ a little (a sweep, a damaged condition) share one build.
+    force_scale, length_scale = (2.0 ** round(math.log2(v)) for v in _scales(case))
+    key = (structure_key(case), force_scale, length_scale)
     problem = _PROBLEMS.get(key)
     if problem is None:
-        force_scale, length_scale = _scales(case)
         problem = EquilibriumProblem(case, force_scale, length_scale)
         _PROBLEMS[key] = problem
         if len(_PROBLEMS) > _MAX_CACHED:

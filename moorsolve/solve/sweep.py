@@ -260,7 +260,7 @@ def _solve_each(todo, indices, table, point_case, tol):
     previous = {}
     for i in todo:
         pc = point_case(indices[i])
-        key = structure_key(pc)
+        key = id(get_problem(pc))        # a state is only meaningful to its own problem
         try:
             result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
         except ConvergenceError as err:
