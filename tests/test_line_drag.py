@@ -50,11 +50,15 @@ def test_merkin_5_4a_tether_in_a_current():
     def end_force(n):
         a, b = 7.049, 7.0491
         fa, fb = top_vertical(a, n)[0], top_vertical(b, n)[0]
+        leg = None
         for _ in range(3):
+            if fb == fa:
+                break
             a, b, fa = b, b - fb * (b - a) / (fb - fa), fb
             fb, leg = top_vertical(b, n)
             if abs(fb) < 1e-10:
                 break
+        leg = leg or top_vertical(b, n)[1]
         return b, leg.fairlead_tension_N / KGF, math.atan2(leg.fairlead_vertical_N,
                                                             leg.horizontal_tension_N)
 

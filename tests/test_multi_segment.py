@@ -60,16 +60,18 @@ def test_split_leg_equals_single_segment_leg(split):
     segments = [{"type": "chain", "length": s} for s in split]
     many = solve(load_case(with_segments(vida(), segments)))
     assert many.converged
+    # Both are certified to 1e-9 of the largest tension: agree to a few times that.
+    scale = max(leg.fairlead_tension_N for leg in one.legs)
     for a, b in zip(one.legs, many.legs):
-        assert b.fairlead_tension_N == pytest.approx(a.fairlead_tension_N, rel=1e-9)
-        assert b.anchor_tension_N == pytest.approx(a.anchor_tension_N, rel=1e-9, abs=1e-6)
-        assert b.grounded_length_m == pytest.approx(a.grounded_length_m, rel=1e-9, abs=1e-9)
+        assert b.fairlead_tension_N == pytest.approx(a.fairlead_tension_N, abs=3e-9 * scale)
+        assert b.anchor_tension_N == pytest.approx(a.anchor_tension_N, abs=3e-9 * scale)
+        assert b.grounded_length_m == pytest.approx(a.grounded_length_m, abs=1e-6)
         assert b.touchdown_from_anchor_m == pytest.approx(a.touchdown_from_anchor_m,
-                                                          rel=1e-9, abs=1e-9)
+                                                          abs=1e-6)
         assert b.slack == a.slack
         assert len(b.segments) == len(split) and len(b.joints) == len(split) - 1
-    assert many.body["x_m"] == pytest.approx(one.body["x_m"], rel=1e-9)
-    assert many.body["y_m"] == pytest.approx(one.body["y_m"], rel=1e-9)
+    assert many.body["x_m"] == pytest.approx(one.body["x_m"], abs=1e-7)
+    assert many.body["y_m"] == pytest.approx(one.body["y_m"], abs=1e-7)
     assert "multi_segment" in many.effects
 
 

@@ -105,8 +105,11 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
         c = sp["ea_inv"] if elastic else 0
         r = length - L_e * (1 + c * T[e])
         res.append(r / L_e)
-        mismatch.append(ca.fabs(r) / ca.fmax(L_e * c, ls / fs) if elastic
-                        else ca.fabs(r) * fs / ls)
+        # The length mismatch as a force: through the axial stiffness EA/L of an elastic
+        # element; through the geometric stiffness T/L (a kink at the node) of an
+        # inextensible one, and never less than the scene's scale.
+        stiff = ca.fmax(ca.fabs(T[e]) / L_e, fs / ls)
+        mismatch.append(ca.fabs(r) * (ca.fmax(1 / (L_e * c), stiff) if elastic else stiff))
         z_mid = (nodes[e][2] + nodes[e + 1][2]) / 2
         speed = (current_speed(z_mid, current["profile"]) if current["profile"]
                  else current["speed"])

@@ -33,7 +33,7 @@ from ..physics.wall_tension import wall_tension
 from .newton import STATUS_TEXT
 from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
                       EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
-                      parameter_vector, structure_key)
+                      leg_parameters, parameter_vector, segment_parameters, structure_key)
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -47,10 +47,14 @@ _PROFILE_POINTS = 51
 
 def get_problem(case: Case) -> EquilibriumProblem:
     """The built problem for ``case``'s structure, built on first use and cached."""
-    key = structure_key(case)
+    # The scales shape the solver's path (and, where a case has more than one
+    # equilibrium, which one it finds), so they are part of the key: a case gets the same
+    # problem whatever was solved before it. Rounding them to powers of two lets cases
+    # that differ a little (a sweep, a damaged condition) share one build.
+    force_scale, length_scale = (2.0 ** round(math.log2(v)) for v in _scales(case))
+    key = (structure_key(case), force_scale, length_scale)
     problem = _PROBLEMS.get(key)
     if problem is None:
-        force_scale, length_scale = _scales(case)
         problem = EquilibriumProblem(case, force_scale, length_scale)
         _PROBLEMS[key] = problem
         if len(_PROBLEMS) > _MAX_CACHED:
@@ -142,23 +146,36 @@ def _multi_leg_start(case: Case, leg, kind: MultiLegKind, u: float, V: float,
 
 
 def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
-    """Scaled starting vector: body at rest, legs in their closed-form states."""
-    x = np.zeros(problem.n_x)
-    for i, (u, V) in enumerate(_rest_leg_states(case)):
-        start = problem.leg_offsets[i]
-        kind = problem.kinds[i]
-        if isinstance(kind, MultiLegKind):
-            block = _multi_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
-                                     problem.force_scale)
-            x[start: start + len(block)] = block
-        elif isinstance(kind, DiscreteLegKind):
-            block = _discrete_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
-                                        problem.force_scale)
-            x[start: start + len(block)] = block
-        else:
-            x[start] = u
-            x[start + 1] = V
-    return x / problem.x_scale
+    """Scaled starting vector: body at rest, legs in their closed-form states.
+
+    Remembered per problem and leg parameters: the closed-form states cost more than a
+    whole compiled Newton solve. (Multi-segment and discretised legs add their segment
+    parameters, and a discretised leg the current, to the key.)
+    """
+    key = np.concatenate([leg_parameters(case), segment_parameters(case)]).tobytes()
+    if any(isinstance(k, DiscreteLegKind) for k in problem.kinds):
+        key += repr(case.environment.current).encode()
+    cache = problem.start_cache
+    if key not in cache:
+        x = np.zeros(problem.n_x)
+        for i, (u, V) in enumerate(_rest_leg_states(case)):
+            start = problem.leg_offsets[i]
+            kind = problem.kinds[i]
+            if isinstance(kind, MultiLegKind):
+                block = _multi_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
+                                         problem.force_scale)
+                x[start: start + len(block)] = block
+            elif isinstance(kind, DiscreteLegKind):
+                block = _discrete_leg_start(case, case.legs[i], kind, u, V,
+                                            problem.length_scale, problem.force_scale)
+                x[start: start + len(block)] = block
+            else:
+                x[start] = u
+                x[start + 1] = V
+        if len(cache) >= 64:
+            cache.pop(next(iter(cache)))
+        cache[key] = x / problem.x_scale
+    return cache[key].copy()
 
 
 SOLVERS = ("ipopt", "newton")
@@ -202,13 +219,15 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     p_full = parameter_vector(case, 1.0)
     if start is not None and np.shape(start) != (problem.n_x,):
         start = None
+    # Building (and compiling) belongs to the problem, not to this solve's time.
+    kernel = problem.newton() if solver == "newton" else None
     t0 = time.perf_counter()
     stats = dict(iterations=0, status="not run")
     notes = []
     x, used = None, "ipopt"
-    if solver == "newton":
+    if kernel is not None:
         x0 = np.asarray(start, float) if start is not None else initial_point(problem, case)
-        out = problem.newton().solve(x0, p_full, tol)
+        out = kernel.solve(x0, p_full, tol)
         stats["iterations"] += out["iterations"]
         stats["status"] = STATUS_TEXT[out["status"]]
         if problem.certify(out["x"], p_full, tol)[0]:
@@ -245,8 +264,8 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     opts = case.solver
     deadline = t0 + opts.max_time_s
     # IPOPT's own tolerance is on the scaled residual; the polish and certificate
-    # decide acceptance, so IPOPT only needs to get close.
-    ipopt_tol = max(min(tol, 1e-8), 1e-12)
+    # decide acceptance, so IPOPT only needs to get about as close as asked.
+    ipopt_tol = min(max(tol, 1e-12), 1e-4)
     lb, ub = problem.bounds()
 
     def run(x0, p):
@@ -260,7 +279,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         stats["iterations"] += int(st.get("iter_count", 0))
         stats["status"] = st.get("return_status", "unknown")
         x = np.asarray(sol["x"]).ravel()
-        x = _polish(problem, x, p, lb, ub, stats)
+        x = _polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
 
     if start is not None:
@@ -293,14 +312,15 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
 # ---- polish and certificate -----------------------------------------------------------
 
 
-def _polish(problem, x, p, lb, ub, stats):
-    """Newton steps on the square residual system, kept only while they reduce it."""
+def _polish(problem, x, p, lb, ub, stats, tol):
+    """Newton steps on the square residual system until the point certifies at ``tol``,
+    kept only while they reduce the residual."""
     if not np.all(np.isfinite(x)):
         return x
     g = np.asarray(problem.residual(x, p)).ravel()
     norm = np.max(np.abs(g)) if g.size else 0.0
     for _ in range(_POLISH_STEPS):
-        if norm < 1e-15:
+        if norm < 1e-15 or problem.certify(x, p, tol)[0]:
             break
         J = np.asarray(problem.jacobian(x, p))
         try:
@@ -466,7 +486,7 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
         ["buoy"] if any(w < 0 for w in clumps) else [])
     return Result(converged=certified, solver=solver, certificate=cert,
                   effects=effects, body=body, legs=legs, loads=loads,
-                  case_name=case.name, state=x.copy(), notes=tuple(notes))
+                  case_name=case.name, state=x.copy(), notes=tuple(notes), case=case)
 
 
 def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult:

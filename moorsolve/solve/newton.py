@@ -209,6 +209,18 @@ class NewtonKernel:
         other._lib = self._lib.clone() if self._lib is not None else None
         return other
 
+    def raw(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
+        """Run the kernel; its outputs in order, as views of this kernel's buffers
+        (overwritten by the next call) when compiled. For tight loops."""
+        if self._lib is None:
+            return [np.asarray(v, dtype=float).ravel() for v in self.function(x0, p, tol)]
+        lib = self._lib
+        lib.inputs[0][:] = x0
+        lib.inputs[1][:] = p
+        lib.inputs[2][0] = tol
+        lib()
+        return lib.outputs
+
     def solve(self, x0: np.ndarray, p: np.ndarray, tol: float) -> dict:
         """Run the kernel; the outputs as numpy arrays (copies) keyed by name."""
         names = self.function.name_out()

@@ -540,6 +540,8 @@ class EquilibriumProblem:
         self._xs, self._p, self._g = xs, p, g
         self._nlp_solvers = {}
         self._newton = None
+        #: Closed-form starting points by leg parameters (see equilibrium.initial_point).
+        self.start_cache: dict[bytes, np.ndarray] = {}
 
     def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q):
         """``certificate(x, p) -> [force_N, moment_Nm, t_max_N]`` and the sweep summary.
@@ -566,6 +568,14 @@ class EquilibriumProblem:
         if not np.all(np.isfinite(x)):
             return False, math.inf, math.inf, math.inf
         force, moment, t_max = (float(v) for v in self.certificate(x, p))
+        return self.judge(force, moment, t_max, tol)
+
+    def judge(self, force: float, moment: float, t_max: float, tol: float):
+        """``(certified, force, moment, relative)`` from the certificate's three numbers.
+
+        The force must be within ``tol`` of the largest tension, and the moment within
+        ``tol`` of that tension times the scene's moment arm.
+        """
         scale = t_max if t_max > 0 else self.force_scale
         relative = force / scale
         moment_ok = moment <= tol * scale * self.moment_scale / self.force_scale
