@@ -469,6 +469,10 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
         for lr, kind in zip(legs, problem.kinds)
         if not isinstance(kind, MultiLegKind) and not kind.contact
         and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+    for lr, kind in zip(legs, problem.kinds):
+        if isinstance(kind, DiscreteLegKind) and np.any(lr.profile["tension_N"][1:-1] < 0):
+            notes.append(f"leg {lr.name}: some elements of the discretised line are in "
+                         "compression (a loose line; its lumped-node shape is not unique)")
     for lr in legs:
         for j, joint in enumerate(lr.joints):
             if joint["position_m"][2] > 0:
