@@ -4,9 +4,9 @@ Frozen dataclasses, SI units throughout, degrees only in names ending ``_deg``. 
 :class:`Case` is what every other part of moorsolve consumes; ``moorsolve.io`` builds one
 from a case file and checks it. Nothing here imports CasADi.
 
-Coordinates: x, y horizontal, z up, z = 0 at the still-water level, flat seabed at
-z = -depth. ``toward_deg`` is the direction a wind, current or wave train travels toward,
-counter-clockwise from +x.
+Coordinates: x, y horizontal, z up, z = 0 at the still-water level, seabed at z = -depth
+(or a plane through that point at the origin, :class:`Seabed`). ``toward_deg`` is the
+direction a wind, current or wave train travels toward, counter-clockwise from +x.
 """
 
 from __future__ import annotations
@@ -18,6 +18,22 @@ from typing import Optional
 from .constants import AIR_DENSITY, SEAWATER_DENSITY, STANDARD_GRAVITY
 
 DEGREES_OF_FREEDOM = ("surge", "sway", "yaw")
+
+
+@dataclass(frozen=True)
+class LineDrag:
+    """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
+
+    Per unit stretched length, with ``q = rho d / 2``, ``U_n`` and ``U_t`` the flow's
+    components normal and tangential to the line and ``chi`` the angle of attack:
+    normal ``q normal |U_n| U_n`` (``normal sin^2 chi`` times ``q v^2``; Merkin's fit is
+    1.1), tangential ``q tangential |U_t| U_t`` (skin friction, on the diameter), and side
+    ``q side |U_n| |U_t|`` normal to both line and flow (laid ropes; sign by lay).
+    """
+
+    normal: float
+    tangential: float = 0.0
+    side: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -36,10 +52,18 @@ class LineType:
         Minimum breaking load [N].
     diameter : float or None
         Outer (hydrodynamic) diameter [m]; needed for wall tension and line drag.
+    drag : LineDrag or None
+        Drag coefficients: in a case with a current the leg is then discretised.
     sealed : bool
         True for a line whose wall keeps water out of its cross-section (cable, pipe,
         sheathed rope). Its wall tension differs from the effective tension by the
         hydrostatic pressure on the outer area (REFERENCE.md section 2); a chain is not sealed.
+    catalog : str or None
+        The line-catalogue entry the properties came from (``moorsolve.catalog``), if any.
+    corrosion_allowance : float
+        Diameter reduction [m] already applied to ``mbl`` (catalogue lines only).
+    source : str or None
+        Where the catalogue values come from (citation), for reports.
     """
 
     name: str
@@ -48,6 +72,10 @@ class LineType:
     mbl: Optional[float] = None
     diameter: Optional[float] = None
     sealed: bool = False
+    drag: Optional[LineDrag] = None
+    catalog: Optional[str] = None
+    corrosion_allowance: float = 0.0
+    source: Optional[str] = None
 
     @property
     def elastic(self) -> bool:
@@ -60,6 +88,44 @@ class Segment:
 
     line_type: LineType
     length: float
+
+
+ANCHOR_KINDS = ("drag", "deadweight", "pile")
+
+
+@dataclass(frozen=True)
+class AnchorType:
+    """What an anchor allows, for the mooring checks.
+
+    ``drag``: no uplift at all (the line must leave the anchor horizontally);
+    ``deadweight`` (sinker block, Hu & Tang's floating dock): an upward pull up to
+    ``allowed_uplift`` [N]; ``pile``: an uplift angle at the anchor up to
+    ``allowed_uplift_angle_deg``.
+    """
+
+    kind: str = "drag"
+    allowed_uplift: float = 0.0
+    allowed_uplift_angle_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Clump:
+    """A point load at a joint between two segments: a clump weight or a buoy.
+
+    Attributes
+    ----------
+    weight : float
+        Net downward force in water [N]: ``g (mass - water_density volume)`` when given by
+        mass and volume; negative for a buoy.
+    mass : float or None
+        Mass [kg], when the case gave one.
+    volume : float or None
+        Displaced volume [m^3], when the case gave one.
+    """
+
+    weight: float
+    mass: Optional[float] = None
+    volume: Optional[float] = None
 
 
 @dataclass(frozen=True)
@@ -75,13 +141,28 @@ class Leg:
     fairlead : tuple of 3 floats
         Position [m] in the body frame, or global when the case has no body.
     segments : tuple of Segment
-        From anchor to fairlead. The core model takes one segment per leg.
+        From anchor to fairlead.
+    clumps : tuple of (Clump or None)
+        One entry per joint between consecutive segments (``len(segments) - 1``), from the
+        anchor up; None (or an empty tuple for all joints) is a bare joint.
     """
 
     name: str
     anchor: tuple
     fairlead: tuple
     segments: tuple
+    anchor_type: Optional[AnchorType] = None
+    clumps: tuple = ()
+
+    @property
+    def joint_clumps(self) -> tuple:
+        """The clump at every joint (None for a bare joint), ``len(segments) - 1`` entries."""
+        n = len(self.segments) - 1
+        return tuple(self.clumps) + (None,) * (n - len(self.clumps))
+
+    @property
+    def multi_segment(self) -> bool:
+        return len(self.segments) > 1
 
     @property
     def line_type(self) -> LineType:
@@ -94,10 +175,17 @@ class Leg:
 
 @dataclass(frozen=True)
 class Flow:
-    """A uniform wind or current: speed [m/s] toward ``toward_deg``."""
+    """A wind or current: speed [m/s] toward ``toward_deg``.
+
+    A current may carry a ``profile`` of ``(z, speed)`` rows (z ascending, m and m/s) that
+    the lines see, interpolated linearly and held constant beyond its ends; ``speed`` is
+    then what the body's load models see. Without a profile the lines see ``speed`` at
+    every depth.
+    """
 
     speed: float
     toward_deg: float = 0.0
+    profile: Optional[tuple] = None
 
 
 @dataclass(frozen=True)
@@ -110,9 +198,19 @@ class Waves:
 
 @dataclass(frozen=True)
 class Seabed:
-    """Seabed contact. ``friction`` is the Coulomb coefficient for line on seabed (0 = none)."""
+    """Seabed contact.
+
+    ``friction`` is the Coulomb coefficient for line on seabed (0 = none). ``gradient`` is
+    ``(dz/dx, dz/dy)`` of a plane seabed: its height is ``-depth + gx x + gy y``, so
+    ``depth`` is the water depth at the origin; ``(0, 0)`` is flat.
+    """
 
     friction: float = 0.0
+    gradient: tuple = (0.0, 0.0)
+
+    @property
+    def sloped(self) -> bool:
+        return any(g != 0.0 for g in self.gradient)
 
 
 @dataclass(frozen=True)
@@ -125,6 +223,11 @@ class Environment:
     wind: Optional[Flow] = None
     current: Optional[Flow] = None
     waves: Optional[Waves] = None
+
+    def seabed_z(self, x: float, y: float) -> float:
+        """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed)."""
+        gx, gy = self.seabed.gradient
+        return -self.depth + gx * x + gy * y
 
 
 # ---- body load models ---------------------------------------------------------------
@@ -257,11 +360,46 @@ class SolverOptions:
     """Solver settings a case may carry; the CLI's ``--tol`` overrides ``tol``.
 
     ``tol`` is the certified force residual relative to the largest line tension.
+    ``line_elements`` is the number of elements of a discretised leg (one in a current with
+    drag data).
     """
 
     tol: float = 1e-9
     max_iter: int = 200
     max_time_s: float = 5.0
+    line_elements: int = 20
+
+
+@dataclass(frozen=True)
+class Checks:
+    """Acceptance limits for ``moorsolve check`` (the factors come from the standard's table).
+
+    Attributes
+    ----------
+    standard : str
+        Criteria table: ``api-rp-2sk`` or ``dnv-os-e301``.
+    consequence_class : int
+        DNV-OS-E301 consequence class (1 or 2); unused by API RP 2SK.
+    offset_limit, offset_limit_damaged : float or None
+        Largest horizontal offset of the body origin [m], intact and with one leg broken
+        (the damaged limit defaults to the intact one).
+    min_grounded_length, min_grounded_length_damaged : float or None
+        Least unstretched length [m] that must stay on the seabed in every leg whose anchor
+        is on the seabed (Hu & Tang keep 45 m); the damaged value defaults to the intact one.
+    anchor : AnchorType
+        Default anchor type for legs that do not give their own.
+    damaged : bool
+        Also run the damaged conditions (each leg removed in turn).
+    """
+
+    standard: str = "api-rp-2sk"
+    consequence_class: int = 1
+    offset_limit: Optional[float] = None
+    offset_limit_damaged: Optional[float] = None
+    min_grounded_length: Optional[float] = None
+    min_grounded_length_damaged: Optional[float] = None
+    anchor: AnchorType = field(default_factory=AnchorType)
+    damaged: bool = True
 
 
 @dataclass(frozen=True)
@@ -272,6 +410,7 @@ class Case:
     legs: tuple
     body: Optional[Body] = None
     solver: SolverOptions = field(default_factory=SolverOptions)
+    checks: Optional[Checks] = None
     #: The validated case-file data it was built from (for sweeps that edit it by path);
     #: None for a Case built in code.
     source: Optional[Mapping] = field(default=None, compare=False, repr=False)

@@ -17,12 +17,17 @@ Schema (SI units, ``[...]`` lists)::
       water_density: > 0 [kg/m^3]              default 1025
       air_density: > 0 [kg/m^3]                default 1.225
       gravity: > 0 [m/s^2]                     default 9.80665
-      seabed: {friction: >= 0}                 default 0
-      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise
+      seabed: {friction: >= 0,                 default 0
+               gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
+      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise, plus an optional
+                                               profile: [[z <= 0, speed], ...] z ascending
       waves: {hs: >= 0 [m], toward_deg}        optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
-             sealed: bool}
+             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
+                                               drag needs a diameter
+      NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
+             weight_in_water, ea, mbl (override the catalogue), sealed, drag}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
@@ -30,8 +35,18 @@ Schema (SI units, ``[...]`` lists)::
               wave_drift: {model: hu_tang | coefficient, ...}}
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
-         segments: [{type: NAME, length: > 0}]}
-    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
+         segments: [{type: NAME, length: > 0}, {clump: CLUMP}, {type: NAME, length}, ...],
+         anchor_type: ANCHOR (optional)}
+                                               from the anchor up; a clump item sits between
+                                               two segments; CLUMP is {mass: kg >= 0,
+                                               volume: m^3 >= 0} or {weight: N} (< 0: buoy)
+    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0,
+             line_elements: int 2..400 (default 20)}
+    checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
+             offset_limit, offset_limit_damaged, min_grounded_length,
+             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
+    ANCHOR: {type: drag} | {type: deadweight, allowed_uplift [N]}
+            | {type: pile, allowed_uplift_angle_deg}
 """
 
 from __future__ import annotations
@@ -47,12 +62,19 @@ from pathlib import Path
 
 import yaml
 
+from .. import catalog as line_catalog
+from ..constants import SEAWATER_DENSITY
 from ..errors import CaseError
+from ..checks.criteria import STANDARDS
 from ..model import (
+    ANCHOR_KINDS,
     DEGREES_OF_FREEDOM,
+    AnchorType,
     Body,
     BodyLoads,
+    Clump,
     Case,
+    Checks,
     DragLoad,
     DriftCoefficient,
     Environment,
@@ -61,6 +83,7 @@ from ..model import (
     HuTangDrift,
     HuTangWind,
     Leg,
+    LineDrag,
     LineType,
     Seabed,
     Segment,
@@ -73,6 +96,8 @@ __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
 
 #: Highest fairlead allowed [m above still water]; catches a unit slip (mm for m) early.
 FAIRLEAD_Z_MAX = 1000.0
+#: Steepest seabed accepted (rise per metre): 45 deg. A chain does not rest on a steeper one.
+MAX_GRADIENT = 1.0
 #: The deepest ocean is under 11 km; a larger depth is a unit mistake.
 MAX_DEPTH = 12_000.0
 #: Longer than any mooring line ever laid: a unit mistake.
@@ -92,6 +117,9 @@ MAX_HS = 100.0                   # [m]
 MAX_AREA = 1e8                   # [m^2]
 GRAVITY_RANGE = (0.1, 100.0)     # [m/s^2]
 MAX_DENSITY = 1e5                # [kg/m^3]
+
+#: Most elements of a discretised leg: beyond it the build time, not the accuracy, grows.
+MAX_LINE_ELEMENTS = 400
 
 #: Largest ``solver.max_iter``: IPOPT takes it as a C int.
 MAX_ITER_LIMIT = 2**31 - 1
@@ -197,11 +225,33 @@ def _centre(m: dict, path: str) -> tuple:
 # ---- environment ------------------------------------------------------------------------
 
 
-def _flow(raw, path: str) -> Flow:
-    m = _mapping(raw, path, required=("speed",), optional=("toward_deg",))
+def _flow(raw, path: str, profile: bool = False) -> Flow:
+    m = _mapping(raw, path, required=("speed",),
+                 optional=("toward_deg", "profile") if profile else ("toward_deg",))
     speed = _quantity(m["speed"], _join(path, "speed"), "speed", ge=0, le=MAX_SPEED)
     toward = _field(m, path, "toward_deg", "angle", 0.0)
-    return Flow(speed=speed, toward_deg=toward)
+    rows = None
+    if m.get("profile") is not None:
+        ppath = _join(path, "profile")
+        items = _sequence(m["profile"], ppath, "a list of rows [z, speed] (z <= 0, ascending)")
+        if not items:
+            raise CaseError(ppath, "no rows; a current profile needs at least one [z, speed]")
+        rows = []
+        for i, item in enumerate(items):
+            rpath = _join(ppath, i)
+            row = _sequence(item, rpath, "a row [z, speed]")
+            if len(row) != 2:
+                raise CaseError(rpath, f"{show_value(item)} has {len(row)} values; a row is "
+                                       "[z, speed]")
+            z = _quantity(row[0], _join(rpath, 0), "length", le=0)
+            v = _quantity(row[1], _join(rpath, 1), "speed", ge=0)
+            if rows and not z > rows[-1][0]:
+                raise CaseError(_join(rpath, 0), f"z = {format_si(z, 'length')} must be above "
+                                                 "the previous row's (z ascending, from the "
+                                                 "seabed up to the surface)")
+            rows.append((z, v))
+        rows = tuple(rows)
+    return Flow(speed=speed, toward_deg=toward, profile=rows)
 
 
 def _waves(raw, path: str) -> Waves:
@@ -230,10 +280,24 @@ def _environment(raw, path: str) -> Environment:
     seabed = Seabed()
     if "seabed" in m:
         sub = _join(path, "seabed")
-        s = _mapping(m["seabed"], sub, optional=("friction",))
-        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0))
+        s = _mapping(m["seabed"], sub, optional=("friction", "gradient"))
+        gradient = (0.0, 0.0)
+        if "gradient" in s:
+            gpath = _join(sub, "gradient")
+            items = _sequence(s["gradient"], gpath, "[dz/dx, dz/dy]")
+            if len(items) != 2:
+                raise CaseError(gpath, f"{show_value(s['gradient'])} has {len(items)} values; "
+                                       "it must be [dz/dx, dz/dy]")
+            gradient = tuple(_quantity(v, _join(gpath, i), "dimensionless", ge=-MAX_GRADIENT,
+                                       le=MAX_GRADIENT) for i, v in enumerate(items))
+            if math.hypot(*gradient) > MAX_GRADIENT:
+                raise CaseError(gpath, f"slope {math.hypot(*gradient):.4g} must be <= "
+                                       f"{MAX_GRADIENT} (45 deg)")
+        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0),
+                        gradient=gradient)
     wind = None if m.get("wind") is None else _flow(m["wind"], _join(path, "wind"))
-    current = None if m.get("current") is None else _flow(m["current"], _join(path, "current"))
+    current = (None if m.get("current") is None
+               else _flow(m["current"], _join(path, "current"), profile=True))
     waves = None if m.get("waves") is None else _waves(m["waves"], _join(path, "waves"))
     return Environment(depth=depth, water_density=water_density, air_density=air_density,
                        gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves)
@@ -242,9 +306,30 @@ def _environment(raw, path: str) -> Environment:
 # ---- line types -------------------------------------------------------------------------
 
 
-def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
+def _line_drag(raw, path: str) -> LineDrag:
+    m = _mapping(raw, path, required=("normal",), optional=("tangential", "side"))
+    normal = _quantity(m["normal"], _join(path, "normal"), "dimensionless", ge=0, le=10)
+    tangential = _field(m, path, "tangential", "dimensionless", 0.0, ge=0, le=10)
+    side = _field(m, path, "side", "dimensionless", 0.0, ge=-10, le=10)
+    return LineDrag(normal=normal, tangential=tangential, side=side)
+
+
+def _line_type_drag(m: dict, path: str, diameter):
+    """The optional ``drag`` of a line type; it needs the diameter."""
+    drag = None if m.get("drag") is None else _line_drag(m["drag"], _join(path, "drag"))
+    if drag is not None and diameter is None:
+        raise CaseError(_join(path, "diameter"),
+                        "a line type with drag needs a diameter (the flow force scales with "
+                        "it); give diameter > 0 [m]")
+    return drag
+
+
+def _line_type(name: str, raw, path: str, gravity: float,
+               water_density: float = SEAWATER_DENSITY) -> LineType:
+    if isinstance(raw, Mapping) and "catalog" in raw:
+        return _catalog_line_type(name, raw, path, gravity, water_density)
     m = _mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed"))
+                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag"))
     wpath = _join(path, "weight_in_water")
     weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
     if abs(weight) > MAX_WEIGHT:
@@ -259,6 +344,12 @@ def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
         _check_bounds(m["ea"], ea, "force", _join(path, "ea"), ge=MIN_EA)
     mbl = _nullable(m, path, "mbl", "force", gt=0)
     diameter = _nullable(m, path, "diameter", "length", gt=0)
+    sealed = _sealed(m, path, diameter)
+    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
+                    sealed=sealed, drag=_line_type_drag(m, path, diameter))
+
+
+def _sealed(m: dict, path: str, diameter) -> bool:
     sealed = False
     if "sealed" in m:
         sealed = m["sealed"]
@@ -268,11 +359,52 @@ def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
         raise CaseError(_join(path, "diameter"),
                         "sealed line needs a diameter (its wall tension depends on the outer "
                         "area); give diameter > 0 [m]")
-    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
-                    sealed=sealed)
+    return sealed
 
 
-def _line_types(raw, path: str, gravity: float) -> dict:
+def _catalog_line_type(name: str, raw, path: str, gravity: float,
+                       water_density: float) -> LineType:
+    """A line type from the catalogue: ``{catalog: studless_r3, diameter: 81 mm, ...}``.
+
+    ``weight_in_water``, ``ea`` and ``mbl`` given beside ``catalog`` replace the catalogue
+    values (e.g. a maker's certificate); ``corrosion_allowance`` reduces the diameter used
+    for the catalogue MBL.
+    """
+    m = _mapping(raw, path, required=("catalog", "diameter"),
+                 optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
+                           "drag"))
+    known = line_catalog.entries()
+    entry = m["catalog"]
+    if not isinstance(entry, str) or entry not in known:
+        raise CaseError(_join(path, "catalog"), f"unknown catalogue entry {show_value(entry)}; "
+                                                f"known entries: {', '.join(known)}")
+    diameter = _quantity(m["diameter"], _join(path, "diameter"), "length", gt=0, le=1.0)
+    allowance = _field(m, path, "corrosion_allowance", "length", 0.0, ge=0)
+    if allowance >= diameter:
+        raise CaseError(_join(path, "corrosion_allowance"),
+                        f"{format_si(allowance, 'length')} must be smaller than the diameter "
+                        f"({format_si(diameter, 'length')})")
+    props = line_catalog.line_properties(entry, diameter, water_density=water_density,
+                                         gravity=gravity, corrosion_allowance=allowance)
+    weight = props.weight_in_water
+    if m.get("weight_in_water") is not None:
+        weight = weight_per_length_to_si(m["weight_in_water"], gravity,
+                                         _join(path, "weight_in_water"))
+    ea = _nullable(m, path, "ea", "force", gt=0)
+    mbl = _nullable(m, path, "mbl", "force", gt=0)
+    if mbl is not None and "corrosion_allowance" in m:
+        raise CaseError(_join(path, "corrosion_allowance"),
+                        "applies to the catalogue MBL only; with an explicit mbl give the "
+                        "corroded value directly")
+    return LineType(name=name, weight_in_water=weight,
+                    ea=props.ea if ea is None else ea,
+                    mbl=props.mbl if mbl is None else mbl,
+                    diameter=diameter, sealed=_sealed(m, path, diameter), catalog=entry,
+                    drag=_line_type_drag(m, path, diameter),
+                    corrosion_allowance=allowance, source=props.source)
+
+
+def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_DENSITY) -> dict:
     if not isinstance(raw, Mapping):
         raise CaseError(path, f"{show_value(raw)} is not a mapping; line_types maps each line type "
                               "name to its properties")
@@ -282,7 +414,7 @@ def _line_types(raw, path: str, gravity: float) -> dict:
     for name, spec in raw.items():
         if not isinstance(name, str) or not name.strip():
             raise CaseError(path, f"line type name {show_value(name)} is not a non-empty string")
-        types[name] = _line_type(name, spec, _join(path, name), gravity)
+        types[name] = _line_type(name, spec, _join(path, name), gravity, water_density)
     return types
 
 
@@ -464,20 +596,74 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
     return Segment(line_type=line_types[type_name], length=length)
 
 
+def _clump(raw, path: str, environment: Environment) -> Clump:
+    """``{mass: kg, volume: m^3}`` (net weight in water) or ``{weight: N}`` (negative: buoy)."""
+    m = _mapping(raw, path, optional=("mass", "volume", "weight"))
+    if "weight" in m:
+        for key in ("mass", "volume"):
+            if key in m:
+                raise CaseError(_join(path, key), f"{key} is not used with weight; give either "
+                                                  "weight [N] or mass [kg] and volume [m^3]")
+        weight = _quantity(m["weight"], _join(path, "weight"), "force")
+        return Clump(weight=weight)
+    if "mass" not in m:
+        raise CaseError(_join(path, "mass"), "a clump needs mass [kg] (and optionally volume "
+                                             "[m^3]) or a net weight [N]")
+    mass = _quantity(m["mass"], _join(path, "mass"), "mass", ge=0)
+    volume = _field(m, path, "volume", "volume", 0.0, ge=0)
+    weight = environment.gravity * (mass - environment.water_density * volume)
+    return Clump(weight=weight, mass=mass, volume=volume)
+
+
+def _segments(raw, path: str, environment: Environment, line_types: dict):
+    """Segments from anchor to fairlead, with optional ``{clump: ...}`` items between them."""
+    items = _sequence(raw, path, "a list of {type, length} segments from the anchor, with "
+                                 "optional {clump: {...}} items between them")
+    if not items:
+        raise CaseError(path, "no segments; a leg needs one segment {type, length}")
+    segments, clumps = [], []
+    for j, item in enumerate(items):
+        ipath = _join(path, j)
+        if isinstance(item, Mapping) and "clump" in item:
+            _mapping(item, ipath, required=("clump",))
+            if not segments or len(clumps) != len(segments) - 1:
+                raise CaseError(ipath, "a clump must sit between two segments (after a "
+                                       "segment, not first and not after another clump)")
+            clumps.append(_clump(item["clump"], _join(ipath, "clump"), environment))
+            continue
+        if segments and len(clumps) < len(segments):
+            clumps.append(None)
+        segments.append(_segment(item, ipath, line_types))
+    if len(clumps) == len(segments):
+        raise CaseError(_join(path, len(items) - 1),
+                        "a clump must sit between two segments; this one ends the leg")
+    return tuple(segments), tuple(clumps)
+
+
 def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
-    m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"))
+    m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"),
+                 optional=("anchor_type",))
     name = _name(m["name"], _join(path, "name"), "leg name")
+    anchor_type = (None if m.get("anchor_type") is None
+                   else _anchor_type(m["anchor_type"], _join(path, "anchor_type")))
     depth = environment.depth
     seabed_tol = 1e-9 * max(depth, 1.0)  # unit conversions may leave the seabed z a few ulp off
+    sloped = environment.seabed.sloped
+    allowed = "must be on or above the (sloped) seabed" if sloped else "must be >= -depth"
 
     fpath = _join(path, "fairlead")
     fairlead = _point(m["fairlead"], fpath, (3,))
     fz = fairlead[2]
-    if fz < -depth - seabed_tol:
+    bed = environment.seabed_z(fairlead[0], fairlead[1])
+    if bed >= 0:
+        raise CaseError(fpath, f"the sloped seabed is at z = {format_si(bed, 'length')} under "
+                               "this fairlead, not under water; reduce environment.seabed."
+                               "gradient or move the leg")
+    if fz < bed - seabed_tol:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is below "
-                                         f"the seabed (z = {format_si(-depth, 'length')}); it "
-                                         "must be >= -depth")
-    fz = max(fz, -depth)
+                                         f"the seabed (z = {format_si(bed, 'length')}); it "
+                                         f"{allowed}")
+    fz = max(fz, bed)
     fairlead = fairlead[:2] + (fz,)
     if fz > FAIRLEAD_Z_MAX:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} must be <= "
@@ -485,40 +671,44 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
 
     apath = _join(path, "anchor")
     anchor = _point(m["anchor"], apath, (2, 3))
+    bed = environment.seabed_z(anchor[0], anchor[1])
+    if bed >= 0:
+        raise CaseError(apath, f"the sloped seabed is at z = {format_si(bed, 'length')} at "
+                               "this anchor, not under water; reduce environment.seabed."
+                               "gradient or move the anchor")
     if len(anchor) == 2:
-        anchor = anchor + (-depth,)
+        anchor = anchor + (bed,)
     else:
         az = anchor[2]
-        if az < -depth - seabed_tol:
+        if az < bed - seabed_tol:
             raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is below the "
-                                             f"seabed (z = {format_si(-depth, 'length')}); it "
-                                             "must be >= -depth")
-        if az < -depth:
-            anchor = anchor[:2] + (-depth,)
+                                             f"seabed (z = {format_si(bed, 'length')}); it "
+                                             f"{allowed}")
+        if az < bed:
+            anchor = anchor[:2] + (bed,)
         if anchor[2] > fz:
             raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is above "
                                              f"the fairlead (z = {format_si(fz, 'length')}); the "
                                              "anchor must not be higher than its fairlead")
 
     spath = _join(path, "segments")
-    items = _sequence(m["segments"], spath, "a list of {type, length}")
-    if not items:
-        raise CaseError(spath, "no segments; a leg needs one segment {type, length}")
-    segments = tuple(_segment(s, _join(spath, j), line_types) for j, s in enumerate(items))
-    if len(segments) > 1:
-        raise CaseError(spath, f"{len(segments)} segments: multi-segment legs are not supported "
-                               "yet (issue: lines beyond one catenary); give one segment")
-
-    segment = segments[0]
-    if segment.line_type.ea is None:
+    segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    if sloped and len(segments) > 1:
+        raise CaseError(spath, f"{len(segments)} segments on a sloped seabed: multi-segment legs "
+                               "need a flat seabed (environment.seabed.gradient [0, 0]); a "
+                               "sloped seabed takes one-segment legs")
+    if all(seg.line_type.ea is None for seg in segments):
         # Body at zero offset: the body-frame fairlead is its global position.
         distance = math.dist(anchor, fairlead)
-        if distance > segment.length:
-            raise CaseError(spath, f"the line ({format_si(segment.length, 'length')}) cannot "
+        length = sum(seg.length for seg in segments)
+        if distance > length:
+            raise CaseError(spath, f"the line ({format_si(length, 'length')}) cannot "
                                    f"reach from anchor to fairlead (distance "
                                    f"{format_si(distance, 'length')}); an inextensible line "
                                    "must be at least that long")
-    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments)
+    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments,
+               clumps=clumps if any(c is not None for c in clumps) else (),
+               anchor_type=anchor_type)
 
 
 def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
@@ -538,11 +728,75 @@ def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
     return tuple(legs)
 
 
+# ---- mooring checks ---------------------------------------------------------------------
+
+_ANCHOR_KEYS = {"drag": (), "deadweight": ("allowed_uplift",),
+                "pile": ("allowed_uplift_angle_deg",)}
+
+
+def _anchor_type(raw, path: str) -> AnchorType:
+    """``{type: drag}``, ``{type: deadweight, allowed_uplift}`` or ``{type: pile,
+    allowed_uplift_angle_deg}``."""
+    allowed = ", ".join(ANCHOR_KINDS)
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; give {{type: ...}} with type "
+                              f"one of {allowed}")
+    kind = raw.get("type")
+    if not isinstance(kind, str) or kind not in ANCHOR_KINDS:
+        raise CaseError(_join(path, "type"), f"unknown anchor type {show_value(kind)}; allowed: "
+                                             f"{allowed}")
+    keys = _ANCHOR_KEYS[kind]
+    m = _mapping(raw, path, required=("type",) + keys)
+    if kind == "deadweight":
+        uplift = _quantity(m["allowed_uplift"], _join(path, "allowed_uplift"), "force", ge=0)
+        return AnchorType(kind=kind, allowed_uplift=uplift)
+    if kind == "pile":
+        angle = _quantity(m["allowed_uplift_angle_deg"], _join(path, "allowed_uplift_angle_deg"),
+                          "angle", ge=0, lt=90)
+        return AnchorType(kind=kind, allowed_uplift_angle_deg=angle)
+    return AnchorType(kind=kind)
+
+
+def _checks(raw, path: str, legs: tuple) -> Checks:
+    m = _mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
+                                      "offset_limit_damaged", "min_grounded_length",
+                                      "min_grounded_length_damaged", "anchor", "damaged"))
+    defaults = Checks()
+    standard = m.get("standard", defaults.standard)
+    if not isinstance(standard, str) or standard not in STANDARDS:
+        raise CaseError(_join(path, "standard"), f"unknown standard {show_value(standard)}; "
+                                                 f"allowed: {', '.join(STANDARDS)}")
+    cclass = m.get("consequence_class", defaults.consequence_class)
+    if isinstance(cclass, bool) or cclass not in (1, 2):
+        raise CaseError(_join(path, "consequence_class"),
+                        f"{show_value(cclass)} must be 1 or 2 (DNV-OS-E301 consequence class)")
+    offset = _nullable(m, path, "offset_limit", "length", gt=0)
+    offset_damaged = _nullable(m, path, "offset_limit_damaged", "length", gt=0)
+    grounded = _nullable(m, path, "min_grounded_length", "length", ge=0)
+    grounded_damaged = _nullable(m, path, "min_grounded_length_damaged", "length", ge=0)
+    for key, value in (("min_grounded_length", grounded),
+                       ("min_grounded_length_damaged", grounded_damaged)):
+        longest = max(leg.length for leg in legs)
+        if value is not None and value >= longest:
+            raise CaseError(_join(path, key), f"{format_si(value, 'length')} must be shorter "
+                                              f"than the longest leg "
+                                              f"({format_si(longest, 'length')})")
+    anchor = (defaults.anchor if m.get("anchor") is None
+              else _anchor_type(m["anchor"], _join(path, "anchor")))
+    damaged = m.get("damaged", True)
+    if not isinstance(damaged, bool):
+        raise CaseError(_join(path, "damaged"), f"{show_value(damaged)} is not true or false")
+    return Checks(standard=standard, consequence_class=int(cclass), offset_limit=offset,
+                  offset_limit_damaged=offset_damaged, min_grounded_length=grounded,
+                  min_grounded_length_damaged=grounded_damaged, anchor=anchor,
+                  damaged=damaged)
+
+
 # ---- solver -----------------------------------------------------------------------------
 
 
 def _solver(raw, path: str) -> SolverOptions:
-    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s"))
+    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s", "line_elements"))
     defaults = SolverOptions()
     tol = _field(m, path, "tol", "dimensionless", defaults.tol, gt=0, lt=1)
     max_iter = defaults.max_iter
@@ -556,7 +810,17 @@ def _solver(raw, path: str) -> SolverOptions:
         if not 1 <= max_iter <= MAX_ITER_LIMIT:
             raise CaseError(ipath, f"{max_iter} must be an integer from 1 to {MAX_ITER_LIMIT}")
     max_time = _field(m, path, "max_time_s", "time", defaults.max_time_s, gt=0)
-    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time)
+    elements = defaults.line_elements
+    if "line_elements" in m:
+        raw_n = m["line_elements"]
+        epath = _join(path, "line_elements")
+        if isinstance(raw_n, bool) or not isinstance(raw_n, numbers.Integral) \
+                or not 2 <= raw_n <= MAX_LINE_ELEMENTS:
+            raise CaseError(epath, f"{show_value(raw_n)} must be an integer from 2 to "
+                                   f"{MAX_LINE_ELEMENTS}")
+        elements = int(raw_n)
+    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time,
+                         line_elements=elements)
 
 
 # ---- the case ---------------------------------------------------------------------------
@@ -564,15 +828,17 @@ def _solver(raw, path: str) -> SolverOptions:
 
 def _build_case(data, default_name: str) -> Case:
     m = _mapping(data, "", required=("environment", "line_types", "legs"),
-                 optional=("name", "body", "solver"))
+                 optional=("name", "body", "solver", "checks"))
     name = default_name if "name" not in m else _name(m["name"], "name", "case name")
     # Environment first: gravity converts weights given as mass per length, and depth
     # places anchors given as [x, y].
     environment = _environment(m["environment"], "environment")
-    line_types = _line_types(m["line_types"], "line_types", environment.gravity)
+    line_types = _line_types(m["line_types"], "line_types", environment.gravity,
+                             environment.water_density)
     body = None if m.get("body") is None else _body(m["body"], "body")
     legs = _legs(m["legs"], "legs", environment, line_types)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
+    checks = None if m.get("checks") is None else _checks(m["checks"], "checks", legs)
     if body is not None and "yaw" in body.free and all(
             leg.fairlead[0] == 0.0 and leg.fairlead[1] == 0.0 for leg in legs):
         # Every line acts through the body origin: no leg can resist a yaw moment, so the
@@ -581,7 +847,7 @@ def _build_case(data, default_name: str) -> Case:
                                      "(x = y = 0), so nothing restrains yaw; remove yaw from "
                                      "body.free")
     return Case(name=name, environment=environment, line_types=line_types, legs=legs,
-                body=body, solver=solver)
+                body=body, solver=solver, checks=checks)
 
 
 class _StrictLoader(yaml.SafeLoader):
@@ -674,8 +940,8 @@ def load_case(source, *, keep_source: bool = True) -> Case:
     Checks beyond the schema: anchors lie on or above the seabed and below their fairlead;
     fairleads lie above the seabed and at most :data:`FAIRLEAD_Z_MAX` above still water; an
     inextensible line is at least as long as the straight distance from its anchor to its
-    fairlead at the case-file position (body at zero offset); leg names are unique; each leg
-    has exactly one segment (the core model's limit).
+    fairlead at the case-file position (body at zero offset); leg names are unique; clump
+    items sit between two segments.
 
     Examples
     --------

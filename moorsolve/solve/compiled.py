@@ -35,6 +35,8 @@ log = logging.getLogger(__name__)
 _CINT = ctypes.c_longlong          # CasADi's generated casadi_int
 _REAL_P = ctypes.POINTER(ctypes.c_double)
 _FLAGS = ("-O2", "-fPIC", "-shared")
+# Past this size (hundreds of legs) -O2 takes minutes for little gain over -O1.
+_LARGE_SOURCE = 1_500_000
 _LOCK = threading.Lock()
 _LOADED: dict[str, ctypes.CDLL] = {}
 
@@ -71,25 +73,26 @@ def compile_function(fn: ca.Function) -> "CompiledFunction | None":
         gen.add(fn)
         gen.generate(tmp + os.sep)
         text = source.read_bytes()
-        digest = hashlib.sha256(text + " ".join(cc + list(_FLAGS)).encode()
+        flags = _FLAGS if len(text) < _LARGE_SOURCE else ("-O1",) + _FLAGS[1:]
+        digest = hashlib.sha256(text + " ".join(cc + list(flags)).encode()
                                 + ca.__version__.encode()).hexdigest()[:20]
         target = cache_dir() / f"{name}_{digest}.so"
         with _LOCK:
             if not target.exists():
                 try:
-                    _build(cc, source, target)
+                    _build(cc, flags, source, target)
                 except (OSError, subprocess.SubprocessError) as err:
                     log.warning("compiling %s failed (%s); it runs interpreted", name, err)
                     return None
     return CompiledFunction(fn, target)
 
 
-def _build(cc: list[str], source: Path, target: Path) -> None:
+def _build(cc: list[str], flags: tuple, source: Path, target: Path) -> None:
     target.parent.mkdir(parents=True, exist_ok=True)
     fd, partial = tempfile.mkstemp(suffix=".so", dir=target.parent)
     os.close(fd)
     try:
-        subprocess.run([*cc, *_FLAGS, str(source), "-o", partial, "-lm"], check=True,
+        subprocess.run([*cc, *flags, str(source), "-o", partial, "-lm"], check=True,
                        capture_output=True, timeout=300)
         os.replace(partial, target)
     finally:

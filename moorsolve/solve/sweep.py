@@ -30,7 +30,7 @@ import numpy as np
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from .equilibrium import get_problem, initial_point, solve
-from .problem import environment_parameters, leg_parameters, structure_key
+from .problem import parameter_vector, structure_key
 
 _PARALLEL_MIN_POINTS = 64
 
@@ -151,7 +151,7 @@ def _point_vector(case: Case) -> np.ndarray:
     parameters, then each leg's minimum breaking load (for the overload check)."""
     mbl = [leg.line_type.mbl if leg.line_type.mbl is not None else np.inf
            for leg in case.legs]
-    return np.concatenate([environment_parameters(case, 1.0), leg_parameters(case), mbl])
+    return np.concatenate([parameter_vector(case, 1.0), mbl])
 
 
 def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
@@ -260,7 +260,7 @@ def _solve_each(todo, indices, table, point_case, tol):
     previous = {}
     for i in todo:
         pc = point_case(indices[i])
-        key = structure_key(pc)
+        key = id(get_problem(pc))        # a state is only meaningful to its own problem
         try:
             result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
         except ConvergenceError as err:
