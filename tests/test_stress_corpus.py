@@ -152,16 +152,17 @@ def test_every_corpus_file_has_an_expectation():
     assert sorted(p.stem for p in CORPUS.glob("*.yaml")) == sorted(EXPECT)
 
 
+@pytest.mark.parametrize("solver", ["ipopt", "newton"])
 @pytest.mark.parametrize("name", sorted(EXPECT))
-def test_corpus_case(name):
+def test_corpus_case(name, solver):
     case = load_case(CORPUS / f"{name}.yaml")
     expect = EXPECT[name]
     if isinstance(expect, str):
         with pytest.raises(ConvergenceError, match=expect) as err:
-            solve(case)
+            solve(case, solver=solver)
         assert math.isfinite(err.value.residual_N)
     else:
-        expect(certified(solve(case)))
+        expect(certified(solve(case, solver=solver)))
 
 
 # ---- load ramps on the Vida buoy -----------------------------------------------------------
