@@ -140,7 +140,8 @@ def line_type(lt, environment: Environment, ea: float | None = None) -> dict:
     stiffness = lt.ea if lt.ea is not None else ea
     if stiffness is None:
         raise ValueError(f"line type {lt.name!r} is inextensible: pass ea")
-    return dict(name=lt.name, m=m, d_vol=d_vol, w=w, EA=float(stiffness), material="moorsolve")
+    return {"name": lt.name, "m": m, "d_vol": d_vol, "w": w, "EA": float(stiffness),
+            "material": "moorsolve"}
 
 
 def _check_convertible(case: Case) -> None:
@@ -185,6 +186,7 @@ class PeerSolution:
     fairlead_tension_N: np.ndarray
     anchor_tension_N: np.ndarray
     solve_time_s: float
+    evaluations: int = 0     # force evaluations MoorPy made (one per iteration)
 
 
 class MoorPyScene:
@@ -244,12 +246,14 @@ class MoorPyScene:
             with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
                 warnings.simplefilter("ignore")
                 ok = bool(self.system.solveEquilibrium(tol=tol, maxIter=max_iter, no_fail=True))
-        except Exception as exc:   # MoorPy raises bare Exceptions, LineError, SolveError
+        except Exception as exc:  # noqa: BLE001  MoorPy raises bare Exception, LineError, ...
             ok, error = False, f"{type(exc).__name__}: {exc}"
         elapsed = time.perf_counter() - t0
         if not ok and not error:
             error = f"no convergence in {max_iter} iterations"
-        return self.read(ok, error, elapsed)
+        sol = self.read(ok, error, elapsed)
+        sol.evaluations = len(getattr(self.system, "Xs", ()))
+        return sol
 
     def read(self, converged: bool = True, error: str = "", elapsed: float = 0.0) -> PeerSolution:
         lines = self.system.lineList
