@@ -15,7 +15,7 @@ Needs the ``bench`` extra (``pip install -e ".[bench]"``, MoorPy 1.3.0). Section
    ratio MoorPy(1e-4 m) / column in the same start mode. MoorPy's residual is the force it
    leaves unbalanced (its own catenary re-solved at 1e-10 m at its answer).
 3. Scaling: one body on N = 3, 12, 48, 192 legs evenly spread round a circle.
-4. Memory: peak RSS of a warm-started run of many solves in a fresh subprocess.
+4. Memory: peak RSS of a warm-started run of many solves in a fresh subprocess (Linux).
 
 Adding a moorsolve column is one entry in ``COLUMNS`` (a name, a start mode, a function
 ``(bench_scene, loads, warm) -> Column``): e.g. ``solver="newton"`` is
@@ -181,7 +181,7 @@ class Column:
                 "tension_error_relative": stats(self.tension_error)}
 
 
-def time_moorsolve(scene: BenchScene, loads: list, warm: bool, *, name: str = "moorsolve ipopt",
+def time_moorsolve(scene: BenchScene, loads: list, warm: bool, *,
                    solve_kwargs: dict | None = None) -> Column:
     """``moorsolve.solve`` per load (full Result, certificate included).
 
@@ -190,7 +190,8 @@ def time_moorsolve(scene: BenchScene, loads: list, warm: bool, *, name: str = "m
     per scene structure; one untimed solve first builds it.
     """
     kwargs = dict(solve_kwargs or {})
-    col = Column(name, "moorsolve", warm)
+    col = Column("moorsolve " + " ".join(f"{k}={v}" for k, v in kwargs.items()),
+                 "moorsolve", warm)
     cases = [scene.with_load(load) for load in loads]
     moorsolve.solve(cases[0], **kwargs)
     prev = None
@@ -337,6 +338,8 @@ def scaling(sizes, repeats: int) -> list[dict]:
                      "moorsolve_s": ms.median_s(), "moorpy_s": mp.median_s(),
                      "moorsolve_converged": int(sum(ms.converged)),
                      "moorpy_converged": int(sum(mp.converged)), "solves": repeats,
+                     "moorsolve_iterations": statistics.median(ms.iterations),
+                     "moorpy_evaluations": statistics.median(mp.iterations),
                      "ratio": mp.median_s() / ms.median_s()})
     return rows
 
@@ -368,35 +371,45 @@ MEMORY_STATEMENT = textwrap.dedent("""
 """)
 
 _MEMORY_DRIVER = textwrap.dedent("""
-    import json, resource, sys, time, tracemalloc
+    import json, sys, time, tracemalloc
     sys.path[:0] = [{root!r}, {here!r}]
+
+    def status_kB(key):
+        with open("/proc/self/status") as f:
+            return next(int(line.split()[1]) for line in f if line.startswith(key + ":"))
+
     n = {n}
     exec(compile({setup!r}, "setup", "exec"))
-    base_rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    tracemalloc.start()
+    setup_peak, setup_now = status_kB("VmHWM"), status_kB("VmRSS")
+    if {trace!r}:
+        tracemalloc.start()
     t0 = time.perf_counter()
     exec(compile({statement!r}, "statement", "exec"))
     elapsed = time.perf_counter() - t0
-    _, peak_traced = tracemalloc.get_traced_memory()
-    tracemalloc.stop()
-    print(json.dumps(dict(points=n, elapsed_s=elapsed,
-                          rss_after_setup_kB=base_rss,
-                          peak_rss_kB=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,
-                          peak_python_alloc_B=peak_traced)))
+    out = dict(points=n, elapsed_s=elapsed, traced={trace!r},
+               peak_rss_after_setup_kB=setup_peak, rss_after_setup_kB=setup_now,
+               rss_end_kB=status_kB("VmRSS"), peak_rss_kB=status_kB("VmHWM"))
+    if {trace!r}:
+        out["peak_python_alloc_B"] = tracemalloc.get_traced_memory()[1]
+    print(json.dumps(out))
 """)
 
 
-def peak_memory(n: int, statement: str = MEMORY_STATEMENT, setup: str = MEMORY_SETUP) -> dict:
+def peak_memory(n: int, statement: str = MEMORY_STATEMENT, setup: str = MEMORY_SETUP, *,
+                trace: bool = False) -> dict:
     """Run ``setup`` then ``statement`` (with ``n`` in scope) in a fresh interpreter.
 
-    Returns the peak resident set size of that process (``ru_maxrss``, kB on Linux), the
-    RSS once ``setup`` has run, the peak of Python allocations during ``statement``
-    (tracemalloc: it slows the statement, so ``elapsed_s`` is not a timing), and ``n``.
+    Returns, in kB, the process's peak resident set size (``VmHWM`` of /proc/self/status;
+    ``ru_maxrss`` would include the parent's size at the fork) at the end and after
+    ``setup`` (imports, building), and its current RSS after ``setup`` and at the end;
+    ``elapsed_s`` of the statement; with ``trace`` also the peak of Python allocations
+    during the statement (tracemalloc, which slows it about fivefold, so ``elapsed_s`` is
+    then not a timing).
     """
     code = _MEMORY_DRIVER.format(root=str(ROOT), here=str(HERE), n=int(n), setup=setup,
-                                 statement=statement)
-    proc = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, check=False,
-                          text=True, env={**os.environ, "PYTHONBREAKPOINT": "0"})
+                                 statement=statement, trace=bool(trace))
+    proc = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
+                          check=False, text=True, env={**os.environ, "PYTHONBREAKPOINT": "0"})
     if proc.returncode != 0:
         raise RuntimeError(f"memory run failed:\n{proc.stderr[-2000:]}")
     return json.loads(proc.stdout.strip().splitlines()[-1])
@@ -490,9 +503,11 @@ def main(argv=None) -> int:
     if "memory" not in args.skip:
         mem = peak_memory(n_memory)
         results["memory"] = mem
-        print(f"\n== memory: {mem['points']} warm-started dock solves in a fresh process: peak RSS "
-              f"{mem['peak_rss_kB'] / 1024:.0f} MB (after setup {mem['rss_after_setup_kB'] / 1024:.0f}"
-              f" MB), peak Python allocations {mem['peak_python_alloc_B'] / 2**20:.1f} MB")
+        print(f"\n== memory: {mem['points']} warm-started dock solves in a fresh process, "
+              f"{mem['elapsed_s']:.1f} s: peak RSS {mem['peak_rss_kB'] / 1024:.0f} MB "
+              f"(peak after setup {mem['peak_rss_after_setup_kB'] / 1024:.0f} MB); RSS "
+              f"{mem['rss_after_setup_kB'] / 1024:.0f} MB after setup, "
+              f"{mem['rss_end_kB'] / 1024:.0f} MB at the end")
 
     Path(args.out).write_text(json.dumps(results, indent=1, default=_jsonable))
     print(f"\nwrote {args.out}")
