@@ -42,22 +42,53 @@ def _parser() -> argparse.ArgumentParser:
                    help="force residual relative to the largest tension (default 1e-9)")
     p.add_argument("--no-profiles", action="store_true",
                    help="leave the line profiles out of the JSON")
+    _solver_option(p)
     p = sub.add_parser("plot", help="plan and elevation views of the equilibrium")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("-o", "--output", required=True, help="image file to write (.png, .pdf, .svg)")
     p.add_argument("--tol", type=_tolerance, default=None)
+    _solver_option(p)
+    p = sub.add_parser("accuracy", help="solve time against error over tolerances and "
+                                        "model fidelity")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--json", action="store_true", help="print the ladder as JSON")
+    p.add_argument("--plot", metavar="FILE", default=None,
+                   help="also write time against error as an image (.png, .pdf, .svg)")
+    p.add_argument("--repeats", type=_count, default=7,
+                   help="solves per setting; the median time is reported (default 7)")
+    _add_check_commands(sub)
     return parser
+
+
+def _solver_option(p) -> None:
+    p.add_argument("--solver", choices=("ipopt", "newton"), default="ipopt",
+                   help="ipopt (default, the reference) or newton (compiled fast path, "
+                        "falls back to ipopt)")
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--repeats: {text!r} is not a whole number") from None
+    if not 1 <= value <= 1000:
+        raise argparse.ArgumentTypeError(f"--repeats: {text} must be from 1 to 1000")
+    return value
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     args = _parser().parse_args(argv)
+    if args.command in _CHECK_COMMANDS:
+        return _CHECK_COMMANDS[args.command](args)
     from . import load_case, solve
+    if args.command == "accuracy":
+        return _accuracy(args)
     try:
         case = load_case(args.case)
         if args.command == "plot":
             _check_output(args.output)
-        result = solve(case, tol=args.tol)
+        result = solve(case, tol=args.tol, solver=args.solver)
     except CaseError as exc:
         print(f"moorsolve: bad input: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -78,22 +109,59 @@ def main(argv: list[str] | None = None) -> int:
     return _write_plot(result, case, args.output)
 
 
-def _check_output(path: str) -> None:
+def _accuracy(args) -> int:
+    import json
+
+    from . import load_case
+    from .solve.accuracy import accuracy_ladder, format_ladder
+    try:
+        case = load_case(args.case)
+        if args.plot:
+            _check_output(args.plot, "--plot")
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    try:
+        rungs = accuracy_ladder(case, repeats=args.repeats)
+    except ConvergenceError as exc:
+        print(f"moorsolve: the reference solve failed: {exc}", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    if args.plot:
+        from .plot import plot_accuracy
+        _save_figure(lambda: plot_accuracy(rungs)[0].figure, args.plot)
+    text = (json.dumps({"case": case.name, "rungs": [r.to_dict() for r in rungs]}, indent=2)
+            if args.json else format_ladder(rungs, case.name))
+    try:
+        print(text)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        sys.stdout = None
+    return EXIT_OK
+
+
+def _check_output(path: str, option: str = "--output") -> None:
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".png", ".pdf", ".svg"):
-        raise CaseError("--output", f"{path!r} must end in .png, .pdf or .svg")
+        raise CaseError(option, f"{path!r} must end in .png, .pdf or .svg")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
-        raise CaseError("--output", f"folder {folder!r} does not exist")
+        raise CaseError(option, f"folder {folder!r} does not exist")
 
 
 def _write_plot(result, case, path: str) -> int:
+    from .plot import plot_equilibrium
+    _save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), path)
+    print(f"wrote {path}")
+    return EXIT_OK
+
+
+def _save_figure(make_figure, path: str) -> None:
+    """Draw with ``make_figure()`` and write it to ``path`` atomically."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .plot import plot_equilibrium
-    fig = plot_equilibrium(result, depth=case.environment.depth)
+    fig = make_figure()
     folder = os.path.dirname(os.path.abspath(path))
     ext = os.path.splitext(path)[1]
     # Write beside the target and rename, so a failure leaves no half-written file.
@@ -106,8 +174,142 @@ def _write_plot(result, case, path: str) -> int:
         plt.close(fig)
         if os.path.exists(tmp):
             os.remove(tmp)
-    print(f"wrote {path}")
+
+
+# ---- moorsolve check and the inverse problems (issue 5) ------------------------------------
+
+
+def _add_check_commands(sub) -> None:
+    from .checks import STANDARDS
+    p = sub.add_parser("check", help="mooring checks: intact and damaged conditions")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--standard", choices=STANDARDS, default=None,
+                   help="criteria table (default: the case's checks.standard, else api-rp-2sk)")
+    p.add_argument("--json", action="store_true", help="print the check as JSON")
+    p.add_argument("--report", default=None, help="write a self-contained HTML report")
+    p.add_argument("--no-damaged", action="store_true", help="intact condition only")
+    p.add_argument("--tol", type=_tolerance, default=None)
+    inverse_help = {
+        "anchor-distance": "least anchor distance with no anchor uplift (Hu & Tang Tables 1, 2, 4)",
+        "chain-length": "least chain for a load keeping a grounded length",
+        "uplift": "anchor uplift force and angle at a given anchor distance (Hu & Tang Table 3)",
+    }
+    for name, text in inverse_help.items():
+        p = sub.add_parser(name, help=text)
+        p.add_argument("--height", required=True,
+                       help="fairlead above the anchor, e.g. '20.85 m' (the water depth)")
+        p.add_argument("--weight", required=True,
+                       help="submerged weight per length, e.g. '0.13 t/m' or '1275 N/m'")
+        load = p.add_mutually_exclusive_group(required=True)
+        load.add_argument("--tension", help="fairlead tension, e.g. '1623.5 kN'")
+        load.add_argument("--horizontal-tension", help="horizontal tension, e.g. '372 kN'")
+        p.add_argument("--ea", default=None, help="axial stiffness (default inextensible)")
+        p.add_argument("--gravity", default="9.80665",
+                       help="for weights given as mass per length (Hu & Tang use 10)")
+        if name == "chain-length":
+            p.add_argument("--grounded", required=True, help="length to keep on the seabed")
+            p.add_argument("--inboard", default="0", help="inboard length added to the order")
+        if name == "uplift":
+            p.add_argument("--distance", required=True, help="anchor distance, e.g. '121.06 m'")
+        p.add_argument("--json", action="store_true", help="print the answer as JSON")
+
+
+def _print(text: str) -> None:
+    try:
+        print(text)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        sys.stdout = None
+
+
+def _run_check(args) -> int:
+    from . import load_case
+    from .checks import run_checks
+    try:
+        case = load_case(args.case)
+        if args.report is not None:
+            _check_report_path(args.report)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    report = run_checks(case, standard=args.standard, tol=args.tol,
+                        damaged=False if args.no_damaged else None)
+    from .io.check_report import check_json, format_check_table, write_html_report
+    if args.report is not None:
+        write_html_report(report, case, args.report)
+    _print(check_json(report) if args.json else format_check_table(report))
+    if args.report is not None and not args.json:
+        print(f"wrote {args.report}")
+    return EXIT_OK if report.passed else EXIT_NO_EQUILIBRIUM
+
+
+def _check_report_path(path: str) -> None:
+    if os.path.splitext(path)[1].lower() not in (".html", ".htm"):
+        raise CaseError("--report", f"{path!r} must end in .html")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise CaseError("--report", f"folder {folder!r} does not exist")
+
+
+def _run_inverse(args) -> int:
+    import json
+
+    from .io.units import to_si, weight_per_length_to_si
+    from .solve import inverse
+    try:
+        gravity = to_si(args.gravity, "acceleration", "--gravity")
+        if not gravity > 0:
+            raise CaseError("--gravity", f"{args.gravity} must be > 0")
+        kwargs = {
+            "height": to_si(args.height, "length", "--height"),
+            "weight": weight_per_length_to_si(args.weight, gravity, "--weight"),
+            "ea": None if args.ea is None else to_si(args.ea, "force", "--ea"),
+        }
+        if args.tension is not None:
+            kwargs["fairlead_tension"] = to_si(args.tension, "force", "--tension")
+        else:
+            kwargs["horizontal_tension"] = to_si(args.horizontal_tension, "force",
+                                                 "--horizontal-tension")
+        if args.command == "chain-length":
+            kwargs["grounded_length"] = to_si(args.grounded, "length", "--grounded")
+            kwargs["inboard_length"] = to_si(args.inboard, "length", "--inboard")
+            function = inverse.required_chain_length
+        elif args.command == "uplift":
+            kwargs["anchor_distance"] = to_si(args.distance, "length", "--distance")
+            function = inverse.uplift_at_distance
+        else:
+            function = inverse.minimum_anchor_distance
+        answer = function(**kwargs)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ValueError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ConvergenceError as exc:
+        print(f"moorsolve: {exc}", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    if args.json:
+        _print(json.dumps(answer.to_dict(), indent=2))
+        return EXIT_OK
+    a = answer
+    _print("\n".join([
+        f"anchor distance      {a.anchor_distance_m:12.4f} m",
+        f"fairlead height      {a.height_m:12.4f} m",
+        f"horizontal tension   {a.horizontal_tension_N / 1e3:12.4f} kN",
+        (f"fairlead tension     {a.fairlead_tension_N / 1e3:12.4f} kN at "
+         f"{a.fairlead_angle_deg:.5f} deg"),
+        (f"line length          {a.length_m:12.4f} m (suspended {a.suspended_length_m:.4f}, "
+         f"grounded {a.grounded_length_m:.4f})"),
+        (f"anchor uplift        {a.anchor_vertical_N / 1e3:12.4f} kN at "
+         f"{a.uplift_angle_deg:.5f} deg"),
+    ] + ([f"order length         {a.order_length_m:12.4f} m"]
+         if args.command == "chain-length" else [])))
     return EXIT_OK
+
+
+_CHECK_COMMANDS = {"check": _run_check, "anchor-distance": _run_inverse,
+                   "chain-length": _run_inverse, "uplift": _run_inverse}
 
 
 if __name__ == "__main__":

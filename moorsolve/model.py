@@ -11,6 +11,7 @@ counter-clockwise from +x.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -39,6 +40,12 @@ class LineType:
         True for a line whose wall keeps water out of its cross-section (cable, pipe,
         sheathed rope). Its wall tension differs from the effective tension by the
         hydrostatic pressure on the outer area (REFERENCE.md section 2); a chain is not sealed.
+    catalog : str or None
+        The line-catalogue entry the properties came from (``moorsolve.catalog``), if any.
+    corrosion_allowance : float
+        Diameter reduction [m] already applied to ``mbl`` (catalogue lines only).
+    source : str or None
+        Where the catalogue values come from (citation), for reports.
     """
 
     name: str
@@ -47,6 +54,9 @@ class LineType:
     mbl: Optional[float] = None
     diameter: Optional[float] = None
     sealed: bool = False
+    catalog: Optional[str] = None
+    corrosion_allowance: float = 0.0
+    source: Optional[str] = None
 
     @property
     def elastic(self) -> bool:
@@ -59,6 +69,24 @@ class Segment:
 
     line_type: LineType
     length: float
+
+
+ANCHOR_KINDS = ("drag", "deadweight", "pile")
+
+
+@dataclass(frozen=True)
+class AnchorType:
+    """What an anchor allows, for the mooring checks.
+
+    ``drag``: no uplift at all (the line must leave the anchor horizontally);
+    ``deadweight`` (sinker block, Hu & Tang's floating dock): an upward pull up to
+    ``allowed_uplift`` [N]; ``pile``: an uplift angle at the anchor up to
+    ``allowed_uplift_angle_deg``.
+    """
+
+    kind: str = "drag"
+    allowed_uplift: float = 0.0
+    allowed_uplift_angle_deg: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -81,6 +109,7 @@ class Leg:
     anchor: tuple
     fairlead: tuple
     segments: tuple
+    anchor_type: Optional[AnchorType] = None
 
     @property
     def line_type(self) -> LineType:
@@ -264,6 +293,38 @@ class SolverOptions:
 
 
 @dataclass(frozen=True)
+class Checks:
+    """Acceptance limits for ``moorsolve check`` (the factors come from the standard's table).
+
+    Attributes
+    ----------
+    standard : str
+        Criteria table: ``api-rp-2sk`` or ``dnv-os-e301``.
+    consequence_class : int
+        DNV-OS-E301 consequence class (1 or 2); unused by API RP 2SK.
+    offset_limit, offset_limit_damaged : float or None
+        Largest horizontal offset of the body origin [m], intact and with one leg broken
+        (the damaged limit defaults to the intact one).
+    min_grounded_length, min_grounded_length_damaged : float or None
+        Least unstretched length [m] that must stay on the seabed in every leg whose anchor
+        is on the seabed (Hu & Tang keep 45 m); the damaged value defaults to the intact one.
+    anchor : AnchorType
+        Default anchor type for legs that do not give their own.
+    damaged : bool
+        Also run the damaged conditions (each leg removed in turn).
+    """
+
+    standard: str = "api-rp-2sk"
+    consequence_class: int = 1
+    offset_limit: Optional[float] = None
+    offset_limit_damaged: Optional[float] = None
+    min_grounded_length: Optional[float] = None
+    min_grounded_length_damaged: Optional[float] = None
+    anchor: AnchorType = field(default_factory=AnchorType)
+    damaged: bool = True
+
+
+@dataclass(frozen=True)
 class Case:
     name: str
     environment: Environment
@@ -271,3 +332,7 @@ class Case:
     legs: tuple
     body: Optional[Body] = None
     solver: SolverOptions = field(default_factory=SolverOptions)
+    checks: Optional[Checks] = None
+    #: The validated case-file data it was built from (for sweeps that edit it by path);
+    #: None for a Case built in code.
+    source: Optional[Mapping] = field(default=None, compare=False, repr=False)

@@ -106,3 +106,115 @@ def _hull(points: np.ndarray) -> np.ndarray:
             upper.pop()
         upper.append(p)
     return np.array(lower[:-1] + upper[:-1])
+
+
+def plot_utilisation(report, ax=None):
+    """Tension utilisation per leg (columns) and condition (rows) of a check report.
+
+    ``report`` is a :class:`moorsolve.checks.CheckReport`. Each cell is the line's tension
+    over its allowed tension under the standard's factor (1 = at the limit); cells of the
+    removed leg are blank, a condition without equilibrium is hatched. Returns the Axes.
+    """
+    import matplotlib.pyplot as plt
+    legs = []
+    for c in report.conditions:
+        for item in c.items:
+            if item.check == "tension" and item.leg not in legs:
+                legs.append(item.leg)
+    rows = [c.name for c in report.conditions]
+    grid = np.full((len(rows), len(legs)), np.nan)
+    for i, c in enumerate(report.conditions):
+        for item in c.items:
+            if item.check == "tension":
+                grid[i, legs.index(item.leg)] = item.utilisation
+    if ax is None:
+        _, ax = plt.subplots(figsize=(1.0 + 0.6 * max(len(legs), 4), 1.0 + 0.35 * len(rows)))
+    finite = grid[np.isfinite(grid)]
+    vmax = max(1.2, float(finite.max()) if finite.size else 1.0)
+    image = ax.imshow(np.ma.masked_invalid(grid), cmap="RdYlGn_r", vmin=0.0, vmax=vmax,
+                      aspect="auto")
+    for i, c in enumerate(report.conditions):
+        if not c.solved:
+            ax.axhspan(i - 0.5, i + 0.5, color="0.6", alpha=0.5, hatch="//")
+            ax.text(len(legs) / 2 - 0.5, i, "no equilibrium", ha="center", va="center",
+                    fontsize=7)
+        for j in range(len(legs)):
+            if np.isfinite(grid[i, j]):
+                ax.text(j, i, f"{grid[i, j]:.2f}", ha="center", va="center", fontsize=6,
+                        color="k")
+    ax.set_xticks(range(len(legs)), legs, fontsize=7)
+    ax.set_yticks(range(len(rows)), rows, fontsize=7)
+    ax.set_title(f"tension utilisation ({report.standard}; 1.0 = limit)", fontsize=9)
+    ax.figure.colorbar(image, ax=ax, label="utilisation", shrink=0.8)
+    return ax
+
+
+def figure_png(fig, dpi: int = 110) -> bytes:
+    """The figure as PNG bytes; the figure is closed."""
+    import io
+
+    import matplotlib.pyplot as plt
+    buffer = io.BytesIO()
+    try:
+        fig.savefig(buffer, format="png", dpi=dpi)
+    finally:
+        plt.close(fig)
+    return buffer.getvalue()
+
+
+def utilisation_figure(report):
+    """A figure holding :func:`plot_utilisation`; returns the Figure."""
+    ax = plot_utilisation(report)
+    ax.figure.tight_layout()
+    return ax.figure
+
+
+def plot_accuracy(rungs, axes=None):
+    """An accuracy ladder: error and solve time against the requested tolerance.
+
+    Left: worst tension error over the largest tension, per solver, with each simpler
+    model's error as a dashed line. Right: median solve time, the simpler models as dashed
+    lines (IPOPT at 1e-9).
+
+    Parameters
+    ----------
+    rungs : list of moorsolve.solve.accuracy.Rung
+    axes : pair of matplotlib Axes, optional
+
+    Returns
+    -------
+    pair of matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(10, 4.2), layout="constrained")
+    ax_err, ax_time = axes
+    floor = 1e-17      # an exact match still needs a place on a log axis
+    markers = {"ipopt": "o", "newton": "s"}
+    for solver in sorted({r.solver for r in rungs if r.ladder == "tolerance"}):
+        pts = [r for r in rungs if r.ladder == "tolerance" and r.solver == solver
+               and np.isfinite(r.time_s)]
+        tols = [r.tol for r in pts]
+        ax_err.plot(tols, [max(r.tension_error_relative, floor) for r in pts],
+                    marker=markers.get(solver, "o"), label=solver)
+        ax_time.plot(tols, [r.time_s * 1e3 for r in pts], marker=markers.get(solver, "o"),
+                     label=solver)
+    for k, r in enumerate(r for r in rungs if r.ladder == "fidelity"
+                          and r.setting != "as declared" and np.isfinite(r.time_s)):
+        style = dict(color=f"C{k + 2}", linestyle="--", linewidth=1)
+        ax_err.axhline(max(r.tension_error_relative, floor), label=r.setting, **style)
+        ax_time.axhline(r.time_s * 1e3, label=r.setting, **style)
+    ax_err.plot([1e-12, 1e-4], [1e-12, 1e-4], color="0.6", linewidth=0.8,
+                label="error = tolerance")
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("requested tolerance (force residual / largest tension)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    ax_err.set_ylabel("worst tension error / largest tension")
+    ax_time.set_ylabel("solve time [ms], median from rest")
+    ax_err.set_title("Error against a 1e-12 reference")
+    ax_time.set_title("What it costs")
+    return axes

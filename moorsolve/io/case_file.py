@@ -23,6 +23,8 @@ Schema (SI units, ``[...]`` lists)::
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
              sealed: bool}
+      NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
+             weight_in_water, ea, mbl (override the catalogue), sealed}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
@@ -30,12 +32,19 @@ Schema (SI units, ``[...]`` lists)::
               wave_drift: {model: hu_tang | coefficient, ...}}
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
-         segments: [{type: NAME, length: > 0}]}
+         segments: [{type: NAME, length: > 0}], anchor_type: ANCHOR (optional)}
     solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
+    checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
+             offset_limit, offset_limit_damaged, min_grounded_length,
+             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
+    ANCHOR: {type: drag} | {type: deadweight, allowed_uplift [N]}
+            | {type: pile, allowed_uplift_angle_deg}
 """
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import math
 import numbers
 import re
@@ -45,12 +54,18 @@ from pathlib import Path
 
 import yaml
 
+from .. import catalog as line_catalog
+from ..constants import SEAWATER_DENSITY
 from ..errors import CaseError
+from ..checks.criteria import STANDARDS
 from ..model import (
+    ANCHOR_KINDS,
     DEGREES_OF_FREEDOM,
+    AnchorType,
     Body,
     BodyLoads,
     Case,
+    Checks,
     DragLoad,
     DriftCoefficient,
     Environment,
@@ -218,14 +233,23 @@ def _environment(raw, path: str) -> Environment:
 # ---- line types -------------------------------------------------------------------------
 
 
-def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
+def _line_type(name: str, raw, path: str, gravity: float,
+               water_density: float = SEAWATER_DENSITY) -> LineType:
+    if isinstance(raw, Mapping) and "catalog" in raw:
+        return _catalog_line_type(name, raw, path, gravity, water_density)
     m = _mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed"))
+                 optional=("ea", "mbl", "diameter", "sealed", "catalog"))
     weight = weight_per_length_to_si(m["weight_in_water"], gravity,
                                      _join(path, "weight_in_water"))
     ea = _nullable(m, path, "ea", "force", gt=0)
     mbl = _nullable(m, path, "mbl", "force", gt=0)
     diameter = _nullable(m, path, "diameter", "length", gt=0)
+    sealed = _sealed(m, path, diameter)
+    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
+                    sealed=sealed)
+
+
+def _sealed(m: dict, path: str, diameter) -> bool:
     sealed = False
     if "sealed" in m:
         sealed = m["sealed"]
@@ -235,11 +259,50 @@ def _line_type(name: str, raw, path: str, gravity: float) -> LineType:
         raise CaseError(_join(path, "diameter"),
                         "sealed line needs a diameter (its wall tension depends on the outer "
                         "area); give diameter > 0 [m]")
-    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
-                    sealed=sealed)
+    return sealed
 
 
-def _line_types(raw, path: str, gravity: float) -> dict:
+def _catalog_line_type(name: str, raw, path: str, gravity: float,
+                       water_density: float) -> LineType:
+    """A line type from the catalogue: ``{catalog: studless_r3, diameter: 81 mm, ...}``.
+
+    ``weight_in_water``, ``ea`` and ``mbl`` given beside ``catalog`` replace the catalogue
+    values (e.g. a maker's certificate); ``corrosion_allowance`` reduces the diameter used
+    for the catalogue MBL.
+    """
+    m = _mapping(raw, path, required=("catalog", "diameter"),
+                 optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed"))
+    known = line_catalog.entries()
+    entry = m["catalog"]
+    if not isinstance(entry, str) or entry not in known:
+        raise CaseError(_join(path, "catalog"), f"unknown catalogue entry {show_value(entry)}; "
+                                                f"known entries: {', '.join(known)}")
+    diameter = _quantity(m["diameter"], _join(path, "diameter"), "length", gt=0, le=1.0)
+    allowance = _field(m, path, "corrosion_allowance", "length", 0.0, ge=0)
+    if allowance >= diameter:
+        raise CaseError(_join(path, "corrosion_allowance"),
+                        f"{format_si(allowance, 'length')} must be smaller than the diameter "
+                        f"({format_si(diameter, 'length')})")
+    props = line_catalog.line_properties(entry, diameter, water_density=water_density,
+                                         gravity=gravity, corrosion_allowance=allowance)
+    weight = props.weight_in_water
+    if m.get("weight_in_water") is not None:
+        weight = weight_per_length_to_si(m["weight_in_water"], gravity,
+                                         _join(path, "weight_in_water"))
+    ea = _nullable(m, path, "ea", "force", gt=0)
+    mbl = _nullable(m, path, "mbl", "force", gt=0)
+    if mbl is not None and "corrosion_allowance" in m:
+        raise CaseError(_join(path, "corrosion_allowance"),
+                        "applies to the catalogue MBL only; with an explicit mbl give the "
+                        "corroded value directly")
+    return LineType(name=name, weight_in_water=weight,
+                    ea=props.ea if ea is None else ea,
+                    mbl=props.mbl if mbl is None else mbl,
+                    diameter=diameter, sealed=_sealed(m, path, diameter), catalog=entry,
+                    corrosion_allowance=allowance, source=props.source)
+
+
+def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_DENSITY) -> dict:
     if not isinstance(raw, Mapping):
         raise CaseError(path, f"{show_value(raw)} is not a mapping; line_types maps each line type "
                               "name to its properties")
@@ -249,7 +312,7 @@ def _line_types(raw, path: str, gravity: float) -> dict:
     for name, spec in raw.items():
         if not isinstance(name, str) or not name.strip():
             raise CaseError(path, f"line type name {show_value(name)} is not a non-empty string")
-        types[name] = _line_type(name, spec, _join(path, name), gravity)
+        types[name] = _line_type(name, spec, _join(path, name), gravity, water_density)
     return types
 
 
@@ -428,8 +491,11 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
 
 
 def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
-    m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"))
+    m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"),
+                 optional=("anchor_type",))
     name = _name(m["name"], _join(path, "name"), "leg name")
+    anchor_type = (None if m.get("anchor_type") is None
+                   else _anchor_type(m["anchor_type"], _join(path, "anchor_type")))
     depth = environment.depth
     seabed_tol = 1e-9 * max(depth, 1.0)  # unit conversions may leave the seabed z a few ulp off
 
@@ -481,7 +547,8 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
                                    f"reach from anchor to fairlead (distance "
                                    f"{format_si(distance, 'length')}); an inextensible line "
                                    "must be at least that long")
-    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments)
+    return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments,
+               anchor_type=anchor_type)
 
 
 def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
@@ -499,6 +566,70 @@ def _legs(raw, path: str, environment: Environment, line_types: dict) -> tuple:
         first_index[leg.name] = i
         legs.append(leg)
     return tuple(legs)
+
+
+# ---- mooring checks ---------------------------------------------------------------------
+
+_ANCHOR_KEYS = {"drag": (), "deadweight": ("allowed_uplift",),
+                "pile": ("allowed_uplift_angle_deg",)}
+
+
+def _anchor_type(raw, path: str) -> AnchorType:
+    """``{type: drag}``, ``{type: deadweight, allowed_uplift}`` or ``{type: pile,
+    allowed_uplift_angle_deg}``."""
+    allowed = ", ".join(ANCHOR_KINDS)
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; give {{type: ...}} with type "
+                              f"one of {allowed}")
+    kind = raw.get("type")
+    if not isinstance(kind, str) or kind not in ANCHOR_KINDS:
+        raise CaseError(_join(path, "type"), f"unknown anchor type {show_value(kind)}; allowed: "
+                                             f"{allowed}")
+    keys = _ANCHOR_KEYS[kind]
+    m = _mapping(raw, path, required=("type",) + keys)
+    if kind == "deadweight":
+        uplift = _quantity(m["allowed_uplift"], _join(path, "allowed_uplift"), "force", ge=0)
+        return AnchorType(kind=kind, allowed_uplift=uplift)
+    if kind == "pile":
+        angle = _quantity(m["allowed_uplift_angle_deg"], _join(path, "allowed_uplift_angle_deg"),
+                          "angle", ge=0, lt=90)
+        return AnchorType(kind=kind, allowed_uplift_angle_deg=angle)
+    return AnchorType(kind=kind)
+
+
+def _checks(raw, path: str, legs: tuple) -> Checks:
+    m = _mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
+                                      "offset_limit_damaged", "min_grounded_length",
+                                      "min_grounded_length_damaged", "anchor", "damaged"))
+    defaults = Checks()
+    standard = m.get("standard", defaults.standard)
+    if not isinstance(standard, str) or standard not in STANDARDS:
+        raise CaseError(_join(path, "standard"), f"unknown standard {show_value(standard)}; "
+                                                 f"allowed: {', '.join(STANDARDS)}")
+    cclass = m.get("consequence_class", defaults.consequence_class)
+    if isinstance(cclass, bool) or cclass not in (1, 2):
+        raise CaseError(_join(path, "consequence_class"),
+                        f"{show_value(cclass)} must be 1 or 2 (DNV-OS-E301 consequence class)")
+    offset = _nullable(m, path, "offset_limit", "length", gt=0)
+    offset_damaged = _nullable(m, path, "offset_limit_damaged", "length", gt=0)
+    grounded = _nullable(m, path, "min_grounded_length", "length", ge=0)
+    grounded_damaged = _nullable(m, path, "min_grounded_length_damaged", "length", ge=0)
+    for key, value in (("min_grounded_length", grounded),
+                       ("min_grounded_length_damaged", grounded_damaged)):
+        longest = max(leg.length for leg in legs)
+        if value is not None and value >= longest:
+            raise CaseError(_join(path, key), f"{format_si(value, 'length')} must be shorter "
+                                              f"than the longest leg "
+                                              f"({format_si(longest, 'length')})")
+    anchor = (defaults.anchor if m.get("anchor") is None
+              else _anchor_type(m["anchor"], _join(path, "anchor")))
+    damaged = m.get("damaged", True)
+    if not isinstance(damaged, bool):
+        raise CaseError(_join(path, "damaged"), f"{show_value(damaged)} is not true or false")
+    return Checks(standard=standard, consequence_class=int(cclass), offset_limit=offset,
+                  offset_limit_damaged=offset_damaged, min_grounded_length=grounded,
+                  min_grounded_length_damaged=grounded_damaged, anchor=anchor,
+                  damaged=damaged)
 
 
 # ---- solver -----------------------------------------------------------------------------
@@ -527,15 +658,17 @@ def _solver(raw, path: str) -> SolverOptions:
 
 def _build_case(data, default_name: str) -> Case:
     m = _mapping(data, "", required=("environment", "line_types", "legs"),
-                 optional=("name", "body", "solver"))
+                 optional=("name", "body", "solver", "checks"))
     name = default_name if "name" not in m else _name(m["name"], "name", "case name")
     # Environment first: gravity converts weights given as mass per length, and depth
     # places anchors given as [x, y].
     environment = _environment(m["environment"], "environment")
-    line_types = _line_types(m["line_types"], "line_types", environment.gravity)
+    line_types = _line_types(m["line_types"], "line_types", environment.gravity,
+                             environment.water_density)
     body = None if m.get("body") is None else _body(m["body"], "body")
     legs = _legs(m["legs"], "legs", environment, line_types)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
+    checks = None if m.get("checks") is None else _checks(m["checks"], "checks", legs)
     if body is not None and "yaw" in body.free and all(
             leg.fairlead[0] == 0.0 and leg.fairlead[1] == 0.0 for leg in legs):
         # Every line acts through the body origin: no leg can resist a yaw moment, so the
@@ -544,7 +677,7 @@ def _build_case(data, default_name: str) -> Case:
                                      "(x = y = 0), so nothing restrains yaw; remove yaw from "
                                      "body.free")
     return Case(name=name, environment=environment, line_types=line_types, legs=legs,
-                body=body, solver=solver)
+                body=body, solver=solver, checks=checks)
 
 
 class _StrictLoader(yaml.SafeLoader):
@@ -608,13 +741,16 @@ def _read_yaml(path: Path):
     return data
 
 
-def load_case(source) -> Case:
+def load_case(source, *, keep_source: bool = True) -> Case:
     """Load and validate a mooring case.
 
     Parameters
     ----------
     source : str, pathlib.Path or mapping
         Path to a YAML case file, or a dictionary of the same shape.
+    keep_source : bool
+        Keep a copy of the case-file data as ``Case.source`` (what sweeps edit); a
+        caller that validates many throw-away variants may skip the copy.
 
     Returns
     -------
@@ -656,7 +792,12 @@ def load_case(source) -> Case:
         raise CaseError("", f"{show_value(source)} is not a case: give a path to a YAML file or a "
                             "dict")
     try:
-        return _build_case(data, default_name)
+        case = _build_case(data, default_name)
     except RecursionError:
         # A self-referencing or absurdly nested dict; report it as bad input.
         raise CaseError("", "the case is nested too deeply") from None
+    if not keep_source:
+        return case
+    source = copy.deepcopy(dict(data))
+    source["name"] = case.name
+    return dataclasses.replace(case, source=source)

@@ -10,6 +10,7 @@ Every failure raises :class:`moorsolve.errors.CaseError` naming the field.
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import re
@@ -204,6 +205,20 @@ def _string_to_si(raw: str, kinds: tuple, field: str):
     raise _not_a(raw, kinds[0], field)
 
 
+@functools.lru_cache(maxsize=4096)
+def _cached_string_to_si(raw: str, kinds: tuple):
+    return _string_to_si(raw, kinds, "")
+
+
+def _convert_string(raw: str, kinds: tuple, field: str):
+    """:func:`_string_to_si`, remembering successful conversions (pint parses slowly and
+    sweeps validate the same strings many times); a failure is re-raised with its field."""
+    try:
+        return _cached_string_to_si(raw, kinds)
+    except CaseError:
+        return _string_to_si(raw, kinds, field)
+
+
 def to_si(raw, kind: str, field: str) -> float:
     """Convert a case-file quantity to a finite SI float.
 
@@ -236,7 +251,7 @@ def to_si(raw, kind: str, field: str) -> float:
     if isinstance(raw, numbers.Real):
         return _real_to_float(raw, raw, field)
     if isinstance(raw, str):
-        return _string_to_si(raw, (kind,), field)[0]
+        return _convert_string(raw, (kind,), field)[0]
     raise _not_a(raw, kind, field)
 
 
@@ -268,7 +283,7 @@ def weight_per_length_to_si(raw, gravity: float, field: str) -> float:
         If the value is not a force or mass per length, or is not finite.
     """
     if isinstance(raw, str):
-        value, kind = _string_to_si(raw, ("force_per_length", "mass_per_length"), field)
+        value, kind = _convert_string(raw, ("force_per_length", "mass_per_length"), field)
         if kind == "mass_per_length":
             value = _finite(value * gravity, raw, field)
         return value

@@ -30,6 +30,7 @@ from ..physics.catenary import initial_state, leg_profile
 from ..physics.wall_tension import wall_tension
 from .problem import (ENV_PARAMS, LEG_PARAMS, EquilibriumProblem, environment_parameters, leg_kind,
                       leg_parameters, structure_key)
+from .newton import STATUS_TEXT
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -43,10 +44,14 @@ _PROFILE_POINTS = 51
 
 def get_problem(case: Case) -> EquilibriumProblem:
     """The built problem for ``case``'s structure, built on first use and cached."""
-    key = structure_key(case)
+    # The scales shape the solver's path (and, where a case has more than one
+    # equilibrium, which one it finds), so they are part of the key: a case gets the same
+    # problem whatever was solved before it. Rounding them to powers of two lets cases
+    # that differ a little (a sweep, a damaged condition) share one build.
+    force_scale, length_scale = (2.0 ** round(math.log2(v)) for v in _scales(case))
+    key = (structure_key(case), force_scale, length_scale)
     problem = _PROBLEMS.get(key)
     if problem is None:
-        force_scale, length_scale = _scales(case)
         problem = EquilibriumProblem(case, force_scale, length_scale)
         _PROBLEMS[key] = problem
         if len(_PROBLEMS) > _MAX_CACHED:
@@ -78,16 +83,29 @@ def _rest_leg_states(case: Case):
 
 
 def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
-    """Scaled starting vector: body at rest, legs in their closed-form states."""
-    x = np.zeros(problem.n_x)
-    for i, (u, V) in enumerate(_rest_leg_states(case)):
-        x[problem.n_q + 2 * i] = u
-        x[problem.n_q + 2 * i + 1] = V
-    return x / problem.x_scale
+    """Scaled starting vector: body at rest, legs in their closed-form states.
+
+    Remembered per problem and leg parameters: the closed-form states cost more than a
+    whole compiled Newton solve.
+    """
+    key = leg_parameters(case).tobytes()
+    cache = problem.start_cache
+    if key not in cache:
+        x = np.zeros(problem.n_x)
+        for i, (u, V) in enumerate(_rest_leg_states(case)):
+            x[problem.n_q + 2 * i] = u
+            x[problem.n_q + 2 * i + 1] = V
+        if len(cache) >= 64:
+            cache.pop(next(iter(cache)))
+        cache[key] = x / problem.x_scale
+    return cache[key].copy()
 
 
-def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
-          start: np.ndarray | None = None) -> Result:
+SOLVERS = ("ipopt", "newton")
+
+
+def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
+          allow_overload: bool = False, start: np.ndarray | None = None) -> Result:
     """Static equilibrium of ``case``, certified.
 
     Parameters
@@ -97,6 +115,10 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
     tol : float, optional
         Largest force residual allowed, relative to the largest line tension; defaults to
         the case's ``solver.tol`` (1e-9).
+    solver : {"ipopt", "newton"}
+        ``"ipopt"`` (the default and the reference) or the compiled Newton fast path
+        (:mod:`moorsolve.solve.newton`), which falls back to the IPOPT strategy when it
+        does not certify; ``Result.solver`` tells which produced the result.
     allow_overload : bool
         Return an equilibrium in which a line exceeds its minimum breaking load instead of
         raising ConvergenceError (for damaged-condition checks that must report it).
@@ -112,61 +134,40 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
     ConvergenceError
         No certified equilibrium; carries the physical reason and the best residual.
     """
+    if solver not in SOLVERS:
+        raise ValueError(f"solver {solver!r}: must be one of {', '.join(SOLVERS)}")
     opts = case.solver
     tol = opts.tol if tol is None else tol
     problem = get_problem(case)
     p_legs = leg_parameters(case)
     p_full = np.concatenate([environment_parameters(case, 1.0), p_legs])
+    if start is not None and np.shape(start) != (problem.n_x,):
+        start = None
+    # Building (and compiling) belongs to the problem, not to this solve's time.
+    kernel = problem.newton() if solver == "newton" else None
     t0 = time.perf_counter()
-    deadline = t0 + opts.max_time_s
-    # IPOPT's own tolerance is on the scaled residual; the polish and certificate below
-    # decide acceptance, so IPOPT only needs to get close.
-    ipopt_tol = max(min(tol, 1e-8), 1e-12)
-    lb, ub = problem.bounds()
     stats = dict(iterations=0, status="not run")
-
-    def run(x0, p):
-        if time.perf_counter() >= deadline:
-            return x0, False
-        # Each IPOPT run is capped at the whole budget; the deadline check above stops
-        # further stages, so a solve ends within about twice the budget at worst.
-        solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=p, lbx=lb, ubx=ub, lbg=0, ubg=0)
-        st = solver.stats()
-        stats["iterations"] += int(st.get("iter_count", 0))
-        stats["status"] = st.get("return_status", "unknown")
-        x = np.asarray(sol["x"]).ravel()
-        x = _polish(problem, x, p, lb, ub, stats)
-        return x, _certify(problem, x, p, tol)[0]
-
-    ok = False
-    if start is not None and np.shape(start) == (problem.n_x,):
-        x, ok = run(np.asarray(start, float), p_full)
-    x_rest = initial_point(problem, case)
-    if not ok:
-        if problem.n_q and problem.load_names:
-            p_rest = np.concatenate([environment_parameters(case, 0.0), p_legs])
-            x_rest, rest_ok = run(x_rest, p_rest)
-            if not rest_ok:
-                x_rest = initial_point(problem, case)
-        x, ok = run(x_rest, p_full)
-    if not ok:
-        # Load stepping from rest: each step starts from the last certified state.
-        x_step = x_rest
-        for factor in _LOAD_STEPS:
-            p_step = np.concatenate([environment_parameters(case, factor), p_legs])
-            x_try, ok = run(x_step, p_step)
-            if not ok:
-                break
-            x_step = x_try
-        x = x_step if ok else x_try
+    notes = []
+    x, used = None, "ipopt"
+    if kernel is not None:
+        x0 = np.asarray(start, float) if start is not None else initial_point(problem, case)
+        out = kernel.solve(x0, p_full, tol)
+        stats["iterations"] += out["iterations"]
+        stats["status"] = STATUS_TEXT[out["status"]]
+        if problem.certify(out["x"], p_full, tol)[0]:
+            x, used = out["x"], "newton"
+        else:
+            notes.append(f"the Newton fast path did not certify ({stats['status']}); "
+                         f"solved with IPOPT")
+    if x is None:
+        x = _ipopt_strategy(problem, case, p_legs, p_full, tol, start, stats, t0)
 
     elapsed = time.perf_counter() - t0
-    certified, force_res, moment_res, relative = _certify(problem, x, p_full, tol)
+    certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
     cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                        tolerance=tol, status=stats["status"],
                        iterations=stats["iterations"], solve_time_s=elapsed)
-    result = _build_result(problem, case, x, p_full, cert, certified)
+    result = _build_result(problem, case, x, p_full, cert, certified, used, notes)
     if not certified:
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
@@ -181,17 +182,69 @@ def solve(case: Case, *, tol: float | None = None, allow_overload: bool = False,
     return result
 
 
+def _ipopt_strategy(problem, case, p_legs, p_full, tol, start, stats, t0):
+    """IPOPT from the warm start, else straight to the load from the closed-form state,
+    else from the solved rest state, else load stepping from rest; the best point."""
+    opts = case.solver
+    deadline = t0 + opts.max_time_s
+    # IPOPT's own tolerance is on the scaled residual; the polish and certificate
+    # decide acceptance, so IPOPT only needs to get about as close as asked.
+    ipopt_tol = min(max(tol, 1e-12), 1e-4)
+    lb, ub = problem.bounds()
+
+    def run(x0, p):
+        if time.perf_counter() >= deadline:
+            return x0, False
+        # Each IPOPT run is capped at the whole budget; the deadline check above stops
+        # further stages, so a solve ends within about twice the budget at worst.
+        solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
+        sol = solver(x0=x0, p=p, lbx=lb, ubx=ub, lbg=0, ubg=0)
+        st = solver.stats()
+        stats["iterations"] += int(st.get("iter_count", 0))
+        stats["status"] = st.get("return_status", "unknown")
+        x = np.asarray(sol["x"]).ravel()
+        x = _polish(problem, x, p, lb, ub, stats, tol)
+        return x, problem.certify(x, p, tol)[0]
+
+    if start is not None:
+        x, ok = run(np.asarray(start, float), p_full)
+        if ok:
+            return x
+    x_rest = initial_point(problem, case)
+    x, ok = run(x_rest, p_full)
+    if ok:
+        return x
+    if problem.n_q and problem.load_names:
+        p_rest = np.concatenate([environment_parameters(case, 0.0), p_legs])
+        x_solved, rest_ok = run(x_rest, p_rest)
+        if rest_ok:
+            x_rest = x_solved
+            x, ok = run(x_rest, p_full)
+            if ok:
+                return x
+    # Load stepping from rest: each step starts from the last certified state.
+    x_step = x_rest
+    for factor in _LOAD_STEPS:
+        p_step = np.concatenate([environment_parameters(case, factor), p_legs])
+        x_try, ok = run(x_step, p_step)
+        if not ok:
+            return x_try
+        x_step = x_try
+    return x_step
+
+
 # ---- polish and certificate -----------------------------------------------------------
 
 
-def _polish(problem, x, p, lb, ub, stats):
-    """Newton steps on the square residual system, kept only while they reduce it."""
+def _polish(problem, x, p, lb, ub, stats, tol):
+    """Newton steps on the square residual system until the point certifies at ``tol``,
+    kept only while they reduce the residual."""
     if not np.all(np.isfinite(x)):
         return x
     g = np.asarray(problem.residual(x, p)).ravel()
     norm = np.max(np.abs(g)) if g.size else 0.0
     for _ in range(_POLISH_STEPS):
-        if norm < 1e-15:
+        if norm < 1e-15 or problem.certify(x, p, tol)[0]:
             break
         J = np.asarray(problem.jacobian(x, p))
         try:
@@ -212,43 +265,6 @@ def _polish(problem, x, p, lb, ub, stats):
         if not improved:
             break
     return x
-
-
-def _certify(problem, x, p, tol):
-    """Largest unbalanced force and moment, recomputed from the solution.
-
-    A leg's span residual (metres) is turned into the fairlead force that would close it
-    with the leg's own 2x2 stiffness (one Newton step of that leg alone), so a mismatch in
-    any leg shows up as force, the quantity engineers check.
-    """
-    if not np.all(np.isfinite(x)):
-        return False, math.inf, math.inf, math.inf
-    legs, unbalanced, _, _ = (np.asarray(v) for v in problem.report(x, p))
-    unbalanced = unbalanced.ravel()
-    forces, moment = [0.0], 0.0
-    for d, value in zip(("surge", "sway", "yaw"), unbalanced):
-        if d in problem.free:
-            if d == "yaw":
-                moment = abs(value)
-            else:
-                forces.append(abs(value))
-    t_max = 0.0
-    for row in np.atleast_2d(legs) if problem.n_legs else []:
-        H, VF, HA, VA = row[0:4]
-        t_max = max(t_max, math.hypot(H, VF), math.hypot(HA, VA))
-        J = row[14:18].reshape(2, 2, order="F")
-        e = row[6:8]
-        try:
-            delta = np.linalg.solve(J, e)
-            forces.append(float(np.hypot(*delta)))
-        except np.linalg.LinAlgError:
-            forces.append(math.inf if np.any(e != 0) else 0.0)
-    force = max(forces)
-    scale = t_max if t_max > 0 else problem.force_scale
-    relative = force / scale
-    moment_ok = moment <= tol * scale * problem.moment_scale / problem.force_scale
-    ok = bool(np.isfinite(relative) and relative <= tol and moment_ok)
-    return ok, float(force), float(moment), float(relative)
 
 
 def _over_mbl(result: Result) -> list[str]:
@@ -291,7 +307,8 @@ def _diagnose(problem, case, result) -> str:
 # ---- result -----------------------------------------------------------------------------
 
 
-def _build_result(problem, case, x, p, cert, certified) -> Result:
+def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
+                  notes=()) -> Result:
     x = np.where(np.isfinite(x), x, 0.0)
     legs_out, _, load_total, load_vec = (np.asarray(v) for v in problem.report(x, p))
     xp = x * problem.x_scale
@@ -345,10 +362,10 @@ def _build_result(problem, case, x, p, cert, certified) -> Result:
     lv = np.asarray(load_vec).ravel()
     for k, name in enumerate(problem.load_names):
         loads[name] = [float(v) for v in lv[3 * k: 3 * k + 3]]
-    notes = [f"leg {lr.name}: the line passes below the seabed (contact not modelled "
+    notes = list(notes) + [f"leg {lr.name}: the line passes below the seabed (contact not modelled "
              f"for an anchor above the seabed or a buoyant line)"
              for lr, kind in zip(legs, problem.kinds)
              if not kind.contact and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
-    return Result(converged=certified, solver="ipopt", certificate=cert,
+    return Result(converged=certified, solver=solver, certificate=cert,
                   effects=list(problem.effects), body=body, legs=legs, loads=loads,
-                  case_name=case.name, state=x.copy(), notes=tuple(notes))
+                  case_name=case.name, state=x.copy(), notes=tuple(notes), case=case)

@@ -160,6 +160,7 @@ class EquilibriumProblem:
 
         fx_total, fy_total, mz_total = 0, 0, 0
         leg_res, leg_out = [], []
+        leg_force, tensions = [], []
         for i, kind in enumerate(self.kinds):
             P = dict(zip(LEG_PARAMS, ca.vertsplit(legp[i * len(LEG_PARAMS):
                                                        (i + 1) * len(LEG_PARAMS)])))
@@ -188,6 +189,9 @@ class EquilibriumProblem:
             iu = self.n_q + 2 * i
             J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
                             ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
+            leg_force.append(_closing_force(J, out["rX"], out["rZ"]))
+            tensions.append(ca.vertcat(ca.hypot(out["H"], out["VF"]),
+                                       ca.hypot(out["HA"], out["VA"])))
             leg_out.append(ca.vertcat(out["H"], out["VF"], out["HA"], out["VA"],
                                       out["grounded"], out["suspended_x"], out["rX"],
                                       out["rZ"], X, Z, gx, gy, fx, fy,
@@ -222,8 +226,55 @@ class EquilibriumProblem:
              ca.vertcat(unbalanced["surge"], unbalanced["sway"], unbalanced["yaw"]),
              ca.vertcat(load_x, load_y, load_m), load_vec])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g, xs)])
+        # One graph for both, so the Newton kernel evaluates the shared terms once.
+        self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
+                                             [g, ca.jacobian(g, xs)])
+        self._build_certificate(xs, p, unbalanced, leg_force, tensions, q)
         self._xs, self._p, self._g = xs, p, g
         self._nlp_solvers = {}
+        self._newton = None
+        #: Closed-form starting points by leg parameters (see equilibrium.initial_point).
+        self.start_cache: dict[bytes, np.ndarray] = {}
+
+    def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q):
+        """``certificate(x, p) -> [force_N, moment_Nm, t_max_N]`` and the sweep summary.
+
+        The force is the largest unbalanced force on a free degree of freedom or, per leg,
+        the fairlead force that would close its span mismatch (one Newton step of that leg
+        alone with its own 2x2 stiffness), so a mismatch anywhere shows up as force.
+        """
+        forces = [ca.fabs(unbalanced[d]) for d in self.free if d != "yaw"] + leg_force
+        force = ca.mmax(ca.vertcat(*forces)) if forces else ca.SX(0)
+        moment = ca.fabs(unbalanced["yaw"]) if "yaw" in self.free else ca.SX(0)
+        all_t = ca.vertcat(*tensions) if tensions else ca.SX(0)
+        t_max = ca.mmax(all_t) if tensions else ca.SX(0)
+        self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
+                                       ["x", "p"], ["force", "moment", "t_max"])
+        T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
+        self.summary = ca.Function(
+            "summary", [xs, p],
+            [ca.vertcat(q["surge"], q["sway"], q["yaw"]), T[:, 0], T[:, 1]],
+            ["x", "p"], ["body", "fairlead_tension", "anchor_tension"])
+
+    def certify(self, x, p, tol: float) -> tuple[bool, float, float, float]:
+        """``(certified, force_N, moment_Nm, relative)`` of the scaled point ``x``."""
+        if not np.all(np.isfinite(x)):
+            return False, math.inf, math.inf, math.inf
+        force, moment, t_max = (float(v) for v in self.certificate(x, p))
+        return self.judge(force, moment, t_max, tol)
+
+    def judge(self, force: float, moment: float, t_max: float, tol: float):
+        """``(certified, force, moment, relative)`` from the certificate's three numbers.
+
+        The force must be within ``tol`` of the largest tension, and the moment within
+        ``tol`` of that tension times the scene's moment arm.
+        """
+        scale = t_max if t_max > 0 else self.force_scale
+        relative = force / scale
+        moment_ok = moment <= tol * scale * self.moment_scale / self.force_scale
+        ok = bool(np.isfinite(relative) and np.isfinite(moment) and relative <= tol
+                  and moment_ok)
+        return ok, force, moment, relative
 
     # -- solvers --------------------------------------------------------------------
     def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
@@ -244,6 +295,13 @@ class EquilibriumProblem:
             self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
         return self._nlp_solvers[key]
 
+    def newton(self):
+        """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
+        if self._newton is None:
+            from .newton import NewtonKernel
+            self._newton = NewtonKernel(self)
+        return self._newton
+
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lb = np.full(self.n_x, -np.inf)
         ub = np.full(self.n_x, np.inf)
@@ -254,6 +312,21 @@ class EquilibriumProblem:
             if not kind.contact and not kind.neutral:
                 lb[self.n_q + 2 * i] = 0.0      # a hanging catenary cannot go slack
         return lb, ub
+
+
+def _closing_force(J, rX, rZ):
+    """Size of the fairlead force change that closes a leg's span mismatch ``(rX, rZ)``.
+
+    ``J`` is the leg's 2x2 derivative of the spans by ``(u, V)``; a singular ``J`` with a
+    nonzero mismatch gives infinity (the leg cannot be closed by a finite force).
+    """
+    a, b, c, d = J[0, 0], J[0, 1], J[1, 0], J[1, 1]
+    det = a * d - b * c
+    du = d * rX - b * rZ
+    dV = -c * rX + a * rZ
+    mismatch = ca.fabs(rX) + ca.fabs(rZ)
+    return ca.if_else(det != 0, ca.hypot(du, dV) / ca.fabs(det),
+                      ca.if_else(mismatch > 0, ca.inf, 0))
 
 
 def _body_radius(case: Case) -> float:

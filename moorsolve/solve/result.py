@@ -121,6 +121,8 @@ class Result:
     case_name : str
     state : numpy.ndarray
         The solution vector (scaled), for warm starts.
+    case : Case or None
+        The case solved, for the study functions (:mod:`.study`: stiffness, sensitivity).
     """
 
     converged: bool
@@ -133,6 +135,19 @@ class Result:
     case_name: str = ""
     state: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
     notes: tuple = ()
+    case: Optional[object] = field(default=None, repr=False, compare=False)
+
+    def sensitivity(self, outputs, parameters):
+        """Exact derivatives of equilibrium outputs by case parameters; see
+        :func:`moorsolve.solve.study.sensitivity`."""
+        from .study import sensitivity
+        return sensitivity(self, outputs, parameters)
+
+    def stiffness(self):
+        """Mooring stiffness matrix at this equilibrium; see
+        :func:`moorsolve.solve.study.stiffness`."""
+        from .study import stiffness
+        return stiffness(self)
 
     @property
     def iterations(self) -> int:

@@ -1,0 +1,285 @@
+"""Run the mooring checks: the intact condition and each damaged condition.
+
+A damaged condition removes one leg (``dataclasses.replace`` on the case) and solves the
+body again from scratch with :func:`moorsolve.solve`. A condition without a certified
+equilibrium is a failed check that carries the solver's reason; it never raises.
+
+Per leg and condition:
+
+* line tension: ``factor * T <= capacity_factor * MBL`` (criteria table of the standard);
+  ``T`` is the larger of the fairlead and anchor tension;
+* anchor uplift: ``drag`` none, ``deadweight`` up to ``allowed_uplift`` [N], ``pile`` up to
+  ``allowed_uplift_angle_deg`` at the anchor;
+* grounded length at least ``min_grounded_length`` for legs that can rest on the seabed;
+
+and per condition the horizontal offset of the body origin against the offset limit.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass, field
+
+from ..errors import ConvergenceError
+from ..model import AnchorType, Case, Checks
+from ..solve import Result, solve
+from .criteria import Criterion, criterion, standard_rows
+
+#: Anchor uplift below this fraction of the line tension (or 1 N) counts as none: the
+#: solver's own residual is far smaller, a physical uplift far larger.
+_UPLIFT_TOL_REL = 1e-6
+
+
+@dataclass(frozen=True)
+class CheckItem:
+    """One check: a value against its limit.
+
+    ``utilisation`` is demand over capacity (``<= 1`` passes; ``inf`` when the capacity is
+    zero or missing).
+    """
+
+    condition: str
+    leg: str | None
+    check: str
+    value: float
+    limit: float
+    unit: str
+    utilisation: float
+    passed: bool
+    criterion: str
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+@dataclass(frozen=True)
+class ConditionResult:
+    """One condition: intact, or one leg removed.
+
+    Attributes
+    ----------
+    name : str
+        ``intact`` or ``damaged: L3 removed``.
+    kind : str
+        ``intact`` or ``damaged``.
+    removed : str or None
+        The removed leg.
+    solved : bool
+        A certified equilibrium was found.
+    reason : str
+        Why not, when it was not.
+    result : Result or None
+        The equilibrium (for overloaded lines too: solved with ``allow_overload``).
+    items : list of CheckItem
+    criterion : Criterion
+    """
+
+    name: str
+    kind: str
+    removed: str | None
+    solved: bool
+    reason: str
+    result: Result | None
+    items: list
+    criterion: Criterion
+
+    @property
+    def passed(self) -> bool:
+        return self.solved and all(item.passed for item in self.items)
+
+    @property
+    def offset_m(self) -> float | None:
+        if self.result is None or self.result.body is None:
+            return None
+        return math.hypot(self.result.body["x_m"], self.result.body["y_m"])
+
+    def worst(self, check: str = "tension") -> CheckItem | None:
+        items = [i for i in self.items if i.check == check]
+        return max(items, key=lambda i: i.utilisation, default=None)
+
+    def to_dict(self) -> dict:
+        worst = self.worst()
+        return {
+            "name": self.name, "kind": self.kind, "removed": self.removed,
+            "solved": self.solved, "reason": self.reason, "passed": self.passed,
+            "offset_m": self.offset_m,
+            "body": None if self.result is None or self.result.body is None
+            else dict(self.result.body),
+            "max_tension_utilisation": None if worst is None else worst.utilisation,
+            "criterion": self.criterion.describe(),
+            "checks": [item.to_dict() for item in self.items],
+        }
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """All conditions of one case under one standard."""
+
+    case_name: str
+    standard: str
+    consequence_class: int
+    checks: Checks
+    conditions: list
+    criteria: list = field(default_factory=list)
+    time_s: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.conditions)
+
+    @property
+    def failures(self) -> list:
+        out = []
+        for c in self.conditions:
+            if not c.solved:
+                out.append(f"{c.name}: no equilibrium: {c.reason}")
+            out += [f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
+                    f"{_show(i.value, i.unit)} > limit {_show(i.limit, i.unit)} ({i.criterion})"
+                    if i.check != "grounded length" else
+                    f"{c.name}: grounded length of {i.leg}: {_show(i.value, i.unit)} < "
+                    f"{_show(i.limit, i.unit)}"
+                    for i in c.items if not i.passed]
+        return out
+
+    def to_dict(self) -> dict:
+        return {
+            "case": self.case_name, "standard": self.standard,
+            "consequence_class": self.consequence_class, "passed": self.passed,
+            "time_s": self.time_s,
+            "limits": {"offset_limit_m": self.checks.offset_limit,
+                       "offset_limit_damaged_m": _damaged(self.checks.offset_limit_damaged,
+                                                          self.checks.offset_limit),
+                       "min_grounded_length_m": self.checks.min_grounded_length,
+                       "min_grounded_length_damaged_m": _damaged(
+                           self.checks.min_grounded_length_damaged,
+                           self.checks.min_grounded_length)},
+            "criteria": [dataclasses.asdict(c) for c in self.criteria],
+            "conditions": [c.to_dict() for c in self.conditions],
+            "failures": self.failures,
+        }
+
+
+def _show(value: float, unit: str) -> str:
+    if not math.isfinite(value):
+        return "n/a"
+    return f"{value / 1e3:.1f} kN" if unit == "N" else f"{value:.2f} {unit}"
+
+
+def _damaged(value, fallback):
+    return fallback if value is None else value
+
+
+def run_checks(case: Case, *, standard: str | None = None, tol: float | None = None,
+               damaged: bool | None = None) -> CheckReport:
+    """Check ``case`` intact and with each leg removed in turn.
+
+    Parameters
+    ----------
+    case : Case
+    standard : str, optional
+        ``api-rp-2sk`` or ``dnv-os-e301``; overrides ``case.checks.standard``.
+    tol : float, optional
+        Solver tolerance (see :func:`moorsolve.solve`).
+    damaged : bool, optional
+        Run the damaged conditions; overrides ``case.checks.damaged``.
+
+    Returns
+    -------
+    CheckReport
+    """
+    checks = case.checks or Checks()
+    if standard is not None:
+        checks = dataclasses.replace(checks, standard=standard)
+    run_damaged = checks.damaged if damaged is None else damaged
+    t0 = time.perf_counter()
+    conditions = [_condition(case, checks, None, tol)]
+    if run_damaged and case.body is not None and len(case.legs) > 1:
+        # Without a body each leg ends at a fixed point: removing one leaves the others
+        # unchanged, so there is no damaged condition to solve.
+        for leg in case.legs:
+            conditions.append(_condition(case, checks, leg.name, tol))
+    return CheckReport(case_name=case.name, standard=checks.standard,
+                       consequence_class=checks.consequence_class, checks=checks,
+                       conditions=conditions, criteria=standard_rows(checks.standard),
+                       time_s=time.perf_counter() - t0)
+
+
+def _condition(case: Case, checks: Checks, removed: str | None, tol) -> ConditionResult:
+    kind = "intact" if removed is None else "damaged"
+    name = "intact" if removed is None else f"damaged: {removed} removed"
+    crit = criterion(checks.standard, kind, checks.consequence_class)
+    scene = case
+    if removed is not None:
+        scene = dataclasses.replace(
+            case, legs=tuple(leg for leg in case.legs if leg.name != removed))
+        if "source" in {f.name for f in dataclasses.fields(case)}:
+            # The case-file data still lists the removed leg: drop it, not mislead.
+            scene = dataclasses.replace(scene, source=None)
+    try:
+        result = solve(scene, tol=tol, allow_overload=True)
+    except ConvergenceError as exc:
+        return ConditionResult(name=name, kind=kind, removed=removed, solved=False,
+                               reason=exc.reason, result=None, items=[], criterion=crit)
+    items = []
+    for leg, lr in zip(scene.legs, result.legs):
+        items.append(_tension(name, lr, crit))
+        anchor = leg.anchor_type or checks.anchor
+        items.append(_uplift(name, lr, anchor))
+        minimum = (checks.min_grounded_length if kind == "intact"
+                   else _damaged(checks.min_grounded_length_damaged,
+                                 checks.min_grounded_length))
+        lt = leg.line_type
+        on_seabed = leg.anchor[2] <= -case.environment.depth + 1e-9 and lt.weight_in_water > 0
+        if minimum is not None and on_seabed:
+            g = lr.grounded_length_m
+            items.append(CheckItem(
+                condition=name, leg=lr.name, check="grounded length", value=g,
+                limit=minimum, unit="m",
+                utilisation=(minimum / g if g > 0 else (math.inf if minimum > 0 else 0.0)),
+                passed=g >= minimum, criterion=f"grounded length >= {minimum:.1f} m"))
+    limit = (checks.offset_limit if kind == "intact"
+             else _damaged(checks.offset_limit_damaged, checks.offset_limit))
+    if limit is not None and result.body is not None:
+        offset = math.hypot(result.body["x_m"], result.body["y_m"])
+        items.append(CheckItem(condition=name, leg=None, check="offset", value=offset,
+                               limit=limit, unit="m", utilisation=offset / limit,
+                               passed=offset <= limit,
+                               criterion=f"horizontal offset <= {limit:.2f} m"))
+    return ConditionResult(name=name, kind=kind, removed=removed, solved=True, reason="",
+                           result=result, items=items, criterion=crit)
+
+
+def _tension(condition: str, lr, crit: Criterion) -> CheckItem:
+    T = max(lr.fairlead_tension_N, lr.anchor_tension_N)
+    if not lr.mbl_N:
+        return CheckItem(condition=condition, leg=lr.name, check="tension", value=T,
+                         limit=math.nan, unit="N", utilisation=math.inf, passed=False,
+                         criterion="no MBL given for the line type: give mbl or a "
+                                   "catalogue line")
+    allowed = crit.capacity_factor * lr.mbl_N / crit.factor
+    return CheckItem(condition=condition, leg=lr.name, check="tension", value=T,
+                     limit=allowed, unit="N", utilisation=T / allowed, passed=T <= allowed,
+                     criterion=crit.describe())
+
+
+def _uplift(condition: str, lr, anchor: AnchorType) -> CheckItem:
+    VA = lr.anchor_vertical_N
+    tiny = max(_UPLIFT_TOL_REL * lr.anchor_tension_N, 1.0)
+    if anchor.kind == "pile":
+        angle = lr.uplift_angle_deg if VA > tiny else 0.0
+        limit = anchor.allowed_uplift_angle_deg
+        util = angle / limit if limit > 0 else (0.0 if angle == 0 else math.inf)
+        return CheckItem(condition=condition, leg=lr.name, check="anchor uplift angle",
+                         value=angle, limit=limit, unit="deg", utilisation=util,
+                         passed=angle <= limit,
+                         criterion=f"pile: uplift angle <= {limit:.1f} deg")
+    limit = anchor.allowed_uplift if anchor.kind == "deadweight" else 0.0
+    value = VA if VA > tiny else 0.0
+    util = value / limit if limit > 0 else (0.0 if value == 0 else math.inf)
+    text = ("drag anchor: no uplift" if anchor.kind == "drag"
+            else f"deadweight anchor: uplift <= {limit / 1e3:.1f} kN")
+    return CheckItem(condition=condition, leg=lr.name, check="anchor uplift", value=value,
+                     limit=limit, unit="N", utilisation=util, passed=value <= limit,
+                     criterion=text)

@@ -1,0 +1,233 @@
+"""The fast path: a damped Newton method on the equilibrium residuals, as one CasADi graph.
+
+The whole iteration (residuals, Jacobian, sparse QR solve, step limit, projection onto the
+bounds and a backtracking line search) is written as a CasADi ``Function`` of
+``(x0, p, tol)``. The loop is unrolled to a fixed number of iterations, each guarded by a
+conditional (``Function.if_else``), so a converged point skips the remaining work. The
+function is generated to C and compiled once (:mod:`.compiled`), then called without
+Python in the loop; without a compiler the same Function runs interpreted.
+
+Iteration, on the scaled unknowns of :class:`~.problem.EquilibriumProblem`:
+
+1. ``g, J`` at ``x``. Stop when the certificate, estimated from ``g`` and ``J`` (each
+   leg's span mismatch converted to fairlead force through its own 2x2 block; the body's
+   unbalanced force and moment), is within ``tol`` of the largest fairlead tension.
+2. ``d = J \\ g`` (sparse QR), scaled so that no component moves by more than
+   :data:`STEP_LIMIT` (one depth in position, one typical tension, one radian).
+3. Backtrack ``x - a d``, ``a = 1, 1/2, ...``, projected onto the bounds (hanging lines
+   keep ``u >= 0`` so ``H >= 0``; yaw within +-90 deg), until the squared residual norm
+   drops by the Armijo factor ``1 - 2e-4 a``. No acceptable step: the method has stalled.
+
+The exact certificate of the final point (:meth:`EquilibriumProblem.certify`) is part of
+the outputs, and so are the body position and the leg tensions a sweep records.
+"""
+
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+#: Largest change of any scaled unknown in one Newton step.
+STEP_LIMIT = 1.0
+#: Unrolled iterations; a point still unconverged after them reports status 2.
+MAX_ITERATIONS = 40
+_BACKTRACKS = 12
+_ARMIJO = 1e-4
+
+#: Status codes of the kernel.
+CONVERGED, STALLED, MAX_ITER = 0, 1, 2
+STATUS_TEXT = {CONVERGED: "Newton converged", STALLED: "Newton stalled (no descent step)",
+               MAX_ITER: "Newton reached its iteration limit"}
+
+
+def newton_step_function(problem) -> ca.Function:
+    """``(g, J) -> J \\ g`` exploiting the Jacobian's arrow structure when it has it.
+
+    Each leg's two span residuals depend only on its own ``(u, V)`` and on the body
+    position, so ``J = [[A, B], [C, D]]`` with ``A`` block diagonal (2x2 per leg). Block
+    elimination then costs O(legs): per leg an explicit 2x2 inverse, and one Schur
+    complement of the size of the body's free DOFs. A problem without that structure
+    (or with a singular leg block, which gives a non-finite step and stalls the line
+    search, so the caller falls back to IPOPT) uses CasADi's sparse QR.
+    """
+    n, n_q, n_legs = problem.n_x, problem.n_q, problem.n_legs
+    sp = problem.jacobian.sparsity_out(0)
+    g = ca.SX.sym("g", n)
+    J = ca.SX.sym("J", sp)
+    rows, cols = sp.get_triplet()
+    arrow = all(c < n_q or r >= 2 * n_legs or (c - n_q) // 2 == r // 2
+                for r, c in zip(rows, cols))
+    if not arrow:
+        Jm, gm = ca.MX.sym("J", sp), ca.MX.sym("g", n)
+        return ca.Function("newton_qr", [gm, Jm], [ca.solve(Jm, gm, "qr")])
+    S = J[2 * n_legs:, :n_q] if n_q else None
+    r_body = g[2 * n_legs:] if n_q else None
+    Y, Z = [], []
+    for i in range(n_legs):
+        r, c = 2 * i, n_q + 2 * i
+        a, b, cc, d = J[r, c], J[r, c + 1], J[r + 1, c], J[r + 1, c + 1]
+        det = a * d - b * cc
+        inv = ca.vertcat(ca.horzcat(d, -b), ca.horzcat(-cc, a)) / det
+        y = inv @ g[r:r + 2]
+        Y.append(y)
+        if n_q:
+            z = inv @ J[r:r + 2, :n_q]
+            Z.append(z)
+            C = J[2 * n_legs:, c:c + 2]
+            S = S - C @ z
+            r_body = r_body - C @ y
+    if n_q:
+        dq = ca.solve(S, r_body)
+        dl = [y - z @ dq for y, z in zip(Y, Z)]
+        step = ca.vertcat(dq, *dl)
+    else:
+        step = ca.vertcat(*Y)
+    return ca.Function("newton_arrow", [g, J], [step])
+
+
+def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Function:
+    """``newton(x0, p, tol) -> (x, status, iterations, certificate, body, t_fair, t_anchor)``.
+
+    ``certificate`` is ``[force_N, moment_Nm, t_max_N]``; ``body`` is ``[x_m, y_m, yaw]``.
+    """
+    n, n_q, n_legs = problem.n_x, problem.n_q, problem.n_legs
+    fs = problem.force_scale
+    lb, ub = (np.where(np.isfinite(b), b, s * 1e30) for b, s in zip(problem.bounds(), (-1, 1)))
+    x = ca.MX.sym("x", n)
+    p = ca.MX.sym("p", problem.n_p)
+    tol = ca.MX.sym("tol")
+    g_sym = ca.MX.sym("g", n)
+    J_sym = ca.MX.sym("J", problem.jacobian.sparsity_out(0))
+
+    # -- the certificate estimate from g and J -----------------------------------------
+    g, J = problem.residual_jacobian(x, p)
+    forces, moment = [], ca.MX(0)
+    for i in range(n_legs):
+        r, c = 2 * i, n_q + 2 * i
+        block = J[r:r + 2, c:c + 2]
+        det = block[0, 0] * block[1, 1] - block[0, 1] * block[1, 0]
+        du = block[1, 1] * g[r] - block[0, 1] * g[r + 1]
+        dv = -block[1, 0] * g[r] + block[0, 0] * g[r + 1]
+        forces.append(fs * ca.hypot(du, dv) / ca.fabs(det))
+    for k, d in enumerate(problem.free):
+        value = ca.fabs(g[2 * n_legs + k])
+        if d == "yaw":
+            moment = value * problem.moment_scale
+        else:
+            forces.append(value * fs)
+    xp = x * ca.DM(problem.x_scale)
+    fair_t = [ca.hypot(ca.fmax(xp[n_q + 2 * i], 0), xp[n_q + 2 * i + 1]) for i in range(n_legs)]
+    t_est = ca.fmax(ca.mmax(ca.vertcat(*fair_t)), fs * 1e-12) if fair_t else ca.MX(fs)
+    force = ca.mmax(ca.vertcat(*forces)) if forces else ca.MX(0)
+    converged = ca.logic_and(force <= tol * t_est,
+                             moment <= tol * t_est * problem.moment_scale / fs)
+    # NaN compares false, so a NaN state is never "converged".
+    evaluate = ca.Function("newton_eval", [x, p, tol], [g, J, converged])
+
+    # -- backtracking line search as a chain of conditionals ----------------------------
+    d_sym = ca.MX.sym("d", n)
+    m0 = ca.MX.sym("m0")
+
+    def trial(j: int) -> ca.Function:
+        a = 0.5 ** j
+        xa = ca.fmin(ca.fmax(x - a * d_sym, lb), ub)
+        ma = ca.sumsqr(problem.residual(xa, p))
+        accept = ma <= (1 - 2 * _ARMIJO * a) * m0
+        xa_sym = ca.MX.sym("xa", n)
+        take = ca.Function(f"newton_take{j}", [x, d_sym, p, m0, xa_sym], [xa_sym, 0])
+        if j + 1 < _BACKTRACKS:
+            nxt = trial(j + 1)
+            more = ca.Function(f"newton_more{j}", [x, d_sym, p, m0, xa_sym],
+                               nxt(x, d_sym, p, m0))
+        else:
+            more = ca.Function(f"newton_stall{j}", [x, d_sym, p, m0, xa_sym], [x, 1])
+        branch = ca.Function.if_else(f"newton_ls{j}", take, more)
+        return ca.Function(f"newton_trial{j}", [x, d_sym, p, m0],
+                           branch(accept, x, d_sym, p, m0, xa))
+
+    search = trial(0)
+
+    # -- one iteration: converged -> done, else step ------------------------------------
+    step = newton_step_function(problem)(g_sym, J_sym)
+    step = step * ca.fmin(1, STEP_LIMIT / ca.mmax(ca.fabs(step)))
+    x_new, stalled = search(x, step, p, ca.sumsqr(g_sym))
+    it = ca.MX.sym("it")
+    do_step = ca.Function("newton_step", [x, p, g_sym, J_sym, it],
+                          [x_new, 0, stalled, it + 1 - stalled])
+    finish = ca.Function("newton_finish", [x, p, g_sym, J_sym, it], [x, 1, 0, it])
+    choose = ca.Function.if_else("newton_choose", finish, do_step)
+    g_e, J_e, conv_e = evaluate(x, p, tol)
+    iterate = ca.Function("newton_iterate", [x, p, tol, it], choose(conv_e, x, p, g_e, J_e, it))
+
+    done_sym, stall_sym = ca.MX.sym("done"), ca.MX.sym("stall")
+    active_fn = ca.Function("newton_active", [x, p, tol, done_sym, stall_sym, it],
+                            iterate(x, p, tol, it))
+    idle_fn = ca.Function("newton_idle", [x, p, tol, done_sym, stall_sym, it],
+                          [x, done_sym, stall_sym, it])
+    guard = ca.Function.if_else("newton_guard", active_fn, idle_fn)
+
+    xk, done, stall, count = x, ca.MX(0), ca.MX(0), ca.MX(0)
+    for _ in range(max_iterations):
+        active = ca.logic_and(ca.logic_not(done), ca.logic_not(stall))
+        xk, done, stall, count = guard(active, xk, p, tol, done, stall, count)
+    status = ca.if_else(done, CONVERGED, ca.if_else(stall, STALLED, MAX_ITER))
+    cert = ca.vertcat(*problem.certificate(xk, p))
+    body, t_fair, t_anchor = problem.summary(xk, p)
+    return ca.Function("moorsolve_newton", [x, p, tol],
+                       [xk, status, count, cert, body, t_fair, t_anchor],
+                       ["x0", "p", "tol"],
+                       ["x", "status", "iterations", "certificate", "body",
+                        "fairlead_tension", "anchor_tension"])
+
+
+class NewtonKernel:
+    """The Newton function of one problem, compiled when a C compiler is available.
+
+    ``compiled`` tells which: the compiled library is called through ctypes with no
+    per-call conversion; otherwise the same CasADi Function runs interpreted.
+    """
+
+    def __init__(self, problem, *, compile: bool = True):
+        from .compiled import compile_function
+
+        self.problem = problem
+        self.function = newton_function(problem)
+        self._lib = compile_function(self.function) if compile else None
+        self.compiled = self._lib is not None
+
+    def clone(self) -> "NewtonKernel":
+        """A kernel over the same library with its own buffers, for another thread."""
+        other = object.__new__(NewtonKernel)
+        other.problem, other.function, other.compiled = self.problem, self.function, self.compiled
+        other._lib = self._lib.clone() if self._lib is not None else None
+        return other
+
+    def raw(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
+        """Run the kernel; its outputs in order, as views of this kernel's buffers
+        (overwritten by the next call) when compiled. For tight loops."""
+        if self._lib is None:
+            return [np.asarray(v, dtype=float).ravel() for v in self.function(x0, p, tol)]
+        lib = self._lib
+        lib.inputs[0][:] = x0
+        lib.inputs[1][:] = p
+        lib.inputs[2][0] = tol
+        lib()
+        return lib.outputs
+
+    def solve(self, x0: np.ndarray, p: np.ndarray, tol: float) -> dict:
+        """Run the kernel; the outputs as numpy arrays (copies) keyed by name."""
+        names = self.function.name_out()
+        if self._lib is not None:
+            lib = self._lib
+            lib.inputs[0][:] = x0
+            lib.inputs[1][:] = p
+            lib.inputs[2][0] = tol
+            lib()
+            values = [o.copy() for o in lib.outputs]
+        else:
+            values = [np.asarray(v, dtype=float).ravel()
+                      for v in self.function(x0, p, tol)]
+        out = dict(zip(names, values))
+        out["status"] = int(out["status"][0])
+        out["iterations"] = int(out["iterations"][0])
+        return out
