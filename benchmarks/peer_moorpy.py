@@ -160,8 +160,8 @@ def _check_convertible(case: Case) -> None:
             raise ValueError(f"{case.name}: leg {leg.name} has {len(leg.segments)} segments; "
                              "the converter takes one")
         if leg.fairlead[2] > 0:
-            raise ValueError(f"{case.name}: leg {leg.name} fairlead z = {leg.fairlead[2]} m is above "
-                             "water; MoorPy would blend in the line's weight in air")
+            raise ValueError(f"{case.name}: leg {leg.name} fairlead z = {leg.fairlead[2]} m is "
+                             "above water; MoorPy would blend in the line's weight in air")
 
 
 def _inextensible_ea(case: Case, leg) -> float:

@@ -4,18 +4,19 @@
 
 Needs the ``bench`` extra (``pip install -e ".[bench]"``, MoorPy 1.3.0). Sections:
 
-1. Agreement: each scene under one fixed constant load, moorsolve (tol 1e-9) against MoorPy
+1. Agreement: each scene under one fixed constant load, moorsolve (tol 1e-12) against MoorPy
    at a tight step tolerance (1e-9 m): offsets and every fairlead and anchor tension; and the
    force MoorPy leaves unbalanced at its default tolerance (0.05 m).
 2. Timing: per scene (the 12-chain dock, and the 3-chain Vida buoy with an elastic chain,
-   see ``VIDA_CHAIN_EA``; both with their wind, current and drift replaced by a constant force) 100 random constant loads (seeded;
-   any load moorsolve reports as an overload or without equilibrium is dropped and redrawn).
+   see ``VIDA_CHAIN_EA``; both with their wind, current and drift replaced by a constant
+   force) 100 random constant loads (seeded; any load moorsolve reports as an overload or
+   without equilibrium is dropped and redrawn).
    Every column solves every load, from rest (body back at its case position) and warm
    (from the previous load's solution); the table gives the median time per solve and the
    ratio MoorPy(1e-4 m) / column in the same start mode. MoorPy's residual is the force it
    leaves unbalanced (its own catenary re-solved at 1e-10 m at its answer).
 3. Scaling: one body on N = 3, 12, 48, 192 legs evenly spread round a circle.
-4. Memory: peak RSS of a warm-started run of many solves in a fresh subprocess (Linux).
+4. Memory: peak RSS of a 10,000-point ``moorsolve.sweep`` in a fresh subprocess (Linux).
 
 Adding a moorsolve column is one entry in ``COLUMNS`` (a name, a start mode, a function
 ``(bench_scene, loads, warm) -> Column``): e.g. ``solver="newton"`` is
@@ -59,6 +60,8 @@ ROOT = HERE.parent
 MOORPY_TOL = 1e-4
 #: MoorPy tolerance for the agreement check [m].
 TIGHT_TOL = 1e-9
+#: moorsolve's certified relative residual for the agreement check.
+REFERENCE_TOL = 1e-12
 SEED = 20240603
 
 
@@ -110,7 +113,7 @@ def scenes() -> list[BenchScene]:
             for leg in buoy.legs))
     return [
         # 1 MN toward 70 deg (the typhoon's heading) and a 20 MN m yaw moment; random
-        # loads up to 8 MN (the 12 chains, MBL 5.5 MN each, hold about 6 MN).
+        # loads up to 8 MN and 100 MN m (loads past what the chains hold are dropped).
         BenchScene("dock", with_constant_force(dock, (0, 0, 0)), 8e6, 1e8,
                    _polar(1e6, 70, 2e7)),
         # 3 kN toward 225 deg (the bora's heading); the buoy has no yaw.
@@ -243,6 +246,10 @@ def time_moorpy(scene: BenchScene, loads: list, warm: bool, *, tol: float = MOOR
 COLUMNS = [
     ("moorsolve ipopt", False, time_moorsolve),
     ("moorsolve ipopt", True, time_moorsolve),
+    ("moorsolve newton", False,
+     functools.partial(time_moorsolve, solve_kwargs={"solver": "newton"})),
+    ("moorsolve newton", True,
+     functools.partial(time_moorsolve, solve_kwargs={"solver": "newton"})),
     ("MoorPy tol 1e-4 m", False, functools.partial(time_moorpy, tol=MOORPY_TOL)),
     ("MoorPy tol 1e-4 m", True, functools.partial(time_moorpy, tol=MOORPY_TOL)),
     ("MoorPy default tol 0.05 m", False,
@@ -272,9 +279,9 @@ def _takes(fn, arg: str) -> bool:
 
 
 def agreement(scene: BenchScene) -> dict:
-    """moorsolve (tol 1e-9) and MoorPy (``TIGHT_TOL``) on ``scene.check_load``."""
+    """moorsolve (``REFERENCE_TOL``) and MoorPy (``TIGHT_TOL``) on ``scene.check_load``."""
     case = scene.with_load(scene.check_load)
-    result = moorsolve.solve(case)
+    result = moorsolve.solve(case, tol=REFERENCE_TOL)
     peer = moorpy_system(case)
     tight = peer.solve(tol=TIGHT_TOL)
     out = {"load": list(scene.check_load), "moorpy_tol_m": TIGHT_TOL,
@@ -346,10 +353,26 @@ def scaling(sizes, repeats: int) -> list[dict]:
 
 # ---- memory ------------------------------------------------------------------------------
 
-#: Statement measured by default: a warm-started run of ``n`` dock solves under a grid of
-#: constant loads, keeping a summary row per point as a sweep would. Point it at
-#: ``moorsolve.sweep`` once that exists.
+#: Measured by default: a ``moorsolve.sweep`` of the typhoon dock (wind, current and
+#: drift as in the case file) over a square grid of wind headings and speeds with ``n``
+#: points, after a 4-point sweep in the setup has built and compiled the problem.
 MEMORY_SETUP = textwrap.dedent("""
+    import math, moorsolve
+    case = moorsolve.load_case("cases/floating_dock.yaml")
+    side = max(int(round(math.sqrt(n))), 1)
+    grid = {"environment.wind.toward_deg": [360.0 * j / side for j in range(side)],
+            "environment.wind.speed": [45.0 * (i + 1) / side for i in range(side)]}
+    moorsolve.sweep(case, {"environment.wind.toward_deg": [0.0, 90.0],
+                           "environment.wind.speed": [20.0, 40.0]})
+""")
+MEMORY_STATEMENT = textwrap.dedent("""
+    table = moorsolve.sweep(case, grid)
+    info = {"rows": len(table), "converged": int(table["converged"].sum())}
+""")
+#: The same measurement for a warm-started loop of ``moorsolve.solve`` (IPOPT) under
+#: constant loads, keeping a summary row per point: ``peak_memory(n, MEMORY_SOLVE_LOOP,
+#: MEMORY_SOLVE_LOOP_SETUP)``.
+MEMORY_SOLVE_LOOP_SETUP = textwrap.dedent("""
     import math, moorsolve
     from peer_moorpy import with_constant_force
     base = moorsolve.load_case("cases/floating_dock.yaml")
@@ -359,7 +382,7 @@ MEMORY_SETUP = textwrap.dedent("""
              for h in [360.0 * j / side for j in range(side)]][:n]
     moorsolve.solve(with_constant_force(base, loads[0]))
 """)
-MEMORY_STATEMENT = textwrap.dedent("""
+MEMORY_SOLVE_LOOP = textwrap.dedent("""
     rows, prev = [], None
     for load in loads:
         r = moorsolve.solve(with_constant_force(base, load),
@@ -367,7 +390,7 @@ MEMORY_STATEMENT = textwrap.dedent("""
         prev = r
         rows.append((r.body["x_m"], r.body["y_m"], r.body["yaw_deg"],
                      *[leg.fairlead_tension_N for leg in r.legs]))
-    count = len(rows)
+    info = {"rows": len(rows)}
 """)
 
 _MEMORY_DRIVER = textwrap.dedent("""
@@ -391,6 +414,7 @@ _MEMORY_DRIVER = textwrap.dedent("""
                rss_end_kB=status_kB("VmRSS"), peak_rss_kB=status_kB("VmHWM"))
     if {trace!r}:
         out["peak_python_alloc_B"] = tracemalloc.get_traced_memory()[1]
+    out["info"] = globals().get("info")
     print(json.dumps(out))
 """)
 
@@ -431,8 +455,9 @@ def print_agreement(name, a):
           f"tension diff {d['fairlead_tension_N']:.2e} N, anchor {d['anchor_tension_N']:.2e} N "
           f"({d['tension_relative']:.1e} of {d['max_tension_N']:.4g} N)")
     dt = a["default_tol"]
-    print(f"  MoorPy at its default {dt['moorpy_tol_m']:g} m leaves {dt['unbalanced_force_N']:.4g} N "
-          f"and {dt['unbalanced_moment_Nm']:.4g} N m unbalanced; tensions off by "
+    print(f"  MoorPy at its default {dt['moorpy_tol_m']:g} m leaves "
+          f"{dt['unbalanced_force_N']:.4g} N and {dt['unbalanced_moment_Nm']:.4g} N m "
+          "unbalanced; tensions off by "
           f"{dt['difference']['tension_relative']:.1e} of the largest")
 
 
@@ -459,7 +484,7 @@ def print_table(name, columns, dropped):
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true",
-                    help="20 loads per scene, scaling to 48 legs, memory of 1000 solves")
+                    help="20 loads per scene, scaling to 48 legs, a 1000-point sweep")
     ap.add_argument("--out", default=str(HERE / "results.json"))
     ap.add_argument("--skip", nargs="*", default=[], choices=["scaling", "memory"])
     args = ap.parse_args(argv)
@@ -475,7 +500,7 @@ def main(argv=None) -> int:
                "machine": f"{platform.machine()}, {os.cpu_count()} cpus", "quick": args.quick,
                "load_average_at_start": os.getloadavg(),
                "moorpy_tol_m": MOORPY_TOL, "agreement": {}, "scenes": {}}
-    print("== agreement (moorsolve tol 1e-9 vs MoorPy tight tolerance)")
+    print(f"== agreement (moorsolve tol {REFERENCE_TOL:g} vs MoorPy {TIGHT_TOL:g} m)")
     for scene in agreement_scenes():
         results["agreement"][scene.name] = a = agreement(scene)
         print_agreement(scene.name, a)
@@ -503,9 +528,10 @@ def main(argv=None) -> int:
     if "memory" not in args.skip:
         mem = peak_memory(n_memory)
         results["memory"] = mem
-        print(f"\n== memory: {mem['points']} warm-started dock solves in a fresh process, "
-              f"{mem['elapsed_s']:.1f} s: peak RSS {mem['peak_rss_kB'] / 1024:.0f} MB "
-              f"(peak after setup {mem['peak_rss_after_setup_kB'] / 1024:.0f} MB); RSS "
+        print(f"\n== memory: moorsolve.sweep of the typhoon dock over {mem['points']} wind "
+              f"headings x speeds in a fresh process ({mem['info']}), {mem['elapsed_s']:.2f} s: "
+              f"peak RSS {mem['peak_rss_kB'] / 1024:.0f} MB (peak after setup "
+              f"{mem['peak_rss_after_setup_kB'] / 1024:.0f} MB); RSS "
               f"{mem['rss_after_setup_kB'] / 1024:.0f} MB after setup, "
               f"{mem['rss_end_kB'] / 1024:.0f} MB at the end")
 
