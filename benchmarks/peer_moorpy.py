@@ -199,6 +199,9 @@ class MoorPyScene:
     tol : float
         Default ``solveEquilibrium`` tolerance [m] for :meth:`solve`.
     leg_names : list of str
+        Case order, which is also the order of MoorPy's lines and of the tension arrays.
+    free : tuple of str
+        The body's free degrees of freedom (moorsolve names).
     """
 
     def __init__(self, system, body, tol: float, leg_names: list, free: tuple):
@@ -225,12 +228,6 @@ class MoorPyScene:
         for line in self.system.lineList:
             line.HF = line.VF = 0.0
             line.staticSolve(tol=1e-4)
-
-    def position(self) -> np.ndarray:
-        """Free DOF values in moorsolve's order (m, m, rad)."""
-        if self.body is None:
-            return np.zeros(0)
-        return np.array([self.body.r6[_DOF_INDEX[d]] for d in self.free])
 
     # -- solving -------------------------------------------------------------------------
     def solve(self, *, tol: float | None = None, from_rest: bool = True,
