@@ -4,9 +4,9 @@ Frozen dataclasses, SI units throughout, degrees only in names ending ``_deg``. 
 :class:`Case` is what every other part of moorsolve consumes; ``moorsolve.io`` builds one
 from a case file and checks it. Nothing here imports CasADi.
 
-Coordinates: x, y horizontal, z up, z = 0 at the still-water level, flat seabed at
-z = -depth. ``toward_deg`` is the direction a wind, current or wave train travels toward,
-counter-clockwise from +x.
+Coordinates: x, y horizontal, z up, z = 0 at the still-water level, seabed at z = -depth
+(or a plane through that point at the origin, :class:`Seabed`). ``toward_deg`` is the
+direction a wind, current or wave train travels toward, counter-clockwise from +x.
 """
 
 from __future__ import annotations
@@ -18,6 +18,22 @@ from typing import Optional
 from .constants import AIR_DENSITY, SEAWATER_DENSITY, STANDARD_GRAVITY
 
 DEGREES_OF_FREEDOM = ("surge", "sway", "yaw")
+
+
+@dataclass(frozen=True)
+class LineDrag:
+    """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
+
+    Per unit stretched length, with ``q = rho d / 2``, ``U_n`` and ``U_t`` the flow's
+    components normal and tangential to the line and ``chi`` the angle of attack:
+    normal ``q normal |U_n| U_n`` (``normal sin^2 chi`` times ``q v^2``; Merkin's fit is
+    1.1), tangential ``q tangential |U_t| U_t`` (skin friction, on the diameter), and side
+    ``q side |U_n| |U_t|`` normal to both line and flow (laid ropes; sign by lay).
+    """
+
+    normal: float
+    tangential: float = 0.0
+    side: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -36,6 +52,8 @@ class LineType:
         Minimum breaking load [N].
     diameter : float or None
         Outer (hydrodynamic) diameter [m]; needed for wall tension and line drag.
+    drag : LineDrag or None
+        Drag coefficients: in a case with a current the leg is then discretised.
     sealed : bool
         True for a line whose wall keeps water out of its cross-section (cable, pipe,
         sheathed rope). Its wall tension differs from the effective tension by the
@@ -54,6 +72,7 @@ class LineType:
     mbl: Optional[float] = None
     diameter: Optional[float] = None
     sealed: bool = False
+    drag: Optional[LineDrag] = None
     catalog: Optional[str] = None
     corrosion_allowance: float = 0.0
     source: Optional[str] = None
@@ -90,6 +109,26 @@ class AnchorType:
 
 
 @dataclass(frozen=True)
+class Clump:
+    """A point load at a joint between two segments: a clump weight or a buoy.
+
+    Attributes
+    ----------
+    weight : float
+        Net downward force in water [N]: ``g (mass - water_density volume)`` when given by
+        mass and volume; negative for a buoy.
+    mass : float or None
+        Mass [kg], when the case gave one.
+    volume : float or None
+        Displaced volume [m^3], when the case gave one.
+    """
+
+    weight: float
+    mass: Optional[float] = None
+    volume: Optional[float] = None
+
+
+@dataclass(frozen=True)
 class Leg:
     """One mooring leg from its anchor (end A) to its fairlead (end F).
 
@@ -102,7 +141,10 @@ class Leg:
     fairlead : tuple of 3 floats
         Position [m] in the body frame, or global when the case has no body.
     segments : tuple of Segment
-        From anchor to fairlead. The core model takes one segment per leg.
+        From anchor to fairlead.
+    clumps : tuple of (Clump or None)
+        One entry per joint between consecutive segments (``len(segments) - 1``), from the
+        anchor up; None (or an empty tuple for all joints) is a bare joint.
     """
 
     name: str
@@ -110,6 +152,17 @@ class Leg:
     fairlead: tuple
     segments: tuple
     anchor_type: Optional[AnchorType] = None
+    clumps: tuple = ()
+
+    @property
+    def joint_clumps(self) -> tuple:
+        """The clump at every joint (None for a bare joint), ``len(segments) - 1`` entries."""
+        n = len(self.segments) - 1
+        return tuple(self.clumps) + (None,) * (n - len(self.clumps))
+
+    @property
+    def multi_segment(self) -> bool:
+        return len(self.segments) > 1
 
     @property
     def line_type(self) -> LineType:
@@ -122,10 +175,17 @@ class Leg:
 
 @dataclass(frozen=True)
 class Flow:
-    """A uniform wind or current: speed [m/s] toward ``toward_deg``."""
+    """A wind or current: speed [m/s] toward ``toward_deg``.
+
+    A current may carry a ``profile`` of ``(z, speed)`` rows (z ascending, m and m/s) that
+    the lines see, interpolated linearly and held constant beyond its ends; ``speed`` is
+    then what the body's load models see. Without a profile the lines see ``speed`` at
+    every depth.
+    """
 
     speed: float
     toward_deg: float = 0.0
+    profile: Optional[tuple] = None
 
 
 @dataclass(frozen=True)
@@ -138,9 +198,19 @@ class Waves:
 
 @dataclass(frozen=True)
 class Seabed:
-    """Seabed contact. ``friction`` is the Coulomb coefficient for line on seabed (0 = none)."""
+    """Seabed contact.
+
+    ``friction`` is the Coulomb coefficient for line on seabed (0 = none). ``gradient`` is
+    ``(dz/dx, dz/dy)`` of a plane seabed: its height is ``-depth + gx x + gy y``, so
+    ``depth`` is the water depth at the origin; ``(0, 0)`` is flat.
+    """
 
     friction: float = 0.0
+    gradient: tuple = (0.0, 0.0)
+
+    @property
+    def sloped(self) -> bool:
+        return any(g != 0.0 for g in self.gradient)
 
 
 @dataclass(frozen=True)
@@ -153,6 +223,11 @@ class Environment:
     wind: Optional[Flow] = None
     current: Optional[Flow] = None
     waves: Optional[Waves] = None
+
+    def seabed_z(self, x: float, y: float) -> float:
+        """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed)."""
+        gx, gy = self.seabed.gradient
+        return -self.depth + gx * x + gy * y
 
 
 # ---- body load models ---------------------------------------------------------------
@@ -285,11 +360,14 @@ class SolverOptions:
     """Solver settings a case may carry; the CLI's ``--tol`` overrides ``tol``.
 
     ``tol`` is the certified force residual relative to the largest line tension.
+    ``line_elements`` is the number of elements of a discretised leg (one in a current with
+    drag data).
     """
 
     tol: float = 1e-9
     max_iter: int = 200
     max_time_s: float = 5.0
+    line_elements: int = 20
 
 
 @dataclass(frozen=True)

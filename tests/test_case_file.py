@@ -311,8 +311,32 @@ def _with_body(body):
     return _set(("body",), body)
 
 
-def _second_segment(case):
-    case["legs"][0]["segments"].append({"type": "chain81", "length": 10})
+def _clump_last(case):
+    case["legs"][0]["segments"].append({"clump": {"mass": 1000}})
+
+
+def _clump_first(case):
+    case["legs"][0]["segments"].insert(0, {"clump": {"weight": -5e3}})
+
+
+def _clump_both(case):
+    case["legs"][0]["segments"] += [{"clump": {"weight": 1e3, "volume": 1.0}},
+                                    {"type": "chain81", "length": 10}]
+
+
+def _clump_no_mass(case):
+    case["legs"][0]["segments"] += [{"clump": {"volume": 1.0}},
+                                    {"type": "chain81", "length": 10}]
+
+
+def _clump_negative_mass(case):
+    case["legs"][0]["segments"] += [{"clump": {"mass": "-3 t"}},
+                                    {"type": "chain81", "length": 10}]
+
+
+def _clump_extra_key(case):
+    case["legs"][0]["segments"] += [{"clump": {"mass": 10}, "type": "chain81"},
+                                    {"type": "chain81", "length": 10}]
 
 
 def _duplicate_leg(case):
@@ -342,7 +366,12 @@ ERROR_CASES = [
     (_set(SEG + ("type",), "chain82"), "legs[0].segments[0].type", "chain81"),
     (_set(SEG + ("type",), ["chain81"]), "legs[0].segments[0].type", "unknown line type"),
     (_delete(SEG + ("type",)), "legs[0].segments[0].type", "missing"),
-    (_second_segment, "legs[0].segments", "multi-segment legs are not supported yet"),
+    (_clump_last, "legs[0].segments[1]", "ends the leg"),
+    (_clump_first, "legs[0].segments[0]", "between two segments"),
+    (_clump_both, "legs[0].segments[1].clump.volume", "not used with weight"),
+    (_clump_no_mass, "legs[0].segments[1].clump.mass", "needs mass"),
+    (_clump_negative_mass, "legs[0].segments[1].clump.mass", "must be >= 0"),
+    (_clump_extra_key, "legs[0].segments[1].type", "unknown key"),
     (_set(LEG + ("segments",), []), "legs[0].segments", "no segments"),
     (_set(LEG + ("segments",), {"type": "chain81"}), "legs[0].segments", "not a list"),
     (_inextensible_short, "legs[0].segments", "cannot reach"),

@@ -231,7 +231,8 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
                    else _damaged(checks.min_grounded_length_damaged,
                                  checks.min_grounded_length))
         lt = leg.line_type
-        on_seabed = leg.anchor[2] <= -case.environment.depth + 1e-9 and lt.weight_in_water > 0
+        bed = case.environment.seabed_z(leg.anchor[0], leg.anchor[1])   # sloped seabed
+        on_seabed = leg.anchor[2] <= bed + 1e-9 and lt.weight_in_water > 0
         if minimum is not None and on_seabed:
             g = lr.grounded_length_m
             items.append(CheckItem(

@@ -17,14 +17,17 @@ Schema (SI units, ``[...]`` lists)::
       water_density: > 0 [kg/m^3]              default 1025
       air_density: > 0 [kg/m^3]                default 1.225
       gravity: > 0 [m/s^2]                     default 9.80665
-      seabed: {friction: >= 0}                 default 0
-      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise
+      seabed: {friction: >= 0,                 default 0
+               gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
+      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise, plus an optional
+                                               profile: [[z <= 0, speed], ...] z ascending
       waves: {hs: >= 0 [m], toward_deg}        optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
-             sealed: bool}
+             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
+                                               drag needs a diameter
       NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
-             weight_in_water, ea, mbl (override the catalogue), sealed}
+             weight_in_water, ea, mbl (override the catalogue), sealed, drag}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
@@ -32,8 +35,13 @@ Schema (SI units, ``[...]`` lists)::
               wave_drift: {model: hu_tang | coefficient, ...}}
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
-         segments: [{type: NAME, length: > 0}], anchor_type: ANCHOR (optional)}
-    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0}
+         segments: [{type: NAME, length: > 0}, {clump: CLUMP}, {type: NAME, length}, ...],
+         anchor_type: ANCHOR (optional)}
+                                               from the anchor up; a clump item sits between
+                                               two segments; CLUMP is {mass: kg >= 0,
+                                               volume: m^3 >= 0} or {weight: N} (< 0: buoy)
+    solver: {tol: (0, 1), max_iter: int >= 1, max_time_s: > 0,
+             line_elements: int 2..400 (default 20)}
     checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
              offset_limit, offset_limit_damaged, min_grounded_length,
              min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
@@ -64,6 +72,7 @@ from ..model import (
     AnchorType,
     Body,
     BodyLoads,
+    Clump,
     Case,
     Checks,
     DragLoad,
@@ -74,6 +83,7 @@ from ..model import (
     HuTangDrift,
     HuTangWind,
     Leg,
+    LineDrag,
     LineType,
     Seabed,
     Segment,
@@ -86,10 +96,15 @@ __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
 
 #: Highest fairlead allowed [m above still water]; catches a unit slip (mm for m) early.
 FAIRLEAD_Z_MAX = 1000.0
+#: Steepest seabed accepted (rise per metre): 45 deg. A chain does not rest on a steeper one.
+MAX_GRADIENT = 1.0
 #: The deepest ocean is under 11 km; a larger depth is a unit mistake.
 MAX_DEPTH = 12_000.0
 #: Longer than any mooring line ever laid: a unit mistake.
 MAX_LINE_LENGTH = 100_000.0
+
+#: Most elements of a discretised leg: beyond it the build time, not the accuracy, grows.
+MAX_LINE_ELEMENTS = 400
 
 #: Largest ``solver.max_iter``: IPOPT takes it as a C int.
 MAX_ITER_LIMIT = 2**31 - 1
@@ -195,11 +210,33 @@ def _centre(m: dict, path: str) -> tuple:
 # ---- environment ------------------------------------------------------------------------
 
 
-def _flow(raw, path: str) -> Flow:
-    m = _mapping(raw, path, required=("speed",), optional=("toward_deg",))
+def _flow(raw, path: str, profile: bool = False) -> Flow:
+    m = _mapping(raw, path, required=("speed",),
+                 optional=("toward_deg", "profile") if profile else ("toward_deg",))
     speed = _quantity(m["speed"], _join(path, "speed"), "speed", ge=0)
     toward = _field(m, path, "toward_deg", "angle", 0.0)
-    return Flow(speed=speed, toward_deg=toward)
+    rows = None
+    if m.get("profile") is not None:
+        ppath = _join(path, "profile")
+        items = _sequence(m["profile"], ppath, "a list of rows [z, speed] (z <= 0, ascending)")
+        if not items:
+            raise CaseError(ppath, "no rows; a current profile needs at least one [z, speed]")
+        rows = []
+        for i, item in enumerate(items):
+            rpath = _join(ppath, i)
+            row = _sequence(item, rpath, "a row [z, speed]")
+            if len(row) != 2:
+                raise CaseError(rpath, f"{show_value(item)} has {len(row)} values; a row is "
+                                       "[z, speed]")
+            z = _quantity(row[0], _join(rpath, 0), "length", le=0)
+            v = _quantity(row[1], _join(rpath, 1), "speed", ge=0)
+            if rows and not z > rows[-1][0]:
+                raise CaseError(_join(rpath, 0), f"z = {format_si(z, 'length')} must be above "
+                                                 "the previous row's (z ascending, from the "
+                                                 "seabed up to the surface)")
+            rows.append((z, v))
+        rows = tuple(rows)
+    return Flow(speed=speed, toward_deg=toward, profile=rows)
 
 
 def _waves(raw, path: str) -> Waves:
@@ -221,10 +258,24 @@ def _environment(raw, path: str) -> Environment:
     seabed = Seabed()
     if "seabed" in m:
         sub = _join(path, "seabed")
-        s = _mapping(m["seabed"], sub, optional=("friction",))
-        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0))
+        s = _mapping(m["seabed"], sub, optional=("friction", "gradient"))
+        gradient = (0.0, 0.0)
+        if "gradient" in s:
+            gpath = _join(sub, "gradient")
+            items = _sequence(s["gradient"], gpath, "[dz/dx, dz/dy]")
+            if len(items) != 2:
+                raise CaseError(gpath, f"{show_value(s['gradient'])} has {len(items)} values; "
+                                       "it must be [dz/dx, dz/dy]")
+            gradient = tuple(_quantity(v, _join(gpath, i), "dimensionless", ge=-MAX_GRADIENT,
+                                       le=MAX_GRADIENT) for i, v in enumerate(items))
+            if math.hypot(*gradient) > MAX_GRADIENT:
+                raise CaseError(gpath, f"slope {math.hypot(*gradient):.4g} must be <= "
+                                       f"{MAX_GRADIENT} (45 deg)")
+        seabed = Seabed(friction=_field(s, sub, "friction", "dimensionless", 0.0, ge=0),
+                        gradient=gradient)
     wind = None if m.get("wind") is None else _flow(m["wind"], _join(path, "wind"))
-    current = None if m.get("current") is None else _flow(m["current"], _join(path, "current"))
+    current = (None if m.get("current") is None
+               else _flow(m["current"], _join(path, "current"), profile=True))
     waves = None if m.get("waves") is None else _waves(m["waves"], _join(path, "waves"))
     return Environment(depth=depth, water_density=water_density, air_density=air_density,
                        gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves)
@@ -233,12 +284,30 @@ def _environment(raw, path: str) -> Environment:
 # ---- line types -------------------------------------------------------------------------
 
 
+def _line_drag(raw, path: str) -> LineDrag:
+    m = _mapping(raw, path, required=("normal",), optional=("tangential", "side"))
+    normal = _quantity(m["normal"], _join(path, "normal"), "dimensionless", ge=0, le=10)
+    tangential = _field(m, path, "tangential", "dimensionless", 0.0, ge=0, le=10)
+    side = _field(m, path, "side", "dimensionless", 0.0, ge=-10, le=10)
+    return LineDrag(normal=normal, tangential=tangential, side=side)
+
+
+def _line_type_drag(m: dict, path: str, diameter):
+    """The optional ``drag`` of a line type; it needs the diameter."""
+    drag = None if m.get("drag") is None else _line_drag(m["drag"], _join(path, "drag"))
+    if drag is not None and diameter is None:
+        raise CaseError(_join(path, "diameter"),
+                        "a line type with drag needs a diameter (the flow force scales with "
+                        "it); give diameter > 0 [m]")
+    return drag
+
+
 def _line_type(name: str, raw, path: str, gravity: float,
                water_density: float = SEAWATER_DENSITY) -> LineType:
     if isinstance(raw, Mapping) and "catalog" in raw:
         return _catalog_line_type(name, raw, path, gravity, water_density)
     m = _mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed", "catalog"))
+                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag"))
     weight = weight_per_length_to_si(m["weight_in_water"], gravity,
                                      _join(path, "weight_in_water"))
     ea = _nullable(m, path, "ea", "force", gt=0)
@@ -246,7 +315,7 @@ def _line_type(name: str, raw, path: str, gravity: float,
     diameter = _nullable(m, path, "diameter", "length", gt=0)
     sealed = _sealed(m, path, diameter)
     return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
-                    sealed=sealed)
+                    sealed=sealed, drag=_line_type_drag(m, path, diameter))
 
 
 def _sealed(m: dict, path: str, diameter) -> bool:
@@ -271,7 +340,8 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
     for the catalogue MBL.
     """
     m = _mapping(raw, path, required=("catalog", "diameter"),
-                 optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed"))
+                 optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
+                           "drag"))
     known = line_catalog.entries()
     entry = m["catalog"]
     if not isinstance(entry, str) or entry not in known:
@@ -299,6 +369,7 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
                     ea=props.ea if ea is None else ea,
                     mbl=props.mbl if mbl is None else mbl,
                     diameter=diameter, sealed=_sealed(m, path, diameter), catalog=entry,
+                    drag=_line_type_drag(m, path, diameter),
                     corrosion_allowance=allowance, source=props.source)
 
 
@@ -490,6 +561,50 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
     return Segment(line_type=line_types[type_name], length=length)
 
 
+def _clump(raw, path: str, environment: Environment) -> Clump:
+    """``{mass: kg, volume: m^3}`` (net weight in water) or ``{weight: N}`` (negative: buoy)."""
+    m = _mapping(raw, path, optional=("mass", "volume", "weight"))
+    if "weight" in m:
+        for key in ("mass", "volume"):
+            if key in m:
+                raise CaseError(_join(path, key), f"{key} is not used with weight; give either "
+                                                  "weight [N] or mass [kg] and volume [m^3]")
+        weight = _quantity(m["weight"], _join(path, "weight"), "force")
+        return Clump(weight=weight)
+    if "mass" not in m:
+        raise CaseError(_join(path, "mass"), "a clump needs mass [kg] (and optionally volume "
+                                             "[m^3]) or a net weight [N]")
+    mass = _quantity(m["mass"], _join(path, "mass"), "mass", ge=0)
+    volume = _field(m, path, "volume", "volume", 0.0, ge=0)
+    weight = environment.gravity * (mass - environment.water_density * volume)
+    return Clump(weight=weight, mass=mass, volume=volume)
+
+
+def _segments(raw, path: str, environment: Environment, line_types: dict):
+    """Segments from anchor to fairlead, with optional ``{clump: ...}`` items between them."""
+    items = _sequence(raw, path, "a list of {type, length} segments from the anchor, with "
+                                 "optional {clump: {...}} items between them")
+    if not items:
+        raise CaseError(path, "no segments; a leg needs one segment {type, length}")
+    segments, clumps = [], []
+    for j, item in enumerate(items):
+        ipath = _join(path, j)
+        if isinstance(item, Mapping) and "clump" in item:
+            _mapping(item, ipath, required=("clump",))
+            if not segments or len(clumps) != len(segments) - 1:
+                raise CaseError(ipath, "a clump must sit between two segments (after a "
+                                       "segment, not first and not after another clump)")
+            clumps.append(_clump(item["clump"], _join(ipath, "clump"), environment))
+            continue
+        if segments and len(clumps) < len(segments):
+            clumps.append(None)
+        segments.append(_segment(item, ipath, line_types))
+    if len(clumps) == len(segments):
+        raise CaseError(_join(path, len(items) - 1),
+                        "a clump must sit between two segments; this one ends the leg")
+    return tuple(segments), tuple(clumps)
+
+
 def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
     m = _mapping(raw, path, required=("name", "anchor", "fairlead", "segments"),
                  optional=("anchor_type",))
@@ -498,15 +613,22 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
                    else _anchor_type(m["anchor_type"], _join(path, "anchor_type")))
     depth = environment.depth
     seabed_tol = 1e-9 * max(depth, 1.0)  # unit conversions may leave the seabed z a few ulp off
+    sloped = environment.seabed.sloped
+    allowed = "must be on or above the (sloped) seabed" if sloped else "must be >= -depth"
 
     fpath = _join(path, "fairlead")
     fairlead = _point(m["fairlead"], fpath, (3,))
     fz = fairlead[2]
-    if fz < -depth - seabed_tol:
+    bed = environment.seabed_z(fairlead[0], fairlead[1])
+    if bed >= 0:
+        raise CaseError(fpath, f"the sloped seabed is at z = {format_si(bed, 'length')} under "
+                               "this fairlead, not under water; reduce environment.seabed."
+                               "gradient or move the leg")
+    if fz < bed - seabed_tol:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is below "
-                                         f"the seabed (z = {format_si(-depth, 'length')}); it "
-                                         "must be >= -depth")
-    fz = max(fz, -depth)
+                                         f"the seabed (z = {format_si(bed, 'length')}); it "
+                                         f"{allowed}")
+    fz = max(fz, bed)
     fairlead = fairlead[:2] + (fz,)
     if fz > FAIRLEAD_Z_MAX:
         raise CaseError(_join(fpath, 2), f"fairlead z = {format_si(fz, 'length')} must be <= "
@@ -514,40 +636,43 @@ def _leg(raw, path: str, environment: Environment, line_types: dict) -> Leg:
 
     apath = _join(path, "anchor")
     anchor = _point(m["anchor"], apath, (2, 3))
+    bed = environment.seabed_z(anchor[0], anchor[1])
+    if bed >= 0:
+        raise CaseError(apath, f"the sloped seabed is at z = {format_si(bed, 'length')} at "
+                               "this anchor, not under water; reduce environment.seabed."
+                               "gradient or move the anchor")
     if len(anchor) == 2:
-        anchor = anchor + (-depth,)
+        anchor = anchor + (bed,)
     else:
         az = anchor[2]
-        if az < -depth - seabed_tol:
+        if az < bed - seabed_tol:
             raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is below the "
-                                             f"seabed (z = {format_si(-depth, 'length')}); it "
-                                             "must be >= -depth")
-        if az < -depth:
-            anchor = anchor[:2] + (-depth,)
+                                             f"seabed (z = {format_si(bed, 'length')}); it "
+                                             f"{allowed}")
+        if az < bed:
+            anchor = anchor[:2] + (bed,)
         if anchor[2] > fz:
             raise CaseError(_join(apath, 2), f"anchor z = {format_si(az, 'length')} is above "
                                              f"the fairlead (z = {format_si(fz, 'length')}); the "
                                              "anchor must not be higher than its fairlead")
 
     spath = _join(path, "segments")
-    items = _sequence(m["segments"], spath, "a list of {type, length}")
-    if not items:
-        raise CaseError(spath, "no segments; a leg needs one segment {type, length}")
-    segments = tuple(_segment(s, _join(spath, j), line_types) for j, s in enumerate(items))
-    if len(segments) > 1:
-        raise CaseError(spath, f"{len(segments)} segments: multi-segment legs are not supported "
-                               "yet (issue: lines beyond one catenary); give one segment")
-
-    segment = segments[0]
-    if segment.line_type.ea is None:
+    segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    if sloped and len(segments) > 1:
+        raise CaseError(spath, f"{len(segments)} segments on a sloped seabed: multi-segment legs "
+                               "need a flat seabed (environment.seabed.gradient [0, 0]); a "
+                               "sloped seabed takes one-segment legs")
+    if all(seg.line_type.ea is None for seg in segments):
         # Body at zero offset: the body-frame fairlead is its global position.
         distance = math.dist(anchor, fairlead)
-        if distance > segment.length:
-            raise CaseError(spath, f"the line ({format_si(segment.length, 'length')}) cannot "
+        length = sum(seg.length for seg in segments)
+        if distance > length:
+            raise CaseError(spath, f"the line ({format_si(length, 'length')}) cannot "
                                    f"reach from anchor to fairlead (distance "
                                    f"{format_si(distance, 'length')}); an inextensible line "
                                    "must be at least that long")
     return Leg(name=name, anchor=anchor, fairlead=fairlead, segments=segments,
+               clumps=clumps if any(c is not None for c in clumps) else (),
                anchor_type=anchor_type)
 
 
@@ -636,7 +761,7 @@ def _checks(raw, path: str, legs: tuple) -> Checks:
 
 
 def _solver(raw, path: str) -> SolverOptions:
-    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s"))
+    m = _mapping(raw, path, optional=("tol", "max_iter", "max_time_s", "line_elements"))
     defaults = SolverOptions()
     tol = _field(m, path, "tol", "dimensionless", defaults.tol, gt=0, lt=1)
     max_iter = defaults.max_iter
@@ -650,7 +775,17 @@ def _solver(raw, path: str) -> SolverOptions:
         if not 1 <= max_iter <= MAX_ITER_LIMIT:
             raise CaseError(ipath, f"{max_iter} must be an integer from 1 to {MAX_ITER_LIMIT}")
     max_time = _field(m, path, "max_time_s", "time", defaults.max_time_s, gt=0)
-    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time)
+    elements = defaults.line_elements
+    if "line_elements" in m:
+        raw_n = m["line_elements"]
+        epath = _join(path, "line_elements")
+        if isinstance(raw_n, bool) or not isinstance(raw_n, numbers.Integral) \
+                or not 2 <= raw_n <= MAX_LINE_ELEMENTS:
+            raise CaseError(epath, f"{show_value(raw_n)} must be an integer from 2 to "
+                                   f"{MAX_LINE_ELEMENTS}")
+        elements = int(raw_n)
+    return SolverOptions(tol=tol, max_iter=max_iter, max_time_s=max_time,
+                         line_elements=elements)
 
 
 # ---- the case ---------------------------------------------------------------------------
@@ -770,8 +905,8 @@ def load_case(source, *, keep_source: bool = True) -> Case:
     Checks beyond the schema: anchors lie on or above the seabed and below their fairlead;
     fairleads lie above the seabed and at most :data:`FAIRLEAD_Z_MAX` above still water; an
     inextensible line is at least as long as the straight distance from its anchor to its
-    fairlead at the case-file position (body at zero offset); leg names are unique; each leg
-    has exactly one segment (the core model's limit).
+    fairlead at the case-file position (body at zero offset); leg names are unique; clump
+    items sit between two segments.
 
     Examples
     --------

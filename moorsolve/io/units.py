@@ -31,6 +31,8 @@ UREG = pint.UnitRegistry()
 KINDS = {
     "length": ("m", "m", "a length"),
     "area": ("m**2", "m^2", "an area"),
+    "volume": ("m**3", "m^3", "a volume"),
+    "mass": ("kg", "kg", "a mass"),
     "force": ("N", "N", "a force"),
     "moment": ("N*m", "N m", "a moment (force x length)"),
     "force_per_length": ("N/m", "N/m", "a force per length"),
@@ -47,6 +49,8 @@ KINDS = {
 _EXAMPLES = {
     "length": "'81 mm'",
     "area": "'120 m^2'",
+    "volume": "'1.5 m^3'",
+    "mass": "'8 t'",
     "force": "'372 kN'",
     "moment": "'50 kN*m'",
     "force_per_length": "'1.27 kN/m' or '0.13 t/m'",

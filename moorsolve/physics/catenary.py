@@ -48,12 +48,15 @@ class LegKind:
         Seabed friction acts on the grounded length (needs ``contact``).
     neutral : bool
         Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
+    sloped : bool
+        The anchor rests on a sloped seabed (:func:`sloped_leg_equations`; needs ``contact``).
     """
 
     elastic: bool
     contact: bool
     friction: bool = False
     neutral: bool = False
+    sloped: bool = False
 
     @property
     def tag(self) -> str:
@@ -64,6 +67,8 @@ class LegKind:
             parts.append("contact")
             if self.friction:
                 parts.append("friction")
+            if self.sloped:
+                parts.append("sloped")
         else:
             parts.append("suspended")
         return "_".join(parts)
@@ -351,3 +356,336 @@ def _grounded_stretch(H, w, mu, LB, sg, c):
     a = np.clip(sg, s0, None)
     integral = np.where(sg > s0, (H - mu * w * LB) * (a - s0) + mu * w * (a**2 - s0**2) / 2, 0.0)
     return integral * c
+
+
+# ---- segments of a multi-segment leg ----------------------------------------------------
+#
+# In a leg of several segments every joint is a free node. The horizontal tension is the same
+# in every segment (joints carry only vertical loads: a clump, a buoy, the seabed's reaction),
+# so one signed variable ``u`` serves the whole leg and each segment adds its top vertical
+# tension ``V``. A segment whose lower end is the anchor on the seabed is the leg block above;
+# the others use the blocks below.
+
+#: Square of a vertical force [N^2] under which the descent force is taken through its
+#: linear form, so that derivatives stay finite at a lower end resting on the seabed.
+_T_FLOOR = 1e-24
+
+LIFTED_INPUTS = ("X", "Z", "h", "u", "V", "L", "w", "ea_inv", "mu")
+SEGMENT_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x", "descent_x")
+
+
+def descent_force(H, h, w, ea_inv):
+    """Vertical force at a lifted end whose line runs down to touch a flat seabed.
+
+    A line that leaves its lower end (``h`` above the seabed) downward reaches the seabed
+    tangentially where its vertical tension is zero; over the descent the vertical tension
+    rises linearly by ``w`` per metre from ``V1`` (negative) to 0. With Hooke stretch the drop
+    is ``h = (sqrt(H^2 + V1^2) - H)/w + V1^2/(2 w EA)``, a quadratic in ``V1^2``; its root
+    (written without cancellation) is returned as ``V1 = -sqrt(t)`` [N].
+
+    Notes
+    -----
+    With ``d = w h (w h + 2 H)``, ``a = w h + H`` and ``c = 1/EA``:
+    ``t = 2 d / (1 + a c + sqrt(1 + 2 a c + c^2 H^2))``, which is ``d`` when ``c = 0``
+    (Merkin 1980, seed 004, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
+    """
+    d = w * h * (w * h + 2 * H)
+    a = w * h + H
+    c = ea_inv
+    t = 2 * d / (1 + a * c + ca.sqrt(1 + 2 * a * c + c**2 * H**2))
+    return -t / ca.sqrt(ca.fmax(t, _T_FLOOR))
+
+
+def _hyp(a, b):
+    """``sqrt(a^2 + b^2)`` floored by 1e-9 N so that its derivative exists at (0, 0)."""
+    return ca.sqrt(a**2 + b**2 + _H_FLOOR**2)
+
+
+def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
+                             friction: bool = False):
+    """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
+
+    The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
+    that need not rest on the seabed: a joint lifted by a buoy, an anchor on a pile. Three
+    regimes, chosen in the graph:
+
+    - suspended (``V_A >= V1(h)``): one catenary, which may dip below its lower end without
+      reaching the seabed (the S between a buoy and a fairlead);
+    - two-sided touchdown (``V_A < V1``): the line runs down from the lower end to the seabed
+      (vertical force ``V1`` from :func:`descent_force`), lies on it for ``L_B`` and rises to the
+      upper end (the U under a buoyed joint, or a line between two points on the seabed);
+    - slack (``u < 0``): as in the leg block, ``-u / w`` of loose line lies on the seabed.
+
+    With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
+    1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
+    ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
+    decays toward the lower end as in :func:`leg_equations`.
+
+    Returns
+    -------
+    dict
+        ``SEGMENT_OUTPUTS``: span residuals ``rX``, ``rZ`` [m]; ``H``; ``VF`` the top vertical
+        tension; ``HA`` and ``VA`` the horizontal and (signed, upward positive) vertical pull
+        on the lower end [N]; ``grounded`` [m]; ``suspended_x`` horizontal extent of the part
+        rising to the upper end [m]; ``descent_x`` horizontal extent of the descent [m].
+    """
+    H = ca.fmax(u, 0)
+    Hg = ca.fmax(H, _H_FLOOR)
+    c = ea_inv if elastic else 0
+    VA = V - w * L
+    V1 = descent_force(H, h, w, c)
+    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
+    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
+    s1 = -V1 / w
+    x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
+    LB = L - s1 - V / w
+    x_rise = (H / w) * ca.asinh(V / Hg) + H * (V / w) * c
+    Xt = x1 + LB * (1 + H * c) + x_rise
+    Zt = -h + ca.sign(V) * (_hyp(H, V) - _hyp(H, 0)) / w + c * V * ca.fabs(V) / (2 * w)
+    HA_t = H
+    if friction:
+        excess = LB - H / (mu * w)
+        if elastic:
+            Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
+        HA_t = ca.fmax(H - mu * w * LB, 0)
+    loose = ca.fmax(-u, 0) / w
+    suspended = VA >= V1
+    return dict(
+        rX=ca.if_else(suspended, Xs, Xt) - X - loose,
+        rZ=ca.if_else(suspended, Zs, Zt) - Z,
+        H=H, VF=V, HA=ca.if_else(suspended, H, HA_t),
+        VA=ca.if_else(suspended, VA, V1),
+        grounded=ca.if_else(suspended, 0, LB),
+        suspended_x=ca.if_else(suspended, Xs, x_rise),
+        descent_x=ca.if_else(suspended, 0, x1),
+    )
+
+
+def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
+    """A weightless segment inside a multi-segment leg: straight, ``H = max(u, 0)``.
+
+    Its tension ``T = sqrt(H^2 + V^2)`` is the same at both ends and its direction is the
+    chord's: ``X = H L (1/T + 1/EA)``, ``Z = V L (1/T + 1/EA)``. With ``H = 0`` it hangs
+    vertical under the joint loads. (A weightless segment with no tension at all has no
+    definite shape; the model does not represent it.)
+    """
+    H = ca.fmax(u, 0)
+    T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
+    k = L * (1 / T + (ea_inv if elastic else 0))
+    return dict(rX=H * k - X, rZ=V * k - Z, H=H, VF=V, HA=H, VA=V, grounded=0 * H,
+                suspended_x=X, descent_x=0 * H)
+
+
+@lru_cache(maxsize=None)
+def lifted_segment_function(elastic: bool, friction: bool = False) -> ca.Function:
+    """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
+    args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
+    out = lifted_segment_equations(elastic, *args, friction=friction)
+    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+    return ca.Function(f"segment_lifted_{tag}", args,
+                       [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
+                       list(SEGMENT_OUTPUTS))
+
+
+@lru_cache(maxsize=None)
+def straight_segment_function(elastic: bool) -> ca.Function:
+    """:func:`straight_segment_equations` as a ``casadi.Function``."""
+    names = ("X", "Z", "u", "V", "L", "ea_inv")
+    args = [ca.SX.sym(n) for n in names]
+    out = straight_segment_equations(elastic, *args)
+    return ca.Function(f"segment_straight_{'elastic' if elastic else 'inextensible'}", args,
+                       [out[k] for k in SEGMENT_OUTPUTS], list(names), list(SEGMENT_OUTPUTS))
+
+
+def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None, h: float,
+                    X: float, Z: float, n: int = 51) -> dict:
+    """Points and tension along one segment from its lower end, in the leg's plane.
+
+    Covers every regime of :func:`lifted_segment_equations` (``h`` may be 0) and of a
+    suspended or weightless segment (``w <= 0``); see :func:`leg_profile` for the output.
+    The vertical tension is ``T_v(s) = V_A + w s`` on a suspended segment; on a two-sided
+    touchdown it runs from ``V1`` to 0 on the descent, is 0 on the seabed and rises from 0.
+    """
+    c = 1.0 / ea if ea else 0.0
+    s = np.linspace(0.0, L, n)
+    if w == 0:
+        frac = s / L
+        return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
+    VA = V - w * L
+    V1 = float(descent_force(H, h, w, c)) if w > 0 else -np.inf
+    if VA >= V1:
+        Tv = VA + w * s
+        if H > 0:
+            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
+            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+        else:
+            x = np.zeros_like(s)
+            z = (np.abs(Tv) * np.sign(Tv) - abs(VA) * np.sign(VA)) / w \
+                + (VA * s + w * s**2 / 2) * c
+        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+    s1 = -V1 / w
+    LB = L - s1 - V / w
+    s2 = s1 + LB
+    Tv = np.where(s < s1, V1 + w * s, np.where(s <= s2, 0.0, w * (s - s2)))
+    if H > 0:
+        x_desc = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(V1 / H)) + H * s * c
+        x1 = (H / w) * np.arcsinh(-V1 / H) + H * s1 * c
+        x_ground = x1 + (s - s1) * (1 + H * c)
+        x2 = x1 + LB * (1 + H * c)
+        x_rise = x2 + (H / w) * np.arcsinh(Tv / H) + H * (s - s2) * c
+    else:
+        x_desc = np.zeros_like(s)
+        x_ground = np.minimum(s - s1, X)
+        x_rise = np.full_like(s, X)
+    z_desc = (np.hypot(H, Tv) - np.hypot(H, V1)) / w + (V1 * s + w * s**2 / 2) * c
+    z_rise = -h + (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
+    x = np.where(s < s1, x_desc, np.where(s <= s2, x_ground, x_rise))
+    z = np.where(s < s1, z_desc, np.where(s <= s2, -h, z_rise))
+    return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+
+
+# ---- a leg on a sloped seabed -------------------------------------------------------------
+
+SLOPED_INPUTS = LEG_INPUTS + ("t",)
+
+
+def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv, mu, t):
+    """A sinking leg whose anchor is on a seabed of slope ``t = tan(theta)`` in its plane.
+
+    ``t`` is the seabed's rise per metre along the leg's horizontal direction (anchor toward
+    fairlead), so the seabed in the leg's vertical plane is ``z = t x`` from the anchor.
+    Regimes, chosen in the graph:
+
+    - suspended (``V_A >= H t``): the line leaves the anchor at least as steeply as the
+      seabed; the ordinary elastic catenary;
+    - touchdown (``V_A < H t``): ``L_B = L - (V - H t)/w`` lies on the slope; the line
+      leaves it tangentially, where the vertical tension is ``H t`` and the tension
+      ``H sqrt(1 + t^2)``;
+    - slack (``u < 0``): ``H = 0``; the line hangs vertically from the fairlead onto the
+      slope and ``-u/w`` of it lies loose on the slope.
+
+    On the slope the tension falls from the touchdown toward the anchor by
+    ``k = w (sin(theta) + mu cos(theta))`` per metre (the weight's component along the slope,
+    and fully mobilised friction), down to zero at most: ``T_A = max(H sqrt(1+t^2) - k L_B,
+    0)``; with ``theta < 0`` (seabed falling toward the fairlead) and little friction the
+    tension grows toward the anchor instead. The anchor force is ``T_A`` along the slope.
+
+    Notes
+    -----
+    Suspended part from the touchdown (Merkin 1980, seed 004, sections 2.1, 2.3, integrated
+    from the vertical tension ``H t`` instead of 0)::
+
+        X_s = (H/w)[asinh(V/H) - asinh(t)] + H L_s/EA,   L_s = (V - H t)/w
+        Z_s = [sqrt(H^2+V^2) - H sqrt(1+t^2)]/w + (V^2 - H^2 t^2)/(2 w EA)
+
+    The grounded part adds ``(L_B + stretch)(cos, sin)(theta)`` with the stretch
+    ``int T/EA ds`` over the slope. With ``t = 0`` this is :func:`leg_equations`.
+    The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
+    the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
+    """
+    H = ca.fmax(u, 0)
+    Hg = ca.fmax(H, _H_FLOOR)
+    c = ea_inv if elastic else 0
+    sec = ca.sqrt(1 + t**2)
+    cos_t, sin_t = 1 / sec, t / sec
+    VA = V - w * L
+    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
+    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
+
+    Vtd = H * t
+    loose = ca.fmax(-u, 0) / w
+    LB = L - (V - Vtd) / w
+    Ls = L - LB
+    x_susp = (H / w) * (ca.asinh(V / Hg) - ca.asinh(t)) + H * Ls * c
+    # Rise of the suspended part; below V = Vtd (a negative suspended length, outside the
+    # regime) a monotone continuation, so that no false root appears there (for H = 0 it
+    # is the sgn(V) form of the leg block).
+    z_susp = ca.if_else(V >= Vtd,
+                        (_hyp(H, V) - _hyp(H, Vtd)) / w + c * (V**2 - Vtd**2) / (2 * w),
+                        (V - Vtd) / w + c * (V * ca.fabs(V) - Vtd * ca.fabs(Vtd)) / (2 * w))
+    k = w * (sin_t + (mu * cos_t if friction else 0))
+    T_td = H * sec
+    TA_raw = T_td - k * LB
+    if elastic:
+        # Stretch of the grounded part: the tension is max(TA_raw + k s, 0) along it.
+        k_pos = ca.fmax(k, 1e-300)
+        s0 = ca.if_else(k > 0, ca.fmin(ca.fmax(-TA_raw / k_pos, 0), LB), 0)
+        ground_stretch = c * (TA_raw * (LB - s0) + k * (LB**2 - s0**2) / 2)
+    else:
+        ground_stretch = 0
+    on_ground = LB - loose + ground_stretch
+    Xt = on_ground * cos_t + x_susp
+    Zt = on_ground * sin_t + z_susp
+    TA = ca.fmax(TA_raw, 0)
+    suspended = VA >= Vtd
+    return dict(
+        rX=ca.if_else(suspended, Xs, Xt) - X,
+        rZ=ca.if_else(suspended, Zs, Zt) - Z,
+        H=H, VF=V,
+        HA=ca.if_else(suspended, H, TA * cos_t),
+        VA=ca.if_else(suspended, VA, TA * sin_t),
+        grounded=ca.if_else(suspended, 0, LB),
+        suspended_x=ca.if_else(suspended, Xs, x_susp),
+    )
+
+
+@lru_cache(maxsize=None)
+def sloped_leg_function(elastic: bool, friction: bool) -> ca.Function:
+    """:func:`sloped_leg_equations` as a ``casadi.Function`` (inputs ``SLOPED_INPUTS``)."""
+    args = [ca.SX.sym(n) for n in SLOPED_INPUTS]
+    out = sloped_leg_equations(elastic, friction, *args)
+    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+    return ca.Function(f"leg_sloped_{tag}", args, [out[k] for k in LEG_OUTPUTS],
+                       list(SLOPED_INPUTS), list(LEG_OUTPUTS))
+
+
+def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
+                       mu: float, t: float, X: float, Z: float, n: int = 101) -> dict:
+    """Points and tension along a solved leg on a sloped seabed (see :func:`leg_profile`)."""
+    c = 1.0 / ea if ea else 0.0
+    s = np.linspace(0.0, L, n)
+    sec = np.sqrt(1 + t * t)
+    cos_t, sin_t = 1 / sec, t / sec
+    VA = V - w * L
+    if VA >= H * t:
+        Tv = VA + w * s
+        if H > 0:
+            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
+            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+        else:
+            x = np.zeros_like(s)
+            z = s + w * s**2 / 2 * c
+        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+    LB = L - (V - H * t) / w
+    k = w * (sin_t + mu * cos_t)
+    TA_raw = H * sec - k * LB
+    sg = np.minimum(s, LB)
+    Tg = np.maximum(TA_raw + k * sg, 0.0)
+    if c:
+        # Cumulative stretch along the slope, by the trapezoid rule on a fine grid.
+        fine = np.linspace(0.0, LB, 2001)
+        Tf = np.maximum(TA_raw + k * fine, 0.0)
+        cum = np.concatenate([[0.0], np.cumsum((Tf[1:] + Tf[:-1]) / 2 * np.diff(fine))]) * c
+        stretch = np.interp(sg, fine, cum)
+        stretch_td = cum[-1]
+    else:
+        stretch = np.zeros_like(s)
+        stretch_td = 0.0
+    if H > 0:
+        Tv = H * t + w * (s - LB)
+        xs = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(t)) + H * (s - LB) * c
+        zs = (np.hypot(H, Tv) - H * sec) / w + (Tv**2 - (H * t) ** 2) / (2 * w) * c
+        ground = s <= LB
+        x = np.where(ground, (sg + stretch) * cos_t, (LB + stretch_td) * cos_t + xs)
+        z = np.where(ground, (sg + stretch) * sin_t, (LB + stretch_td) * sin_t + zs)
+        tension = np.where(ground, Tg, np.hypot(H, Tv))
+    else:
+        # Slack: loose on the slope up to below the fairlead, then hanging straight.
+        foot = X / cos_t
+        ground = s <= LB
+        along = np.minimum(sg, foot)
+        hang = np.maximum(s - LB, 0.0)
+        x = np.where(ground, along * cos_t, X)
+        z = np.where(ground, along * sin_t, X * t + hang + w * hang**2 / 2 * c)
+        tension = np.where(ground, 0.0, w * hang)
+    return dict(s=s, x=x, z=z, tension=tension)

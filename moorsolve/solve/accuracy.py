@@ -6,9 +6,10 @@ full model the case declares):
 * solver tolerance, from 1e-4 to 1e-12, for each solver (IPOPT and the Newton fast
   path): median solve time over repeats, iterations, and the error in body offset and
   in the worst line tension;
-* model fidelity: the same case with inextensible lines (when it has elastic ones) and
-  without seabed friction (when it has friction), solved at the reference tolerance: the
-  error of the simpler model and what it saves in time.
+* model fidelity: the same case with inextensible lines (when it has elastic ones),
+  without seabed friction (when it has friction), and, when lines feel a current, with a
+  quarter, half and twice the line elements and with analytic legs free of line drag,
+  solved at the reference tolerance: the error of the other model and its time.
 
 Times are the solver's own (``Certificate.solve_time_s``: building the problem, the
 closed-form start and the result tables excluded), median over ``repeats`` solves from
@@ -82,6 +83,23 @@ def _fidelity_variants(case: Case):
         env = dataclasses.replace(case.environment, seabed=dataclasses.replace(
             case.environment.seabed, friction=0.0))
         yield "frictionless seabed", dataclasses.replace(case, environment=env)
+    if case.environment.current is not None and any(
+            lt.drag is not None for lt in case.line_types.values()):
+        # Lines in a current (issue 4): other element counts, and the analytic legs
+        # without the flow force on the lines.
+        declared = case.solver.line_elements
+        for n in sorted({max(2, declared // 4), max(2, declared // 2), 2 * declared}):
+            if n != declared:
+                yield f"{n} line elements", dataclasses.replace(
+                    case, solver=dataclasses.replace(case.solver, line_elements=n))
+        types = {name: dataclasses.replace(lt, drag=None)
+                 for name, lt in case.line_types.items()}
+        legs = tuple(dataclasses.replace(
+            leg, segments=tuple(dataclasses.replace(
+                seg, line_type=dataclasses.replace(seg.line_type, drag=None))
+                for seg in leg.segments)) for leg in case.legs)
+        yield "analytic legs, no line drag", dataclasses.replace(case, line_types=types,
+                                                                 legs=legs)
 
 
 def _measure(case, reference, ladder, setting, solver, tol, repeats) -> Rung:

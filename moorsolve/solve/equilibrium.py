@@ -17,6 +17,7 @@ found by :func:`_diagnose` and the best residual reached.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -26,11 +27,13 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from ..physics.catenary import initial_state, leg_profile
+from ..physics.catenary import (LegKind, initial_state, leg_profile, segment_profile,
+                                sloped_leg_profile)
 from ..physics.wall_tension import wall_tension
-from .problem import (ENV_PARAMS, LEG_PARAMS, EquilibriumProblem, environment_parameters, leg_kind,
-                      leg_parameters, structure_key)
 from .newton import STATUS_TEXT
+from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
+                      EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
+                      leg_parameters, parameter_vector, segment_parameters, structure_key)
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -63,8 +66,12 @@ def get_problem(case: Case) -> EquilibriumProblem:
 
 def _scales(case: Case) -> tuple[float, float]:
     """Typical tension [N] and length [m] of the scene, for scaling the unknowns."""
-    tensions = [abs(leg.line_type.weight_in_water) * leg.length for leg in case.legs]
+    tensions = [sum(abs(seg.line_type.weight_in_water) * seg.length for seg in leg.segments)
+                + sum(abs(c.weight) for c in leg.joint_clumps if c is not None)
+                for leg in case.legs]
     tensions += [math.hypot(max(u, 0.0), V) for u, V in _rest_leg_states(case)]
+    tensions += [_line_load(case, leg)[0] * leg.length for leg in case.legs
+                 if discretised(case, leg)]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
 
@@ -76,25 +83,95 @@ def _rest_leg_states(case: Case):
         fx, fy, fz = leg.fairlead
         X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
         Z = fz - leg.anchor[2]
+        if leg.multi_segment or discretised(case, leg):
+            kind, w = _equivalent_line(case, leg)
+            states.append(initial_state(kind, X, Z, leg.length, w, None))
+            continue
         lt = leg.line_type
         states.append(initial_state(leg_kind(case, leg), X, Z, leg.length,
                                     lt.weight_in_water, lt.ea))
     return states
 
 
+def _equivalent_line(case: Case, leg) -> tuple:
+    """A uniform inextensible line of the same length and total weight (clumps spread)."""
+    total = sum(seg.line_type.weight_in_water * seg.length for seg in leg.segments)
+    total += sum(c.weight for c in leg.joint_clumps if c is not None)
+    w = total / leg.length
+    bed = case.environment.seabed_z(leg.anchor[0], leg.anchor[1])
+    on_seabed = leg.anchor[2] <= bed + 1e-9 * max(case.environment.depth, 1.0)
+    return LegKind(elastic=False, contact=on_seabed and w > 0, neutral=(w == 0)), w
+
+
+def _multi_leg_start(case: Case, leg, kind: MultiLegKind, u: float, V: float,
+                     length_scale: float, force_scale: float) -> list:
+    """Closed-form start of a multi-segment leg from its equivalent uniform line.
+
+    The joints are put where the equivalent catenary has their arc length; the segments'
+    top vertical tensions follow from the fairlead's by subtracting the weights below it
+    (zero on the seabed); a joint on the seabed starts pressed onto it by its clump.
+    """
+    eq_kind, w_eq = _equivalent_line(case, leg)
+    fx, fy, fz = leg.fairlead
+    X = math.hypot(fx - leg.anchor[0], fy - leg.anchor[1])
+    Z = fz - leg.anchor[2]
+    if eq_kind.neutral:
+        prof = dict(s=np.linspace(0, leg.length, 51), x=np.linspace(0, X, 51),
+                    z=np.linspace(0, Z, 51))
+    else:
+        prof = leg_profile(eq_kind, H=max(u, 0.0), V=V, L=leg.length, w=w_eq, ea=None, mu=0.0,
+                           X=X, Z=Z, n=201)
+    z_bed = -case.environment.depth
+    arc = np.cumsum([seg.length for seg in leg.segments])[:-1]
+    xi = np.interp(arc, prof["s"], prof["x"])
+    z = leg.anchor[2] + np.interp(arc, prof["s"], prof["z"])
+    clumps = [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
+    grounded = z <= z_bed + 1e-6 * max(case.environment.depth, 1.0)
+    Vs = [0.0] * len(leg.segments)
+    Vs[-1] = V
+    for k in range(len(leg.segments) - 2, -1, -1):
+        above = leg.segments[k + 1]
+        Vs[k] = Vs[k + 1] - above.line_type.weight_in_water * above.length - clumps[k]
+    joints = []
+    for j in range(kind.n_joints):
+        if grounded[j] and _can_ground(kind.segments[j]):
+            sigma = -(max(clumps[j], 0.0) + 1e-6 * force_scale)
+        else:
+            sigma = Vs[j]
+        joints += [float(xi[j]), float(sigma)]
+    if kind.reversed_top:
+        top = leg.segments[-1]
+        V = top.line_type.weight_in_water * top.length - V
+    return [u, V] + joints
+
+
 def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
     """Scaled starting vector: body at rest, legs in their closed-form states.
 
     Remembered per problem and leg parameters: the closed-form states cost more than a
-    whole compiled Newton solve.
+    whole compiled Newton solve. (Multi-segment and discretised legs add their segment
+    parameters, and a discretised leg the current, to the key.)
     """
-    key = leg_parameters(case).tobytes()
+    key = np.concatenate([leg_parameters(case), segment_parameters(case)]).tobytes()
+    if any(isinstance(k, DiscreteLegKind) for k in problem.kinds):
+        key += repr(case.environment.current).encode()
     cache = problem.start_cache
     if key not in cache:
         x = np.zeros(problem.n_x)
         for i, (u, V) in enumerate(_rest_leg_states(case)):
-            x[problem.n_q + 2 * i] = u
-            x[problem.n_q + 2 * i + 1] = V
+            start = problem.leg_offsets[i]
+            kind = problem.kinds[i]
+            if isinstance(kind, MultiLegKind):
+                block = _multi_leg_start(case, case.legs[i], kind, u, V, problem.length_scale,
+                                         problem.force_scale)
+                x[start: start + len(block)] = block
+            elif isinstance(kind, DiscreteLegKind):
+                block = _discrete_leg_start(case, case.legs[i], kind, u, V,
+                                            problem.length_scale, problem.force_scale)
+                x[start: start + len(block)] = block
+            else:
+                x[start] = u
+                x[start + 1] = V
         if len(cache) >= 64:
             cache.pop(next(iter(cache)))
         cache[key] = x / problem.x_scale
@@ -139,8 +216,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     opts = case.solver
     tol = opts.tol if tol is None else tol
     problem = get_problem(case)
-    p_legs = leg_parameters(case)
-    p_full = np.concatenate([environment_parameters(case, 1.0), p_legs])
+    p_full = parameter_vector(case, 1.0)
     if start is not None and np.shape(start) != (problem.n_x,):
         start = None
     # Building (and compiling) belongs to the problem, not to this solve's time.
@@ -160,7 +236,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             notes.append(f"the Newton fast path did not certify ({stats['status']}); "
                          f"solved with IPOPT")
     if x is None:
-        x = _ipopt_strategy(problem, case, p_legs, p_full, tol, start, stats, t0)
+        x = _ipopt_strategy(problem, case, p_full, tol, start, stats, t0)
 
     elapsed = time.perf_counter() - t0
     certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
@@ -182,7 +258,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     return result
 
 
-def _ipopt_strategy(problem, case, p_legs, p_full, tol, start, stats, t0):
+def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     """IPOPT from the warm start, else straight to the load from the closed-form state,
     else from the solved rest state, else load stepping from rest; the best point."""
     opts = case.solver
@@ -215,7 +291,7 @@ def _ipopt_strategy(problem, case, p_legs, p_full, tol, start, stats, t0):
     if ok:
         return x
     if problem.n_q and problem.load_names:
-        p_rest = np.concatenate([environment_parameters(case, 0.0), p_legs])
+        p_rest = parameter_vector(case, 0.0)
         x_solved, rest_ok = run(x_rest, p_rest)
         if rest_ok:
             x_rest = x_solved
@@ -225,7 +301,7 @@ def _ipopt_strategy(problem, case, p_legs, p_full, tol, start, stats, t0):
     # Load stepping from rest: each step starts from the last certified state.
     x_step = x_rest
     for factor in _LOAD_STEPS:
-        p_step = np.concatenate([environment_parameters(case, factor), p_legs])
+        p_step = parameter_vector(case, factor)
         x_try, ok = run(x_step, p_step)
         if not ok:
             return x_try
@@ -318,19 +394,38 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
     env = case.environment
     legs = []
     n_par = len(LEG_PARAMS)
+    seg_table = np.atleast_2d(np.asarray(problem.segment_report(x, p)))
+    node_table = np.atleast_2d(np.asarray(problem.node_report(x, p)))
     for i, (leg, kind) in enumerate(zip(case.legs, problem.kinds)):
         row = np.atleast_2d(legs_out)[i]
+        if isinstance(kind, DiscreteLegKind):
+            nodes = np.array([r for r in node_table if int(r[0]) == i])
+            legs.append(_discrete_leg_result(case, leg, kind, row, nodes, p, i))
+            continue
+        if isinstance(kind, MultiLegKind):
+            rows = [dict(zip(SEGMENT_COLUMNS, (float(v) for v in r)))
+                    for r in seg_table if int(r[0]) == i]
+            legs.append(_multi_leg_result(problem, case, leg, kind, row, rows,
+                                          float(xp[problem.leg_offsets[i]]), p, i))
+            continue
         H, VF, HA, VA, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
         lt = leg.line_type
-        u = float(xp[problem.n_q + 2 * i])
+        u = float(xp[problem.leg_offsets[i]])
         start_i = len(ENV_PARAMS) + i * n_par
         anchor = tuple(float(v) for v in p[start_i: start_i + 3])
         fairlead = (gx, gy, leg.fairlead[2])
         ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
         td = max(X - susp_x, 0.0) if grounded > 0 else 0.0
-        prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
-                           mu=env.seabed.friction if kind.friction else 0.0, X=X, Z=Z,
-                           n=_PROFILE_POINTS)
+        slope = 0.0
+        if kind.sloped:
+            slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
+            prof = sloped_leg_profile(H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
+                                      mu=env.seabed.friction if kind.friction else 0.0,
+                                      t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
+        else:
+            prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water,
+                               ea=lt.ea, mu=env.seabed.friction if kind.friction else 0.0,
+                               X=X, Z=Z, n=_PROFILE_POINTS)
         profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
                    "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
         if lt.sealed and lt.diameter:
@@ -343,8 +438,10 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
         legs.append(LegResult(
             name=leg.name,
             fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+            # On a slope the anchor is pulled along it: the upward part is reported (0 when
+            # it pulls down-slope), the tension is the whole pull.
             fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
-            anchor_horizontal_N=HA, anchor_vertical_N=VA,
+            anchor_horizontal_N=HA, anchor_vertical_N=max(VA, 0.0) if kind.sloped else VA,
             grounded_length_m=grounded, touchdown_from_anchor_m=td,
             # Slack: no horizontal tension and line loose on the seabed (or, for a
             # weightless line, longer than its chord); a vertical taut leg is not slack.
@@ -352,9 +449,13 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
             uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
             fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
             anchor=anchor, fairlead=fairlead,
-            touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2])
-                             if grounded > 0 else None),
+            touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td,
+                              anchor[2] + slope * td) if grounded > 0 else None),
             mbl_N=lt.mbl, profile=profile))
+    table = np.atleast_2d(legs_out)
+    legs = [dataclasses.replace(lr, fairlead_force=(float(table[i][12]), float(table[i][13]),
+                                                    -lr.fairlead_vertical_N))
+            for i, lr in enumerate(legs)]
     body = None
     if case.body is not None:
         body = {"x_m": q["surge"], "y_m": q["sway"], "yaw_deg": math.degrees(q["yaw"])}
@@ -362,10 +463,254 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
     lv = np.asarray(load_vec).ravel()
     for k, name in enumerate(problem.load_names):
         loads[name] = [float(v) for v in lv[3 * k: 3 * k + 3]]
-    notes = list(notes) + [f"leg {lr.name}: the line passes below the seabed (contact not modelled "
-             f"for an anchor above the seabed or a buoyant line)"
-             for lr, kind in zip(legs, problem.kinds)
-             if not kind.contact and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+    notes = list(notes) + [
+        f"leg {lr.name}: the line passes below the seabed (contact not modelled "
+        f"for an anchor above the seabed or a buoyant line)"
+        for lr, kind in zip(legs, problem.kinds)
+        if not isinstance(kind, MultiLegKind) and not kind.contact
+        and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+    for lr, kind in zip(legs, problem.kinds):
+        if isinstance(kind, DiscreteLegKind) and np.any(lr.profile["tension_N"][1:-1] < 0):
+            notes.append(f"leg {lr.name}: some elements of the discretised line are in "
+                         "compression (a loose line; its lumped-node shape is not unique)")
+    for lr in legs:
+        for j, joint in enumerate(lr.joints):
+            if joint["position_m"][2] > 0:
+                notes.append(f"leg {lr.name}: joint {j + 1} is {joint['position_m'][2]:.2f} m "
+                             "above the still-water level (its buoyancy is taken as fully "
+                             "submerged; the buoy is too large for this leg)")
+            if joint["seabed_reaction_N"] > 0 and joint["height_above_seabed_m"] > 1e-6:
+                notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
+                             f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
+                             "(a segment hanging down into a joint is outside the model)")
+    # Clump weights are parameters: what they are depends on this case, not the structure.
+    effects = list(problem.effects)
+    clumps = [c.weight for leg in case.legs for c in leg.joint_clumps if c is not None]
+    effects += (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
+        ["buoy"] if any(w < 0 for w in clumps) else [])
     return Result(converged=certified, solver=solver, certificate=cert,
-                  effects=list(problem.effects), body=body, legs=legs, loads=loads,
+                  effects=effects, body=body, legs=legs, loads=loads,
                   case_name=case.name, state=x.copy(), notes=tuple(notes), case=case)
+
+
+def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult:
+    """The result of a multi-segment leg: CONTRACT fields, joints, segments, one profile."""
+    env = case.environment
+    H, VF, HA, VA, grounded, _, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
+    start_i = len(ENV_PARAMS) + i * len(LEG_PARAMS)
+    anchor = tuple(float(v) for v in p[start_i: start_i + 3])
+    fairlead = (gx, gy, leg.fairlead[2])
+    ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    parts = {k: [] for k in ("x", "z", "tension")}
+    segments, joints = [], []
+    td = None
+    for k, (seg, sk, r) in enumerate(zip(leg.segments, kind.segments, rows)):
+        lt = seg.line_type
+        if sk.friction:
+            prof = leg_profile(LegKind(elastic=sk.elastic, contact=True, friction=True),
+                               H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
+                               ea=lt.ea, mu=env.seabed.friction, X=r["X"], Z=r["Z"],
+                               n=_PROFILE_POINTS)
+        elif k == len(rows) - 1 and kind.reversed_top:
+            # Solved from the fairlead end: draw it from there, then turn it round.
+            back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water,
+                                   ea=lt.ea, h=max(leg.fairlead[2] + env.depth, 0.0),
+                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+            prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
+                    "tension": back["tension"][::-1]}
+        else:
+            prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
+                                   ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
+                                   n=_PROFILE_POINTS)
+        sl = slice(1, None) if k else slice(None)
+        parts["x"].append(r["lower_xi"] + prof["x"][sl])
+        parts["z"].append(r["lower_z"] + prof["z"][sl])
+        parts["tension"].append(prof["tension"][sl])
+        top = math.hypot(r["H"], r["VF"])
+        bottom = math.hypot(r["HA"], r["VA"])
+        segments.append({"type": lt.name, "length_m": seg.length,
+                         "top_tension_N": top, "bottom_tension_N": bottom,
+                         "horizontal_tension_N": r["H"], "top_vertical_N": r["VF"],
+                         "bottom_vertical_N": r["VA"], "grounded_length_m": r["grounded"],
+                         "max_tension_N": float(np.max(prof["tension"])),
+                         "utilisation": (float(np.max(prof["tension"])) / lt.mbl
+                                         if lt.mbl else None)})
+        if k > 0:
+            clump = leg.joint_clumps[k - 1]
+            joints.append({"position_m": [anchor[0] + ux * r["lower_xi"],
+                                          anchor[1] + uy * r["lower_xi"], r["lower_z"]],
+                           "height_above_seabed_m": r["lower_h"],
+                           "on_seabed": bool(rows[k - 1]["joint_reaction"] > 0
+                                             or r["lower_h"] <= 0),
+                           "seabed_reaction_N": max(rows[k - 1]["joint_reaction"], 0.0),
+                           "clump_weight_N": clump.weight if clump is not None else 0.0})
+    td = _anchor_touchdown(rows, leg, kind)
+    xs = np.concatenate(parts["x"])
+    profile = {"x_m": anchor[0] + ux * xs, "y_m": anchor[1] + uy * xs,
+               "z_m": np.concatenate(parts["z"]), "tension_N": np.concatenate(parts["tension"])}
+    first = rows[0]
+    uplift = VA > 0 and first["grounded"] <= 0
+    mbl = min((seg.line_type.mbl for seg in leg.segments if seg.line_type.mbl), default=None)
+    return LegResult(
+        name=leg.name,
+        fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+        fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, max(VA, 0.0)),
+        anchor_horizontal_N=HA, anchor_vertical_N=max(VA, 0.0),
+        grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
+        uplift=bool(uplift), slack=bool(u < 0.0),
+        uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        anchor=anchor, fairlead=fairlead,
+        touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2] + 0.0)
+                         if td is not None else None),
+        mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints))
+
+
+def _line_load(case: Case, leg) -> tuple:
+    """Typical load per length on a discretised leg [N/m]: its size and unit direction.
+
+    The mean submerged weight (clumps spread) and the normal flow force of the current at
+    mid-depth on a line across it.
+    """
+    _, w = _equivalent_line(case, leg)
+    env = case.environment
+    cur = env.current
+    speed = cur.speed
+    if cur.profile:
+        zs, vs = zip(*cur.profile)
+        speed = float(np.interp(-env.depth / 2, zs, vs))
+    drag = sum(0.5 * env.water_density * (seg.line_type.diameter or 0.0)
+               * (seg.line_type.drag.normal if seg.line_type.drag else 0.0) * speed**2
+               * seg.length for seg in leg.segments) / leg.length
+    th = math.radians(cur.toward_deg)
+    q = np.array([drag * math.cos(th), drag * math.sin(th), -w])
+    size = float(np.linalg.norm(q))
+    return size, (q / size if size > 0 else np.array([0.0, 0.0, -1.0]))
+
+
+def _discrete_leg_start(case: Case, leg, kind, u: float, V: float, length_scale: float,
+                        force_scale: float) -> list:
+    """Start of a lumped-node leg from a closed-form catenary under its typical load.
+
+    Without a significant flow force the nodes sit on the equivalent line's catenary with its
+    seabed contact. When the flow force is a tenth of the weight or more, the line is drawn
+    as the catenary of the combined load (weight plus flow force at mid-depth) in the plane
+    of the chord and that load, which keeps a weightless tether in a current from starting
+    straight and tensionless. Element tensions are the catenary's at the element midpoints;
+    a node on or below the seabed starts pressed onto it by its share of the weight.
+    """
+    eq_kind, w_eq = _equivalent_line(case, leg)
+    env = case.environment
+    A = np.array(leg.anchor, dtype=float)
+    F = np.array(leg.fairlead, dtype=float)
+    size, down = _line_load(case, leg)
+    drag_led = size > 0 and abs(size * down[2] + w_eq) >= 0.1 * max(abs(w_eq), 1e-300) \
+        and abs(down[2]) < 0.995
+    if drag_led:
+        chord = F - A
+        along = float(chord @ down)
+        perp = chord - along * down
+        Xp = float(np.linalg.norm(perp))
+        e_perp = perp / Xp if Xp > 1e-12 else np.cross(down, [0.0, 0.0, 1.0])
+        kind_q = LegKind(elastic=False, contact=False)
+        Hq, Vq = initial_state(kind_q, Xp, -along, leg.length, size, None)
+        prof = leg_profile(kind_q, H=max(Hq, 0.0), V=Vq, L=leg.length, w=size, ea=None,
+                           mu=0.0, X=Xp, Z=-along, n=401)
+        points = (A[None, :] + prof["x"][:, None] * e_perp[None, :]
+                  - prof["z"][:, None] * down[None, :])
+    else:
+        X = math.hypot(*(F - A)[:2])
+        ux, uy = ((F[0] - A[0]) / X, (F[1] - A[1]) / X) if X > 1e-12 else (1.0, 0.0)
+        prof = leg_profile(eq_kind, H=max(u, 0.0), V=V, L=leg.length, w=w_eq, ea=None,
+                           mu=0.0, X=X, Z=F[2] - A[2], n=401)
+        points = np.stack([A[0] + ux * prof["x"], A[1] + uy * prof["x"], A[2] + prof["z"]],
+                          axis=1)
+    lengths, weights = [], []
+    for seg, m in zip(leg.segments, kind.elements):
+        lengths += [seg.length / m] * m
+        weights += [seg.line_type.weight_in_water * seg.length / m] * m
+    arc = np.concatenate([[0.0], np.cumsum(lengths)])
+    mid = (arc[1:] + arc[:-1]) / 2
+    floor = max(1e-6 * force_scale, 0.05 * size * leg.length)
+    tensions = np.maximum(np.interp(mid, prof["s"], prof["tension"]), floor)
+    k_N = force_scale / length_scale
+    block = list(tensions)
+    for j in range(1, kind.n_elements):
+        px, py, z = (float(np.interp(arc[j], prof["s"], points[:, c])) for c in range(3))
+        above = z - env.seabed_z(px, py)
+        if above <= 1e-6 * max(env.depth, 1.0):
+            zeta = -max((weights[j - 1] + weights[j]) / 2, 1e-6 * force_scale) / k_N
+        else:
+            zeta = above
+        block += [px, py, zeta]
+    return block
+
+
+def _discrete_leg_result(case, leg, kind, row, nodes, p, i) -> LegResult:
+    """The result of a lumped-node leg: CONTRACT fields, a 3-D profile through its nodes."""
+    env = case.environment
+    H, VF, HA, VA_raw, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
+    start_i = len(ENV_PARAMS) + i * len(LEG_PARAMS)
+    anchor = tuple(float(v) for v in p[start_i: start_i + 3])
+    fairlead = (gx, gy, leg.fairlead[2])
+    on_bed = anchor[2] <= env.seabed_z(anchor[0], anchor[1]) + 1e-9 * max(env.depth, 1.0)
+    flags = nodes[:, 7] > 0.5
+    # The anchor's vertical pull: the seabed takes a downward one when the anchor lies on it.
+    VA = max(VA_raw, 0.0) if on_bed else VA_raw
+    td = X - susp_x if (on_bed and flags[1]) else None
+    profile = {"x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
+               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy()}
+    segments, joints = [], []
+    start = 0
+    for k, (seg, m) in enumerate(zip(leg.segments, kind.elements)):
+        part = nodes[start: start + m + 1]
+        lt = seg.line_type
+        segments.append({"type": lt.name, "length_m": seg.length, "elements": m,
+                         "top_tension_N": float(part[-1, 5]),
+                         "bottom_tension_N": float(part[0, 5]),
+                         "max_tension_N": float(np.max(part[:, 5])),
+                         "utilisation": float(np.max(part[:, 5])) / lt.mbl if lt.mbl else None})
+        start += m
+        if k < len(leg.segments) - 1:
+            clump = leg.joint_clumps[k]
+            node = nodes[start]
+            joints.append({"position_m": [float(v) for v in node[2:5]],
+                           "height_above_seabed_m": float(node[4] - env.seabed_z(node[2],
+                                                                                 node[3])),
+                           "on_seabed": bool(node[7] > 0.5),
+                           "seabed_reaction_N": float(node[6]),
+                           "clump_weight_N": clump.weight if clump is not None else 0.0})
+    uplift = VA_raw > 0 and not (on_bed and flags[1])
+    mbl = min((seg.line_type.mbl for seg in leg.segments if seg.line_type.mbl), default=None)
+    u_dir = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    return LegResult(
+        name=leg.name,
+        fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
+        fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
+        anchor_horizontal_N=HA, anchor_vertical_N=VA,
+        grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
+        uplift=bool(uplift), slack=bool(H <= 1e-9 * max(abs(VF), 1.0)),
+        uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        anchor=anchor, fairlead=fairlead,
+        touchdown_point=((anchor[0] + u_dir[0] * td, anchor[1] + u_dir[1] * td,
+                          env.seabed_z(anchor[0] + u_dir[0] * td, anchor[1] + u_dir[1] * td))
+                         if td is not None else None),
+        mbl_N=mbl, profile=profile,
+        segments=tuple(segments) if leg.multi_segment else (),
+        joints=tuple(joints))
+
+
+def _anchor_touchdown(rows, leg, kind):
+    """Distance from the anchor [m] where the line first leaves the seabed (None: uplift).
+
+    The grounded run starts at the anchor and continues through segments lying wholly on
+    the seabed; it ends in the first segment that lifts off.
+    """
+    for k, r in enumerate(rows):
+        reversed_top = k == len(rows) - 1 and kind.reversed_top
+        if r["grounded"] <= 0 or reversed_top or r["lower_h"] > 0:
+            return r["lower_xi"] if k else None
+        if r["grounded"] < leg.segments[k].length * (1 - 1e-12):
+            return r["lower_xi"] + r["X"] - r["suspended_x"]
+    return rows[-1]["lower_xi"] + rows[-1]["X"]

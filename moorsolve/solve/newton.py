@@ -55,8 +55,9 @@ def newton_step_function(problem) -> ca.Function:
     g = ca.SX.sym("g", n)
     J = ca.SX.sym("J", sp)
     rows, cols = sp.get_triplet()
-    arrow = all(c < n_q or r >= 2 * n_legs or (c - n_q) // 2 == r // 2
-                for r, c in zip(rows, cols))
+    # Multi-segment legs (issue 4) have more unknowns per leg: no arrow structure then.
+    arrow = problem.n_x == n_q + 2 * n_legs and all(
+        c < n_q or r >= 2 * n_legs or (c - n_q) // 2 == r // 2 for r, c in zip(rows, cols))
     if not arrow:
         Jm, gm = ca.MX.sym("J", sp), ca.MX.sym("g", n)
         return ca.Function("newton_qr", [gm, Jm], [ca.solve(Jm, gm, "qr")])
@@ -101,24 +102,30 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
 
     # -- the certificate estimate from g and J -----------------------------------------
     g, J = problem.residual_jacobian(x, p)
-    forces, moment = [], ca.MX(0)
-    for i in range(n_legs):
-        r, c = 2 * i, n_q + 2 * i
-        block = J[r:r + 2, c:c + 2]
-        det = block[0, 0] * block[1, 1] - block[0, 1] * block[1, 0]
-        du = block[1, 1] * g[r] - block[0, 1] * g[r + 1]
-        dv = -block[1, 0] * g[r] + block[0, 0] * g[r + 1]
-        forces.append(fs * ca.hypot(du, dv) / ca.fabs(det))
-    for k, d in enumerate(problem.free):
-        value = ca.fabs(g[2 * n_legs + k])
-        if d == "yaw":
-            moment = value * problem.moment_scale
-        else:
-            forces.append(value * fs)
-    xp = x * ca.DM(problem.x_scale)
-    fair_t = [ca.hypot(ca.fmax(xp[n_q + 2 * i], 0), xp[n_q + 2 * i + 1]) for i in range(n_legs)]
-    t_est = ca.fmax(ca.mmax(ca.vertcat(*fair_t)), fs * 1e-12) if fair_t else ca.MX(fs)
-    force = ca.mmax(ca.vertcat(*forces)) if forces else ca.MX(0)
+    if problem.n_x == n_q + 2 * n_legs:
+        forces, moment = [], ca.MX(0)
+        for i in range(n_legs):
+            r, c = 2 * i, n_q + 2 * i
+            block = J[r:r + 2, c:c + 2]
+            det = block[0, 0] * block[1, 1] - block[0, 1] * block[1, 0]
+            du = block[1, 1] * g[r] - block[0, 1] * g[r + 1]
+            dv = -block[1, 0] * g[r] + block[0, 0] * g[r + 1]
+            forces.append(fs * ca.hypot(du, dv) / ca.fabs(det))
+        for k, d in enumerate(problem.free):
+            value = ca.fabs(g[2 * n_legs + k])
+            if d == "yaw":
+                moment = value * problem.moment_scale
+            else:
+                forces.append(value * fs)
+        xp = x * ca.DM(problem.x_scale)
+        fair_t = [ca.hypot(ca.fmax(xp[n_q + 2 * i], 0), xp[n_q + 2 * i + 1])
+                  for i in range(n_legs)]
+        t_est = ca.fmax(ca.mmax(ca.vertcat(*fair_t)), fs * 1e-12) if fair_t else ca.MX(fs)
+        force = ca.mmax(ca.vertcat(*forces)) if forces else ca.MX(0)
+    else:
+        # Multi-segment legs: the exact certificate (its per-leg layout differs).
+        force, moment, t_max = problem.certificate(x, p)
+        t_est = ca.fmax(t_max, fs * 1e-12)
     converged = ca.logic_and(force <= tol * t_est,
                              moment <= tol * t_est * problem.moment_scale / fs)
     # NaN compares false, so a NaN state is never "converged".

@@ -46,7 +46,16 @@ class Certificate:
 
 @dataclass(frozen=True)
 class LegResult:
-    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md."""
+    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md.
+
+    A multi-segment leg adds ``segments`` (per segment, from the anchor: type, length, top
+    and bottom tension, horizontal tension, grounded length, largest tension, utilisation)
+    and ``joints`` (per joint: position, height above the seabed, seabed reaction, clump
+    weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
+    segment utilisation. ``fairlead_force`` is the force [N] the line exerts on its
+    fairlead, global ``(Fx, Fy, Fz)``: along the leg's plane for an analytic leg, with a
+    sideways part for a line in a current.
+    """
 
     name: str
     fairlead_tension_N: float
@@ -66,10 +75,16 @@ class LegResult:
     touchdown_point: Optional[tuple]
     mbl_N: Optional[float]
     profile: dict = field(repr=False)
+    segments: tuple = ()
+    joints: tuple = ()
+    fairlead_force: Optional[tuple] = None
 
     @property
     def utilisation(self) -> Optional[float]:
         """Largest tension over the minimum breaking load, when the MBL is known."""
+        if self.segments:
+            values = [s["utilisation"] for s in self.segments if s["utilisation"] is not None]
+            return max(values) if values else None
         if not self.mbl_N:
             return None
         return max(self.fairlead_tension_N, self.anchor_tension_N) / self.mbl_N
@@ -96,6 +111,11 @@ class LegResult:
             "mbl_N": self.mbl_N,
             "utilisation": self.utilisation,
         }
+        if self.fairlead_force is not None:
+            d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
+        if self.segments:
+            d["segments"] = [dict(s) for s in self.segments]
+            d["joints"] = [dict(j) for j in self.joints]
         if profile:
             d["profile"] = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
                             for k, v in self.profile.items()}

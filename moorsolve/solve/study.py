@@ -24,7 +24,7 @@ import numpy as np
 
 from ..model import DEGREES_OF_FREEDOM, Body, BodyLoads, Case
 from .equilibrium import get_problem, solve
-from .problem import ENV_PARAMS, LEG_PARAMS, environment_parameters, leg_parameters
+from .problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
 from .result import Result
 
 #: The three horizontal-plane degrees of freedom, in the order of every matrix here.
@@ -82,7 +82,7 @@ def _mooring_only(case: Case, free: tuple) -> Case:
 
 
 def _params(case: Case) -> np.ndarray:
-    return np.concatenate([environment_parameters(case, 1.0), leg_parameters(case)])
+    return parameter_vector(case, 1.0)
 
 
 # ---- stiffness ----------------------------------------------------------------------------
@@ -133,7 +133,8 @@ def stiffness(result_or_case, *, solver: str = "ipopt") -> np.ndarray:
     if f is None:
         xs = ca.SX.sym("x", problem.n_x)
         ps = ca.SX.sym("p", problem.n_p)
-        g = problem.residual(xs, ps)[: 2 * problem.n_legs]
+        # The legs' rows: everything before the body's balance (issue 4 legs have more).
+        g = problem.residual(xs, ps)[: problem.n_x - problem.n_q]
         force = problem.report(xs, ps)[1]
         xq, xl = xs[:3], xs[3:]
         f = ca.Function("stiffness_blocks", [xs, ps],

@@ -30,7 +30,7 @@ import numpy as np
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from .equilibrium import get_problem, initial_point, solve
-from .problem import environment_parameters, leg_parameters, structure_key
+from .problem import parameter_vector, structure_key
 
 _PARALLEL_MIN_POINTS = 64
 
@@ -151,7 +151,7 @@ def _point_vector(case: Case) -> np.ndarray:
     parameters, then each leg's minimum breaking load (for the overload check)."""
     mbl = [leg.line_type.mbl if leg.line_type.mbl is not None else np.inf
            for leg in case.legs]
-    return np.concatenate([environment_parameters(case, 1.0), leg_parameters(case), mbl])
+    return np.concatenate([parameter_vector(case, 1.0), mbl])
 
 
 def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
