@@ -33,8 +33,9 @@ What is compared, and how each piece maps
   Wind, current and wave-drift models are not converted (MoorPy has no body drag model);
   :func:`with_constant_force` replaces them by a constant force. A case that still carries
   them raises ``ValueError``.
-* Legs: one segment each (the moorsolve core's rule); fairleads at or below the still-water
-  level (MoorPy blends in the weight in air for a line whose end is above water).
+* Legs: one segment each, no clumps, no line drag, a flat seabed (the core problem; these
+  are refused, not approximated); fairleads at or below the still-water level (MoorPy
+  blends in the weight in air for a line whose end is above water).
 
 Reading back: body offset ``r6[0], r6[1]`` and yaw ``r6[5]``; the fairlead tension is the
 line's end-B tension ``TB`` and the anchor tension its end-A tension ``TA``.
@@ -60,6 +61,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from moorsolve.model import DEGREES_OF_FREEDOM, Body, BodyLoads, Case, Environment
+from moorsolve.solve.problem import discretised
 
 #: MoorPy release the benchmark was built and checked against.
 MOORPY_VERSION = "1.3.0"
@@ -155,10 +157,16 @@ def _check_convertible(case: Case) -> None:
         if extra:
             raise ValueError(f"{case.name}: body loads {extra} are not converted; only a constant "
                              "body.loads.force is compared (see with_constant_force)")
+    if env.seabed.sloped:
+        raise ValueError(f"{case.name}: sloped seabed {env.seabed.gradient} is not converted; "
+                         "the converter builds a flat seabed")
     for leg in case.legs:
         if len(leg.segments) != 1:
             raise ValueError(f"{case.name}: leg {leg.name} has {len(leg.segments)} segments; "
-                             "the converter takes one")
+                             "the converter takes one (no clumps)")
+        if discretised(case, leg):
+            raise ValueError(f"{case.name}: leg {leg.name} feels the current (line drag); "
+                             "the converter compares still-water lines only")
         if leg.fairlead[2] > 0:
             raise ValueError(f"{case.name}: leg {leg.name} fairlead z = {leg.fairlead[2]} m is "
                              "above water; MoorPy would blend in the line's weight in air")

@@ -91,3 +91,7 @@ def test_what_cannot_be_compared_is_refused():
     env = dataclasses.replace(rough.environment, seabed=moorsolve.model.Seabed(friction=0.5))
     with pytest.raises(ValueError, match="friction"):
         peer_moorpy.moorpy_system(dataclasses.replace(rough, environment=env))
+    sloped = dataclasses.replace(rough.environment,
+                                 seabed=moorsolve.model.Seabed(gradient=(0.01, 0.0)))
+    with pytest.raises(ValueError, match="sloped"):
+        peer_moorpy.moorpy_system(dataclasses.replace(rough, environment=sloped))
