@@ -186,12 +186,14 @@ class Column:
 
 
 def time_moorsolve(scene: BenchScene, loads: list, warm: bool, *,
-                   solve_kwargs: dict | None = None) -> Column:
+                   solve_kwargs: dict | None = None, solver_time: bool = False) -> Column:
     """``moorsolve.solve`` per load (full Result, certificate included).
 
     From rest: a plain solve (moorsolve starts from the case position and its rest state).
     Warm: ``start=`` the previous load's ``Result.state``. The built problem is cached
-    per scene structure; one untimed solve first builds it.
+    per scene structure; one untimed solve first builds it. With ``solver_time`` the
+    time is the certificate's ``solve_time_s`` (the solve itself, without building the
+    Result's profiles and tables), which is what MoorPy's time covers too.
     """
     kwargs = dict(solve_kwargs or {})
     col = Column("moorsolve " + " ".join(f"{k}={v}" for k, v in kwargs.items()),
@@ -207,7 +209,8 @@ def time_moorsolve(scene: BenchScene, loads: list, warm: bool, *,
             ok = True
         except moorsolve.ConvergenceError:
             result, ok = None, False
-        col.times_s.append(time.perf_counter() - t0)
+        elapsed = time.perf_counter() - t0
+        col.times_s.append(result.certificate.solve_time_s if (ok and solver_time) else elapsed)
         col.converged.append(ok)
         col.residual_N.append(result.certificate.force_N if ok else None)
         col.iterations.append(result.iterations if ok else None)
@@ -243,10 +246,47 @@ def time_moorpy(scene: BenchScene, loads: list, warm: bool, *, tol: float = MOOR
     return col
 
 
+def time_kernel(scene: BenchScene, loads: list, warm: bool, *, tol: float = 1e-9) -> Column:
+    """The compiled Newton kernel alone (``EquilibriumProblem.newton().raw``) per load.
+
+    The parameter vectors and the closed-form start are prepared untimed (a sweep does
+    that once per grid axis); the timed call is the kernel plus the certificate judgement
+    on its outputs. A point the kernel cannot certify counts as not converged here
+    (``solve`` and ``sweep`` would hand it to IPOPT).
+    """
+    from moorsolve.solve.equilibrium import get_problem, initial_point
+    from moorsolve.solve.problem import environment_parameters, leg_parameters
+
+    col = Column("moorsolve newton kernel", "moorsolve", warm)
+    cases = [scene.with_load(load) for load in loads]
+    problem = get_problem(cases[0])
+    kernel = problem.newton()
+    params = [np.concatenate([environment_parameters(c, 1.0), leg_parameters(c)])
+              for c in cases]
+    x_rest = initial_point(problem, cases[0])
+    x_prev = x_rest.copy()
+    for p in params:
+        x0 = x_prev if warm else x_rest
+        t0 = time.perf_counter()
+        out = kernel.raw(x0, p, tol)
+        ok, force, _, _ = problem.judge(out[3][0], out[3][1], out[3][2], tol)
+        col.times_s.append(time.perf_counter() - t0)
+        col.converged.append(ok)
+        col.iterations.append(int(out[2][0]))
+        col.residual_N.append(force if ok else None)
+        if ok:
+            x_prev = out[0].copy()
+    return col
+
+
 #: (column name, start mode, timing function). Add moorsolve variants here.
 COLUMNS = [
     ("moorsolve ipopt", False, time_moorsolve),
     ("moorsolve ipopt", True, time_moorsolve),
+    ("moorsolve ipopt, solve only", False,
+     functools.partial(time_moorsolve, solver_time=True)),
+    ("moorsolve newton kernel", False, time_kernel),
+    ("moorsolve newton kernel", True, time_kernel),
     ("moorsolve newton", False,
      functools.partial(time_moorsolve, solve_kwargs={"solver": "newton"})),
     ("moorsolve newton", True,
