@@ -10,6 +10,7 @@ import argparse
 import os
 import sys
 import tempfile
+import warnings
 
 from .errors import CaseError, ConvergenceError
 
@@ -84,6 +85,14 @@ def main(argv: list[str] | None = None) -> int:
     from . import load_case, solve
     if args.command == "accuracy":
         return _accuracy(args)
+    with warnings.catch_warnings():
+        # numpy's overflow/invalid-value warnings on absurd input would interleave with the
+        # one message the command prints; the certificate and ConvergenceError carry it.
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return _run(args, load_case, solve)
+
+
+def _run(args, load_case, solve) -> int:
     try:
         case = load_case(args.case)
         if args.command == "plot":

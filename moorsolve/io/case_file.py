@@ -103,6 +103,21 @@ MAX_DEPTH = 12_000.0
 #: Longer than any mooring line ever laid: a unit mistake.
 MAX_LINE_LENGTH = 100_000.0
 
+#: Plausibility limits: values outside them are unit slips or nonsense, and would only
+#: reach the solver as overflow or underflow (issue 7's fuzzing found NaN solves).
+MIN_DEPTH = 0.01                 # [m]
+MIN_LINE_LENGTH = 1e-3           # [m]; shorter than a millimetre is a unit mistake
+MAX_WEIGHT = 1e6                 # [N/m] (100 t/m; the heaviest chain is about 0.3 t/m)
+MIN_WEIGHT = 1e-6                # [N/m]; a lighter line is neutral: give 0
+MIN_EA, MAX_EA = 1.0, 1e15       # [N]
+MAX_FORCE = 1e12                 # [N] (a hundred million tonnes-force)
+MAX_MOMENT = 1e15                # [N m]
+MAX_SPEED = 200.0                # [m/s] for wind and current
+MAX_HS = 100.0                   # [m]
+MAX_AREA = 1e8                   # [m^2]
+GRAVITY_RANGE = (0.1, 100.0)     # [m/s^2]
+MAX_DENSITY = 1e5                # [kg/m^3]
+
 #: Most elements of a discretised leg: beyond it the build time, not the accuracy, grows.
 MAX_LINE_ELEMENTS = 400
 
@@ -213,7 +228,7 @@ def _centre(m: dict, path: str) -> tuple:
 def _flow(raw, path: str, profile: bool = False) -> Flow:
     m = _mapping(raw, path, required=("speed",),
                  optional=("toward_deg", "profile") if profile else ("toward_deg",))
-    speed = _quantity(m["speed"], _join(path, "speed"), "speed", ge=0)
+    speed = _quantity(m["speed"], _join(path, "speed"), "speed", ge=0, le=MAX_SPEED)
     toward = _field(m, path, "toward_deg", "angle", 0.0)
     rows = None
     if m.get("profile") is not None:
@@ -241,7 +256,7 @@ def _flow(raw, path: str, profile: bool = False) -> Flow:
 
 def _waves(raw, path: str) -> Waves:
     m = _mapping(raw, path, required=("hs",), optional=("toward_deg",))
-    hs = _quantity(m["hs"], _join(path, "hs"), "length", ge=0)
+    hs = _quantity(m["hs"], _join(path, "hs"), "length", ge=0, le=MAX_HS)
     toward = _field(m, path, "toward_deg", "angle", 0.0)
     return Waves(hs=hs, toward_deg=toward)
 
@@ -251,10 +266,17 @@ def _environment(raw, path: str) -> Environment:
                  optional=("water_density", "air_density", "gravity", "seabed", "wind",
                            "current", "waves"))
     defaults = Environment(depth=1.0)
-    depth = _quantity(m["depth"], _join(path, "depth"), "length", gt=0, le=MAX_DEPTH)
-    water_density = _field(m, path, "water_density", "density", defaults.water_density, gt=0)
-    air_density = _field(m, path, "air_density", "density", defaults.air_density, gt=0)
-    gravity = _field(m, path, "gravity", "acceleration", defaults.gravity, gt=0)
+    dpath = _join(path, "depth")
+    depth = _quantity(m["depth"], dpath, "length", gt=0, le=MAX_DEPTH)
+    _check_bounds(m["depth"], depth, "length", dpath, ge=MIN_DEPTH)
+    water_density = _field(m, path, "water_density", "density", defaults.water_density, gt=0,
+                           le=MAX_DENSITY)
+    air_density = _field(m, path, "air_density", "density", defaults.air_density, gt=0,
+                         le=MAX_DENSITY)
+    gravity = _field(m, path, "gravity", "acceleration", defaults.gravity, gt=0,
+                     le=GRAVITY_RANGE[1])
+    _check_bounds(m.get("gravity"), gravity, "acceleration", _join(path, "gravity"),
+                  ge=GRAVITY_RANGE[0])
     seabed = Seabed()
     if "seabed" in m:
         sub = _join(path, "seabed")
@@ -308,9 +330,18 @@ def _line_type(name: str, raw, path: str, gravity: float,
         return _catalog_line_type(name, raw, path, gravity, water_density)
     m = _mapping(raw, path, required=("weight_in_water",),
                  optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag"))
-    weight = weight_per_length_to_si(m["weight_in_water"], gravity,
-                                     _join(path, "weight_in_water"))
-    ea = _nullable(m, path, "ea", "force", gt=0)
+    wpath = _join(path, "weight_in_water")
+    weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
+    if abs(weight) > MAX_WEIGHT:
+        raise CaseError(wpath, f"{format_si(weight, 'force_per_length')} must be between "
+                               f"-{MAX_WEIGHT:g} and {MAX_WEIGHT:g} N/m (a unit mistake?)")
+    if 0 < abs(weight) < MIN_WEIGHT:
+        raise CaseError(wpath, f"{format_si(weight, 'force_per_length')} is too small to "
+                               f"hang as a catenary; give 0 for a neutrally buoyant line or "
+                               f"at least {MIN_WEIGHT:g} N/m in magnitude")
+    ea = _nullable(m, path, "ea", "force", gt=0, le=MAX_EA)
+    if ea is not None:
+        _check_bounds(m["ea"], ea, "force", _join(path, "ea"), ge=MIN_EA)
     mbl = _nullable(m, path, "mbl", "force", gt=0)
     diameter = _nullable(m, path, "diameter", "length", gt=0)
     sealed = _sealed(m, path, diameter)
@@ -421,8 +452,8 @@ def _table(raw, path: str) -> tuple:
 def _drag(m: dict, path: str) -> DragLoad:
     m = _mapping(m, path, required=("model", "area_x", "area_y"),
                  optional=("cx", "cy", "table", "length", "centre"))
-    area_x = _quantity(m["area_x"], _join(path, "area_x"), "area", ge=0)
-    area_y = _quantity(m["area_y"], _join(path, "area_y"), "area", ge=0)
+    area_x = _quantity(m["area_x"], _join(path, "area_x"), "area", ge=0, le=MAX_AREA)
+    area_y = _quantity(m["area_y"], _join(path, "area_y"), "area", ge=0, le=MAX_AREA)
     table = None if m.get("table") is None else _table(m["table"], _join(path, "table"))
     if table is not None:
         for key in ("cx", "cy"):
@@ -445,10 +476,11 @@ def _hu_tang_wind(m: dict, path: str) -> HuTangWind:
     m = _mapping(m, path, required=("model", "superstructure_area", "hull_area"),
                  optional=("superstructure_area_lateral", "hull_area_lateral", "centre"))
     superstructure = _quantity(m["superstructure_area"], _join(path, "superstructure_area"),
-                               "area", ge=0)
-    hull = _quantity(m["hull_area"], _join(path, "hull_area"), "area", ge=0)
-    superstructure_lat = _nullable(m, path, "superstructure_area_lateral", "area", ge=0)
-    hull_lat = _nullable(m, path, "hull_area_lateral", "area", ge=0)
+                               "area", ge=0, le=MAX_AREA)
+    hull = _quantity(m["hull_area"], _join(path, "hull_area"), "area", ge=0, le=MAX_AREA)
+    superstructure_lat = _nullable(m, path, "superstructure_area_lateral", "area", ge=0,
+                                   le=MAX_AREA)
+    hull_lat = _nullable(m, path, "hull_area_lateral", "area", ge=0, le=MAX_AREA)
     if (superstructure_lat is None) != (hull_lat is None):
         missing = "hull_area_lateral" if hull_lat is None else "superstructure_area_lateral"
         raise CaseError(_join(path, missing),
@@ -461,7 +493,7 @@ def _hu_tang_wind(m: dict, path: str) -> HuTangWind:
 
 def _hu_tang_current(m: dict, path: str) -> HuTangCurrent:
     m = _mapping(m, path, required=("model", "wetted_area"), optional=("coefficient", "centre"))
-    area = _quantity(m["wetted_area"], _join(path, "wetted_area"), "area", gt=0)
+    area = _quantity(m["wetted_area"], _join(path, "wetted_area"), "area", gt=0, le=MAX_AREA)
     coefficient = _field(m, path, "coefficient", "dimensionless", 0.18, gt=0)
     return HuTangCurrent(wetted_area=area, coefficient=coefficient, centre=_centre(m, path))
 
@@ -514,7 +546,9 @@ def _force(raw, path: str) -> tuple:
         raise CaseError(path, f"{show_value(raw)} has {len(items)} values; it must be "
                               "[Fx N, Fy N, Mz N m]")
     kinds = ("force", "force", "moment")
-    return tuple(_quantity(v, _join(path, i), k) for i, (v, k) in enumerate(zip(items, kinds)))
+    limits = {"force": MAX_FORCE, "moment": MAX_MOMENT}
+    return tuple(_quantity(v, _join(path, i), k, ge=-limits[k], le=limits[k])
+                 for i, (v, k) in enumerate(zip(items, kinds)))
 
 
 def _loads(raw, path: str) -> BodyLoads:
@@ -556,8 +590,9 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
     if not isinstance(type_name, str) or type_name not in line_types:
         raise CaseError(_join(path, "type"), f"unknown line type {show_value(type_name)}; "
                                              f"known line types: {', '.join(line_types)}")
-    length = _quantity(m["length"], _join(path, "length"), "length", gt=0,
-                       le=MAX_LINE_LENGTH)
+    lpath = _join(path, "length")
+    length = _quantity(m["length"], lpath, "length", gt=0, le=MAX_LINE_LENGTH)
+    _check_bounds(m["length"], length, "length", lpath, ge=MIN_LINE_LENGTH)
     return Segment(line_type=line_types[type_name], length=length)
 
 

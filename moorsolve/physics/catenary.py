@@ -129,8 +129,18 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     VA = V - w * L
     stretch = H * L * ea_inv if kind.elastic else 0
 
-    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + stretch
-    Zs = (ca.sqrt(H**2 + V**2) - ca.sqrt(H**2 + VA**2)) / w
+    # asinh(V/H) - asinh(VA/H) loses eps*asinh(V/H) to cancellation when V and VA have the
+    # same sign (a nearly taut line: H/w times that can exceed the span tolerance); there
+    # it equals asinh(w L (V + VA) / (V T_A + VA T_F)), which has none.
+    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
+    same_side = V * VA > 0
+    dasinh = ca.if_else(same_side,
+                        ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
+                        ca.asinh(V / Hg) - ca.asinh(VA / Hg))
+    Xs = (H / w) * dasinh + stretch
+    # [sqrt(H^2+V^2) - sqrt(H^2+VA^2)]/w without the cancellation that loses eps*H/w
+    # on a nearly taut line (V - VA = w L); the denominator is at least |w| L.
+    Zs = L * (V + VA) / (ca.sqrt(H**2 + V**2) + ca.sqrt(H**2 + VA**2))
     if kind.elastic:
         Zs = Zs + L * ea_inv * (V - w * L / 2)
 
@@ -143,7 +153,8 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     LB = L - V / w
     Xsusp_t = (H / w) * ca.asinh(V / Hg)
     Xt = LB + Xsusp_t + stretch
-    Zt = ca.sign(V) * (ca.sqrt(H**2 + V**2) - H) / w
+    # sgn(V)[sqrt(H^2+V^2) - H]/w, written without cancellation for V << H.
+    Zt = V * ca.fabs(V) / (w * ca.fmax(ca.sqrt(H**2 + V**2) + H, _H_FLOOR))
     if kind.elastic:
         Zt = Zt + ea_inv * V * ca.fabs(V) / (2 * w)
         Xsusp_t = Xsusp_t + H * (V / w) * ea_inv

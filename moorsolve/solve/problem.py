@@ -434,7 +434,7 @@ class EquilibriumProblem:
 
         fx_total, fy_total, mz_total = 0, 0, 0
         leg_res, leg_out, seg_rows, node_rows = [], [], [], []
-        leg_force, tensions = [], []
+        leg_force, tensions, line_weights = [], [], []
         for i, kind in enumerate(self.kinds):
             P = dict(zip(LEG_PARAMS, ca.vertsplit(legp[i * len(LEG_PARAMS):
                                                        (i + 1) * len(LEG_PARAMS)])))
@@ -496,6 +496,9 @@ class EquilibriumProblem:
                 leg_force.append(_closing_force(J, out["rX"], out["rZ"]))
             tensions.append(ca.vertcat(ca.hypot(row["H"], row["VF"]),
                                        ca.hypot(row["HA"], row["VA"])))
+            # A scale for the certificate when every line is slack (the first line
+            # type's weight over the whole length for a multi-segment leg).
+            line_weights.append(ca.fabs(P["weight"]) * P["length"])
             leg_out.append(ca.vertcat(row["H"], row["VF"], row["HA"], row["VA"],
                                       row["grounded"], row["suspended_x"], row["rX"],
                                       row["rZ"], X, Z, gx, gy, fx, fy, row["J"]))
@@ -536,25 +539,30 @@ class EquilibriumProblem:
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
                                              [g, ca.jacobian(g, xs)])
-        self._build_certificate(xs, p, unbalanced, leg_force, tensions, q)
+        self._build_certificate(xs, p, unbalanced, leg_force, tensions, q, line_weights)
         self._xs, self._p, self._g = xs, p, g
         self._nlp_solvers = {}
         self._newton = None
         #: Closed-form starting points by leg parameters (see equilibrium.initial_point).
         self.start_cache: dict[bytes, np.ndarray] = {}
 
-    def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q):
+    def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q, line_weights=()):
         """``certificate(x, p) -> [force_N, moment_Nm, t_max_N]`` and the sweep summary.
 
         The force is the largest unbalanced force on a free degree of freedom or, per leg,
         the fairlead force that would close its span mismatch (one Newton step of that leg
         alone with its own 2x2 stiffness), so a mismatch anywhere shows up as force.
+        ``t_max`` is the largest tension, but never less than 1e-3 of the weight of the
+        heaviest line: with every line slack (tensions near zero) the residual is judged
+        against the forces the scene carries, not against a vanishing tension.
         """
         forces = [ca.fabs(unbalanced[d]) for d in self.free if d != "yaw"] + leg_force
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.SX(0)
         moment = ca.fabs(unbalanced["yaw"]) if "yaw" in self.free else ca.SX(0)
         all_t = ca.vertcat(*tensions) if tensions else ca.SX(0)
         t_max = ca.mmax(all_t) if tensions else ca.SX(0)
+        if line_weights:
+            t_max = ca.fmax(t_max, 1e-3 * ca.mmax(ca.vertcat(*line_weights)))
         self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
                                        ["x", "p"], ["force", "moment", "t_max"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
@@ -688,6 +696,9 @@ class EquilibriumProblem:
             opts = {
                 "print_time": False,
                 "error_on_fail": False,
+                # A NaN or inf met on the way (absurd input) is reported by the certificate
+                # and ConvergenceError; CasADi's own per-evaluation warnings are noise.
+                "show_eval_warnings": False, "calc_lam_p": False,
                 "ipopt": {
                     "print_level": 0, "sb": "yes", "tol": tol,
                     "constr_viol_tol": tol, "max_iter": max_iter,
