@@ -10,11 +10,10 @@ scene is written down:
   rotation of the translation;
 - mirroring it about the x axis mirrors the offset and yaw;
 - renumbering the legs changes nothing per leg;
+- writing one leg's segment as two equal segments (issue 4's multi-segment legs: two
+  catenary blocks and a joint) changes nothing;
 - swapping which end is the "anchor" of a leg held at both ends (leg block level, a line
   with no seabed contact) swaps its end forces.
-
-Splitting a segment into two equal ones needs multi-segment legs (issue 4), which main does
-not have yet: the loader rejects them. That property is left to issue 4.
 """
 
 from __future__ import annotations
@@ -241,3 +240,22 @@ def test_swapping_the_ends_of_a_suspended_leg(X, Z, slack, w, ea):
     T = math.hypot(H1, V1) + abs(w) * L
     for a, b in ((H1, H2), (HA1, HA2), (V1, -VA2), (VA1, -V2)):
         assert a == pytest.approx(b, rel=1e-8, abs=1e-9 * T)
+
+
+@settings(max_examples=examples(10), **SETTINGS)
+@given(layouts(), st.data())
+def test_splitting_a_segment_into_two_equal_ones(data, draw):
+    """One leg's segment written as two equal segments of the same line (issue 4's
+    multi-segment legs, solved as two catenary blocks and a joint): the same equilibrium."""
+    base = solved(data)
+    assume(base is not None)
+    i = draw.draw(st.integers(0, len(data["legs"]) - 1))
+    split = copy.deepcopy(data)
+    seg = split["legs"][i]["segments"][0]
+    half = {"type": seg["type"], "length": seg["length"] / 2}
+    split["legs"][i]["segments"] = [half, dict(half)]
+    r = solved(split)
+    assert r is not None, "the split case must converge as the original did"
+    assert_same_legs(base, r)
+    assert (r.body["x_m"], r.body["y_m"], r.body["yaw_deg"]) == pytest.approx(
+        (base.body["x_m"], base.body["y_m"], base.body["yaw_deg"]), abs=1e-6)
