@@ -106,14 +106,8 @@ def _run(args, load_case, solve) -> int:
         return EXIT_NO_EQUILIBRIUM
     if args.command == "solve":
         from .io.results import format_table, to_json
-        text = to_json(result, profiles=not args.no_profiles) if args.json \
-            else format_table(result)
-        try:
-            print(text)
-            sys.stdout.flush()
-        except BrokenPipeError:
-            # The reader (e.g. `| head`) closed the pipe: not an error of ours.
-            sys.stdout = None
+        _print(to_json(result, profiles=not args.no_profiles) if args.json
+               else format_table(result))
         return EXIT_OK
     return _write_plot(result, case, args.output)
 
@@ -138,13 +132,8 @@ def _accuracy(args) -> int:
     if args.plot:
         from .plot import plot_accuracy
         _save_figure(lambda: plot_accuracy(rungs)[0].figure, args.plot)
-    text = (json.dumps({"case": case.name, "rungs": [r.to_dict() for r in rungs]}, indent=2)
-            if args.json else format_ladder(rungs, case.name))
-    try:
-        print(text)
-        sys.stdout.flush()
-    except BrokenPipeError:
-        sys.stdout = None
+    _print(json.dumps({"case": case.name, "rungs": [r.to_dict() for r in rungs]}, indent=2)
+           if args.json else format_ladder(rungs, case.name))
     return EXIT_OK
 
 
@@ -228,6 +217,7 @@ def _print(text: str) -> None:
         print(text)
         sys.stdout.flush()
     except BrokenPipeError:
+        # The reader (e.g. `| head`) closed the pipe: not an error of ours.
         sys.stdout = None
 
 

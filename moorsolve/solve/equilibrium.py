@@ -76,8 +76,26 @@ def _scales(case: Case) -> tuple[float, float]:
     return force, max(case.environment.depth, 1.0)
 
 
+_REST_STATES: "OrderedDict[bytes, list]" = OrderedDict()
+
+
 def _rest_leg_states(case: Case):
-    """Closed-form starting ``(u, V)`` of every leg with the body at its case position."""
+    """Closed-form starting ``(u, V)`` of every leg with the body at its case position.
+
+    Remembered by everything they depend on (the legs' kinds, geometry and line data):
+    the bisections cost milliseconds, far more than a compiled Newton solve.
+    """
+    key = repr(structure_key(case)).encode() + leg_parameters(case).tobytes() \
+        + segment_parameters(case).tobytes()
+    states = _REST_STATES.get(key)
+    if states is None:
+        states = _REST_STATES[key] = _compute_rest_leg_states(case)
+        if len(_REST_STATES) > 256:
+            _REST_STATES.popitem(last=False)
+    return list(states)
+
+
+def _compute_rest_leg_states(case: Case):
     states = []
     for leg in case.legs:
         fx, fy, fz = leg.fairlead
