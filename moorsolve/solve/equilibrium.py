@@ -163,6 +163,39 @@ def _multi_leg_start(case: Case, leg, kind: MultiLegKind, u: float, V: float,
     return [u, V] + joints
 
 
+def _start_key(problem: EquilibriumProblem, case: Case) -> bytes:
+    key = np.concatenate([leg_parameters(case), segment_parameters(case)]).tobytes()
+    if any(isinstance(k, DiscreteLegKind) for k in problem.kinds):
+        key += repr(case.environment.current).encode()
+    return key
+
+
+def rest_point(problem: EquilibriumProblem, case: Case, tol: float) -> np.ndarray:
+    """The unloaded (pretensioned) equilibrium, the start of every loaded solve.
+
+    Loading from the solved rest state keeps the solve on the quasi-static branch: a
+    direct solve from the closed-form state can land on another certified equilibrium
+    (seen at 36.5 deg yaw instead of 20.8 deg under a large couple, issue 7). Solved once
+    with IPOPT per problem and leg parameters and remembered; the closed-form state when
+    the scene has no free body or no loads, or when the rest state does not certify.
+    """
+    x0 = initial_point(problem, case)
+    if not (problem.n_q and problem.load_names):
+        return x0
+    key = b"rest:" + _start_key(problem, case)
+    cache = problem.start_cache
+    if key not in cache:
+        p_rest = parameter_vector(case, 0.0)
+        lb, ub = problem.bounds()
+        opts = case.solver
+        solver = problem.ipopt(min(max(tol, 1e-12), 1e-4), opts.max_iter, opts.max_time_s)
+        sol = solver(x0=x0, p=p_rest, lbx=lb, ubx=ub, lbg=0, ubg=0)
+        x = _polish(problem, np.asarray(sol["x"]).ravel(), p_rest, lb, ub,
+                    {"iterations": 0}, tol)
+        cache[key] = x if problem.certify(x, p_rest, tol)[0] else x0
+    return cache[key].copy()
+
+
 def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
     """Scaled starting vector: body at rest, legs in their closed-form states.
 
@@ -170,9 +203,7 @@ def initial_point(problem: EquilibriumProblem, case: Case) -> np.ndarray:
     whole compiled Newton solve. (Multi-segment and discretised legs add their segment
     parameters, and a discretised leg the current, to the key.)
     """
-    key = np.concatenate([leg_parameters(case), segment_parameters(case)]).tobytes()
-    if any(isinstance(k, DiscreteLegKind) for k in problem.kinds):
-        key += repr(case.environment.current).encode()
+    key = _start_key(problem, case)
     cache = problem.start_cache
     if key not in cache:
         x = np.zeros(problem.n_x)
@@ -244,12 +275,23 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     notes = []
     x, used = None, "ipopt"
     if kernel is not None:
-        x0 = np.asarray(start, float) if start is not None else initial_point(problem, case)
+        x0 = np.asarray(start, float) if start is not None else rest_point(problem, case, tol)
         out = kernel.solve(x0, p_full, tol)
         stats["iterations"] += out["iterations"]
+        certified = problem.certify(out["x"], p_full, tol)[0]
+        if not certified and start is None:
+            # As in the IPOPT strategy: a slack rest state can be a poor start.
+            x0 = initial_point(problem, case)
+            out = kernel.solve(x0, p_full, tol)
+            stats["iterations"] += out["iterations"]
+            certified = problem.certify(out["x"], p_full, tol)[0]
         stats["status"] = STATUS_TEXT[out["status"]]
-        if problem.certify(out["x"], p_full, tol)[0]:
+        if certified and not (start is None and _yaw_jump(problem, x0, out["x"])):
             x, used = out["x"], "newton"
+        elif certified:
+            notes.append("the Newton fast path turned the body more than "
+                         f"{math.degrees(YAW_JUMP):.0f} deg from rest; solved with IPOPT "
+                         "and load stepping to stay on the quasi-static branch")
         else:
             notes.append(f"the Newton fast path did not certify ({stats['status']}); "
                          f"solved with IPOPT")
@@ -277,8 +319,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
 
 
 def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
-    """IPOPT from the warm start, else straight to the load from the closed-form state,
-    else from the solved rest state, else load stepping from rest; the best point."""
+    """IPOPT from the warm start, else to the load from the solved rest state, else load
+    stepping from rest; the best point."""
     opts = case.solver
     deadline = t0 + opts.max_time_s
     # IPOPT's own tolerance is on the scaled residual; the polish and certificate
@@ -304,27 +346,40 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         x, ok = run(np.asarray(start, float), p_full)
         if ok:
             return x
-    x_rest = initial_point(problem, case)
+    x_rest = rest_point(problem, case, tol)
     x, ok = run(x_rest, p_full)
-    if ok:
+    if ok and not _yaw_jump(problem, x_rest, x):
         return x
-    if problem.n_q and problem.load_names:
-        p_rest = parameter_vector(case, 0.0)
-        x_solved, rest_ok = run(x_rest, p_rest)
-        if rest_ok:
-            x_rest = x_solved
-            x, ok = run(x_rest, p_full)
-            if ok:
-                return x
+    x_closed = initial_point(problem, case)
+    if not ok and not np.array_equal(x_closed, x_rest):
+        # A rest state can be a poor start (one leg with nothing to pull against ends
+        # slack at rest): try the closed-form state as well.
+        x, ok = run(x_closed, p_full)
+        if ok and not _yaw_jump(problem, x_closed, x):
+            return x
+    x_direct = x if ok else None
     # Load stepping from rest: each step starts from the last certified state.
     x_step = x_rest
     for factor in _LOAD_STEPS:
         p_step = parameter_vector(case, factor)
         x_try, ok = run(x_step, p_step)
         if not ok:
-            return x_try
+            return x_direct if x_direct is not None else x_try
         x_step = x_try
     return x_step
+
+
+#: A direct solve that turns the body further than this from its rest state is checked by
+#: load stepping, which follows the quasi-static branch (issue 7 found a certified
+#: equilibrium at 36.5 deg where loading the body gradually ends at 20.8 deg).
+YAW_JUMP = math.radians(10.0)
+
+
+def _yaw_jump(problem, x_rest, x) -> bool:
+    if "yaw" not in problem.free:
+        return False
+    i = problem.free.index("yaw")
+    return abs(x[i] - x_rest[i]) * problem.x_scale[i] > YAW_JUMP
 
 
 # ---- polish and certificate -----------------------------------------------------------
