@@ -238,3 +238,25 @@ def test_weightless_profile_runs_along_the_chord():
         p = leg.profile
         assert (p["x_m"][-1], p["y_m"][-1], p["z_m"][-1]) == pytest.approx(leg.fairlead,
                                                                            abs=1e-9)
+
+
+def test_large_couple_stays_on_the_quasi_static_branch():
+    # Issue 7 found this layout: a direct solve certifies an equilibrium at 36.5 deg yaw,
+    # while loading the body gradually ends at 20.8 deg (L0 at 82.4 kN). The solve must
+    # give the quasi-static one, by either solver.
+    legs = [("L0", [144.888874, 38.822857], [4.829629, 1.294095, 0]),
+            ("L1", [-75, 129.903811], [-2.5, 4.330127, 0]),
+            ("L2", [-75, -129.903811], [-2.5, -4.330127, 0])]
+    data = {"environment": {"depth": 42, "current": {"speed": 1.0, "toward_deg": 248}},
+            "line_types": {"c": {"weight_in_water": 312, "ea": 1e8}},
+            "body": {"free": ["surge", "sway", "yaw"],
+                     "loads": {"force": [0, 0, 655200],
+                               "current": {"model": "drag", "area_x": 300, "area_y": 900,
+                                           "cx": 0.8, "cy": 1.0, "centre": [0, 0]}}},
+            "legs": [{"name": n, "anchor": a, "fairlead": f,
+                      "segments": [{"type": "c", "length": 166}]} for n, a, f in legs]}
+    case = load_case(data)
+    for solver in ("ipopt", "newton"):
+        result = solve(case, solver=solver)
+        assert result.body["yaw_deg"] == pytest.approx(20.83, abs=0.01)
+        assert result.leg("L0").fairlead_tension_N == pytest.approx(82.4e3, rel=1e-3)
