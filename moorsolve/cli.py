@@ -279,10 +279,7 @@ def _run_inverse(args) -> int:
         else:
             function = inverse.minimum_anchor_distance
         answer = function(**kwargs)
-    except CaseError as exc:
-        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    except ValueError as exc:
+    except ValueError as exc:      # CaseError is a ValueError too
         print(f"moorsolve: bad input: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except ConvergenceError as exc:

@@ -324,14 +324,7 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
         return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
     VA = V - w * L
     if not kind.contact or VA >= 0:
-        Tv = VA + w * s
-        if H > 0:
-            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
-            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
-        else:
-            x = np.zeros_like(s)
-            z = (np.abs(Tv) - abs(VA)) / w * np.sign(Tv) + (VA * s + w * s**2 / 2) * c
-        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+        return _hanging_profile(s, H, VA, w, c)
     LB = L - V / w
     grounded = s <= LB
     Tv = np.where(grounded, 0.0, w * (s - LB))
@@ -525,15 +518,7 @@ def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
     VA = V - w * L
     V1 = float(descent_force(H, h, w, c)) if w > 0 else -np.inf
     if VA >= V1:
-        Tv = VA + w * s
-        if H > 0:
-            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
-            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
-        else:
-            x = np.zeros_like(s)
-            z = (np.abs(Tv) * np.sign(Tv) - abs(VA) * np.sign(VA)) / w \
-                + (VA * s + w * s**2 / 2) * c
-        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+        return _hanging_profile(s, H, VA, w, c)
     s1 = -V1 / w
     LB = L - s1 - V / w
     s2 = s1 + LB
@@ -700,3 +685,17 @@ def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | No
         z = np.where(ground, along * sin_t, X * t + hang + w * hang**2 / 2 * c)
         tension = np.where(ground, 0.0, w * hang)
     return dict(s=s, x=x, z=z, tension=tension)
+
+
+def _hanging_profile(s, H, VA, w, c) -> dict:
+    """Points of a fully suspended elastic catenary from its lower end, where the vertical
+    force is ``VA``; ``c`` is the compliance 1/EA. ``H = 0`` is a vertical line, which
+    folds where the vertical force changes sign (the integral of its sign)."""
+    Tv = VA + w * s
+    if H > 0:
+        x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
+        z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+    else:
+        x = np.zeros_like(s)
+        z = (np.abs(Tv) - abs(VA)) / w * np.sign(Tv) + (VA * s + w * s**2 / 2) * c
+    return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
