@@ -2,27 +2,41 @@
 
 ``grid`` maps dotted case paths (:mod:`moorsolve.io.paths`) to lists of values. Each axis
 value is applied to the case-file data and validated once (so units and field names work
-as in a case file). When every edit only changes problem parameters (loads, headings,
-speeds, anchors, lengths, weights, stiffness, friction, breaking loads) and different axes
-change different parameters, the grid's parameter matrix is assembled by indexing and the
-points are solved by the compiled Newton kernel, each warm-started from its neighbour: the
-grid is walked in a snake order (consecutive points differ in one index by one), split
-into one contiguous run per worker thread. The kernel releases the GIL, so threads use
-separate cores.
+as in a case file). A key may also be a tuple of paths whose values are tuples, one value
+per path: a *zipped* axis (``("environment.wind.toward_deg",
+"environment.current.toward_deg"): [(0, 0), (15, 15), ...]`` turns wind and current
+together). When every edit only changes problem parameters (loads, headings, speeds,
+anchors, lengths, weights, stiffness, friction, breaking loads) and different axes change
+different parameters, the grid's parameter matrix is assembled by indexing and the points
+are solved by the compiled Newton kernel, each warm-started from its neighbour: the grid
+is walked in a snake order (consecutive points differ in one index by one).
+
+The snake order is cut into contiguous *chunks* whose layout depends only on the grid (not
+on the number of workers), so every run of a sweep, local or on a Dask cluster, whole or
+resumed, solves each point from the same start. Chunks run on worker threads (the kernel
+releases the GIL) or as tasks on a ``dask.distributed`` cluster, and each finished chunk
+is handed to the output file (:mod:`moorsolve.io.sweep_output`) at once.
 
 A point the kernel does not certify is re-solved by :func:`moorsolve.solve` with IPOPT
 (rest state and load stepping included); a point with no equilibrium becomes a row with
 ``converged = False`` and the reason, never an abort. Edits that change the problem's
 structure (adding wind, changing a drag area or the gravity) fall back to one full solve
-per point, still warm-started where the structure allows.
+per point, still warm-started where the structure allows. Full solves are serialised
+within one process (the problem cache is shared); Dask workers in separate processes run
+them in parallel.
 """
 
 from __future__ import annotations
 
+import hashlib
 import itertools
+import json
 import math
 import os
+import sys
 import threading
+import weakref
+from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -33,116 +47,359 @@ from .equilibrium import get_problem, initial_point, solve
 from .problem import parameter_vector, structure_key
 
 _PARALLEL_MIN_POINTS = 64
+_MIN_CHUNK = 64
+_MAX_CHUNKS = 64
+
+# Full solves and the problem cache are not for concurrent threads of one process.
+_SOLVE_LOCK = threading.RLock()
+_KERNEL_POOLS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
-def sweep(case: Case, grid: Mapping[str, Sequence], *, solver: str = "newton",
-          tol: float | None = None, workers: int | None = None):
+def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | None = None,
+          workers: int | None = None, output=None, resume: bool = False,
+          overwrite: bool = False, scheduler=None, progress=False,
+          chunk_size: int | None = None):
     """Solve ``case`` at every point of the cartesian product of ``grid``.
 
     Parameters
     ----------
     case : Case
         From :func:`moorsolve.load_case` (the sweep edits the case-file data it came from).
-    grid : mapping of str to sequence
+    grid : mapping
         Dotted case path (``"environment.wind.toward_deg"``, ``"body.loads.force"``,
         ``"legs[*].segments[0].length"``) to the values it takes; each value is what the
         case file would hold at that path (a number, a list, or a string with a unit).
+        A tuple of paths maps to a list of tuples (a zipped axis: the paths change
+        together).
     solver : {"newton", "ipopt"}
         ``"newton"`` (default): the compiled fast path, IPOPT for points it cannot
         certify. ``"ipopt"``: every point by :func:`moorsolve.solve` with IPOPT.
     tol : float, optional
         Certified relative force residual; defaults to the case's ``solver.tol``.
     workers : int, optional
-        Threads for the fast path; defaults to the number of cores (at most 2 below
-        64 points: one).
+        Local threads for the fast path; defaults to the number of cores (one below 64
+        points). Ignored with ``scheduler``.
+    output : str or path, optional
+        ``.csv`` or ``.parquet`` file written as chunks complete
+        (:mod:`moorsolve.io.sweep_output`), with a ``<output>.sweep.json`` record of the
+        case and grid it belongs to. At the end the file holds every point in product
+        order. An existing output is an error unless ``resume`` or ``overwrite``.
+    resume : bool
+        Solve only the points missing from ``output`` (made by an interrupted sweep of
+        the same case, grid, solver and tolerance; anything else is refused).
+    overwrite : bool
+        Replace an existing ``output``.
+    scheduler : str or distributed.Client, optional
+        Run the chunks on an existing Dask cluster (``"tcp://host:port"`` or a client).
+        Each worker rebuilds the problem from the case-file data.
+    progress : bool or file, optional
+        Show a progress bar (tqdm) on stderr, or on the given file.
+    chunk_size : int, optional
+        Points per chunk (default: at least 64, at most 64 chunks).
 
     Returns
     -------
     pandas.DataFrame
-        One row per point in the product order of ``grid``: the grid values, then
-        ``converged``, ``reason``, ``solver``, ``iterations``, ``residual_N``,
-        ``residual_Nm``, ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per
-        leg, ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``.
+        One row per point in the product order of ``grid``, indexed by ``point`` (the
+        position in that order): the grid values, then ``converged``, ``reason``,
+        ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
+        ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
+        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. With ``output``
+        it is the finished file read back (grid values that are not plain numbers are
+        text there, lists as JSON).
     """
     import pandas as pd
 
-    from ..io import load_case
-    from ..io.paths import parse_path, with_values
+    plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size)
+    sink = None
+    if output is not None:
+        from ..io.sweep_output import open_sink
+        sink = open_sink(output, plan, resume=resume, overwrite=overwrite)
+    client, own_client = (None, False) if scheduler is None else _client(scheduler)
+    try:
+        if sink is not None:
+            sink.start()
+        done = sink.done if sink is not None else set()
+        chunks = [[i for i in c if i not in done] for c in plan.chunks]
+        chunks = [c for c in chunks if c]
+        frames = []
 
-    if solver not in ("newton", "ipopt"):
-        raise ValueError(f"solver {solver!r}: must be 'newton' or 'ipopt'")
-    if case.source is None:
-        raise CaseError("case", "a sweep edits the case-file data; load the case with "
-                                "moorsolve.load_case (from a file or a dict)")
-    axes = _axes(grid, parse_path)
-    tol = case.solver.tol if tol is None else tol
-    shape = tuple(len(values) for _, values in axes)
-    n_points = math.prod(shape)
+        def finished(points, columns):
+            if sink is not None:
+                sink.write(plan.frame(points, columns, for_file=True))
+            else:
+                frames.append(plan.frame(points, columns))
+            bar.update(len(points))
 
-    # Each axis value validated once, as a case of its own.
-    axis_cases = []
-    for path, values in axes:
-        cases = []
-        for value in values:
+        bar = _progress_bar(progress, plan.n_points, len(done))
+        try:
+            if client is not None:
+                _run_dask(client, plan, chunks, finished)
+            else:
+                _run_local(plan, chunks, workers, finished)
+        finally:
+            bar.close()
+    finally:
+        if own_client:
+            client.close()
+    if sink is not None:
+        return sink.finish()
+    if not frames:
+        return plan.frame(np.zeros(0, int), _Table(0, plan.names).columns())
+    return pd.concat(frames).sort_index()
+
+
+# ---- the plan: what defines the points ------------------------------------------------------
+
+
+class SweepPlan:
+    """The points of a sweep and how to solve any chunk of them.
+
+    Built identically from ``(case.source, grid, solver, tol)`` anywhere (a Dask worker
+    rebuilds it from :meth:`spec`).
+    """
+
+    def __init__(self, case: Case, grid: Mapping, *, solver: str = "newton",
+                 tol: float | None = None, chunk_size: int | None = None):
+        from ..io import load_case
+        from ..io.paths import with_values
+
+        if solver not in ("newton", "ipopt"):
+            raise ValueError(f"solver {solver!r}: must be 'newton' or 'ipopt'")
+        if case.source is None:
+            raise CaseError("case", "a sweep edits the case-file data; load the case with "
+                                    "moorsolve.load_case (from a file or a dict)")
+        self.case, self.solver = case, solver
+        self.grid = grid
+        self.axes = _axes(grid)
+        self.tol = case.solver.tol if tol is None else float(tol)
+        self.shape = tuple(len(values) for _, values in self.axes)
+        self.n_points = math.prod(self.shape)
+        self.names = [leg.name for leg in case.legs]
+        self._with_values, self._load_case = with_values, load_case
+
+        # Each axis value validated once, as a case of its own.
+        axis_cases = []
+        for paths, values in self.axes:
+            cases = []
+            for value in values:
+                try:
+                    cases.append(load_case(with_values(case.source, _edits(paths, value)),
+                                           keep_source=False))
+                except CaseError as err:
+                    raise CaseError(f"grid[{_label(paths)!r}]",
+                                    f"value {value!r}: {err}") from None
+            axis_cases.append(cases)
+
+        base_key = structure_key(case)
+        base_vec = _point_vector(case)
+        fast = solver == "newton" and all(
+            structure_key(c) == base_key for cases in axis_cases for c in cases)
+        masks = []
+        if fast:
+            for cases in axis_cases:
+                vecs = np.array([_point_vector(c) for c in cases])
+                masks.append(np.any(vecs != base_vec, axis=0))
+            used = np.zeros_like(base_vec, dtype=bool)
+            for m in masks:
+                fast &= not np.any(used & m)
+                used |= m
+        self.fast = bool(fast)
+        self._axis_cases, self._masks, self._base_vec = axis_cases, masks, base_vec
+
+        self.indices = list(itertools.product(*[range(n) for n in self.shape]))
+        order = [int(np.ravel_multi_index(idx, self.shape)) for idx in snake_order(self.shape)]
+        if chunk_size is None:
+            chunk_size = max(_MIN_CHUNK, -(-self.n_points // _MAX_CHUNKS))
+        if int(chunk_size) < 1:
+            raise ValueError(f"chunk_size {chunk_size}: must be >= 1")
+        chunk_size = int(chunk_size)
+        self.chunks = [order[a:a + chunk_size] for a in range(0, len(order), chunk_size)]
+        self._vectors = None
+        self._x_rest = None
+
+    # -- identity ---------------------------------------------------------------------------
+
+    def spec(self) -> dict:
+        """Plain data from which a worker rebuilds this plan."""
+        return {"source": self.case.source, "grid": _plain_grid(self.grid),
+                "solver": self.solver, "tol": self.tol, "chunks": self.chunks}
+
+    @classmethod
+    def from_spec(cls, spec: dict) -> "SweepPlan":
+        from ..io import load_case
+        grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
+        plan = cls(load_case(spec["source"]), grid, solver=spec["solver"], tol=spec["tol"])
+        plan.chunks = spec["chunks"]
+        return plan
+
+    def fingerprint(self) -> dict:
+        """What a resumed sweep must share with the one that wrote the file."""
+        return {"case_sha256": _sha(self.case.source),
+                "grid_sha256": _sha(_plain_grid(self.grid)),
+                "solver": self.solver, "tol": self.tol, "n_points": self.n_points}
+
+    def grid_columns(self) -> list[str]:
+        return [p for paths, _ in self.axes for p in paths]
+
+    def result_columns(self) -> list[str]:
+        return list(_Table(0, self.names).columns())
+
+    def grid_record(self) -> dict:
+        """The grid as plain data, for the record beside an output file."""
+        return {_label(paths): _plain(values) for paths, values in self.axes}
+
+    # -- solving ------------------------------------------------------------------------------
+
+    def point_case(self, i: int) -> Case:
+        edits = {}
+        for (paths, values), k in zip(self.axes, self.indices[i]):
+            edits.update(_edits(paths, values[k]))
+        return self._load_case(self._with_values(self.case.source, edits), keep_source=False)
+
+    def vectors(self) -> np.ndarray:
+        if self._vectors is None:
+            vectors = np.empty((self.n_points, self._base_vec.size))
+            vectors[:] = self._base_vec
+            index_array = np.array(self.indices, dtype=int).reshape(self.n_points,
+                                                                    len(self.axes))
+            for k, (cases, mask) in enumerate(zip(self._axis_cases, self._masks)):
+                vecs = np.array([_point_vector(c) for c in cases])
+                vectors[:, mask] = vecs[index_array[:, k]][:, mask]
+            self._vectors = vectors
+        return self._vectors
+
+    def prepare(self) -> None:
+        """Build (and compile) what the chunks share, once, before they run."""
+        if self.fast:
+            with _SOLVE_LOCK:
+                problem = get_problem(self.case)
+                problem.newton()
+                if self._x_rest is None:
+                    self._x_rest = initial_point(problem, self.case)
+            self.vectors()
+
+    def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
+        """Solve ``points`` (snake order) and return them with their result columns."""
+        points = np.asarray(points, dtype=int)
+        table = _Table(len(points), self.names)
+        if self.fast:
+            self.prepare()
+            problem = get_problem(self.case)
+            pool = _kernel_pool(problem)
+            kernel = pool.acquire()
             try:
-                cases.append(load_case(with_values(case.source, {path: value}), keep_source=False))
-            except CaseError as err:
-                raise CaseError(f"grid[{path!r}]", f"value {value!r}: {err}") from None
-        axis_cases.append(cases)
+                _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
+                            self.tol, self.case.body is not None)
+            finally:
+                pool.release(kernel)
+            retry = np.flatnonzero(~table.done).tolist()
+        else:
+            retry = list(range(len(points)))
+        _solve_each(retry, points, table, self.point_case, self.tol)
+        return points, table.columns()
 
-    base_key = structure_key(case)
-    base_vec = _point_vector(case)
-    masks = []
-    fast = solver == "newton" and all(
-        structure_key(c) == base_key for cases in axis_cases for c in cases)
-    if fast:
-        for cases in axis_cases:
-            vecs = np.array([_point_vector(c) for c in cases])
-            masks.append(np.any(vecs != base_vec, axis=0))
-        used = np.zeros_like(base_vec, dtype=bool)
-        for m in masks:
-            fast &= not np.any(used & m)
-            used |= m
+    # -- rows ---------------------------------------------------------------------------------
 
-    def point_case(index):
-        edits = {path: values[i] for (path, values), i in zip(axes, index)}
-        return load_case(with_values(case.source, edits), keep_source=False)
+    def frame(self, points, columns: dict, for_file: bool = False):
+        """A DataFrame of solved ``points`` indexed by ``point``; ``for_file`` writes grid
+        values that are not plain numbers as text (lists as JSON), numbers as floats."""
+        import pandas as pd
 
-    indices = list(itertools.product(*[range(n) for n in shape]))
-    table = _Table(n_points, [leg.name for leg in case.legs])
-    if fast:
-        vectors = np.empty((n_points, base_vec.size))
-        vectors[:] = base_vec
-        index_array = np.array(indices, dtype=int).reshape(n_points, len(axes))
-        for k, (cases, mask) in enumerate(zip(axis_cases, masks)):
-            vecs = np.array([_point_vector(c) for c in cases])
-            vectors[:, mask] = vecs[index_array[:, k]][:, mask]
-        _solve_fast(case, vectors, shape, table, tol, workers)
-        retry = np.flatnonzero(~table.done).tolist()
-    else:
-        retry = list(range(n_points))
-    _solve_each(retry, indices, table, point_case, tol)
-
-    columns = {}
-    for k, (path, values) in enumerate(axes):
-        columns[path] = [values[idx[k]] for idx in indices]
-    columns.update(table.columns())
-    return pd.DataFrame(columns)
+        data = {}
+        for k, (paths, values) in enumerate(self.axes):
+            for j, path in enumerate(paths):
+                col = [_component(paths, values[self.indices[i][k]], j) for i in points]
+                data[path] = _file_values(path, self.axes[k], j, col) if for_file else col
+        data.update(columns)
+        if for_file:
+            data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
+        index = pd.Index(np.asarray(points, dtype=int), name="point")
+        return pd.DataFrame(data, index=index)
 
 
-def _axes(grid, parse_path) -> list[tuple[str, list]]:
+def _edits(paths: tuple, value) -> dict:
+    if len(paths) == 1:
+        return {paths[0]: value}
+    return dict(zip(paths, value))
+
+
+def _component(paths, value, j):
+    return value if len(paths) == 1 else value[j]
+
+
+def _label(paths: tuple) -> str:
+    return paths[0] if len(paths) == 1 else ",".join(paths)
+
+
+def _numeric(v) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
+
+
+def _file_values(path, axis, j, col):
+    paths, values = axis
+    if all(_numeric(_component(paths, v, j)) for v in values):
+        return [float(v) for v in col]
+    return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in col]
+
+
+def _plain(obj):
+    """Case-file data as JSON-able plain data (numpy scalars and arrays included)."""
+    if isinstance(obj, Mapping):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple, np.ndarray)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.floating):
+        return float(obj)
+    if isinstance(obj, (str, int, float, bool)) or obj is None:
+        return obj
+    return str(obj)
+
+
+def _plain_grid(grid: Mapping) -> list:
+    out = []
+    for key, values in grid.items():
+        tag = ["zip", list(key)] if isinstance(key, tuple) else ["path", key]
+        out.append([tag, _plain(list(values))])
+    return out
+
+
+def _sha(obj) -> str:
+    text = json.dumps(_plain(obj), sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _axes(grid) -> list[tuple[tuple, list]]:
+    from ..io.paths import parse_path
+
     if not isinstance(grid, Mapping) or not grid:
         raise CaseError("grid", "must be a non-empty mapping of case paths to lists of values")
-    axes = []
-    for path, values in grid.items():
-        parse_path(path)
+    axes, seen = [], set()
+    for key, values in grid.items():
+        paths = tuple(key) if isinstance(key, tuple) else (key,)
+        label = f"grid[{_label(paths)!r}]"
+        if not paths:
+            raise CaseError("grid", "an empty tuple of paths")
+        for path in paths:
+            parse_path(path)
+            if path in seen:
+                raise CaseError(label, f"path {path!r} appears on more than one axis")
+            seen.add(path)
         if isinstance(values, (str, bytes, Mapping)) or not isinstance(
-                values, (Sequence, np.ndarray)):
-            raise CaseError(f"grid[{path!r}]", f"{values!r} must be a list of values")
+                values, (Sequence, np.ndarray, range)):
+            raise CaseError(label, f"{values!r} must be a list of values")
         values = list(values.tolist() if isinstance(values, np.ndarray) else values)
         if not values:
-            raise CaseError(f"grid[{path!r}]", "the list of values is empty")
-        axes.append((path, values))
+            raise CaseError(label, "the list of values is empty")
+        if len(paths) > 1:
+            for v in values:
+                if isinstance(v, (str, bytes, Mapping)) or not isinstance(v, Sequence) \
+                        or len(v) != len(paths):
+                    raise CaseError(label, f"value {v!r} must be a tuple of {len(paths)} "
+                                           f"values, one per path")
+        axes.append((paths, values))
     return axes
 
 
@@ -167,8 +424,11 @@ def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
     return out
 
 
+# ---- solving a chunk ------------------------------------------------------------------------
+
+
 class _Table:
-    """The sweep's results, one array per column, filled by point index."""
+    """Results of ``n`` points, one array per column, filled by row."""
 
     def __init__(self, n: int, names: list[str]):
         self.names = names
@@ -205,72 +465,166 @@ class _Table:
         return out
 
 
-def _solve_fast(case, vectors, shape, table, tol, workers):
-    problem = get_problem(case)
-    kernel = problem.newton()
+class _KernelPool:
+    """Newton kernels of one problem, one per concurrently running chunk."""
+
+    def __init__(self, kernel):
+        self._base, self._free, self._lock = kernel, [kernel], threading.Lock()
+
+    def acquire(self):
+        with self._lock:
+            return self._free.pop() if self._free else self._base.clone()
+
+    def release(self, kernel) -> None:
+        with self._lock:
+            self._free.append(kernel)
+
+
+def _kernel_pool(problem) -> _KernelPool:
+    with _SOLVE_LOCK:
+        pool = _KERNEL_POOLS.get(problem)
+        if pool is None:
+            pool = _KERNEL_POOLS[problem] = _KernelPool(problem.newton())
+        return pool
+
+
+def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
     n_p = problem.n_p
-    order = [int(np.ravel_multi_index(idx, shape)) for idx in snake_order(shape)]
-    if workers is None:
-        workers = os.cpu_count() or 1
-    workers = max(1, min(int(workers), len(order)))
-    if len(order) < _PARALLEL_MIN_POINTS:
-        workers = 1
-    x_rest = initial_point(problem, case)
-    has_body = case.body is not None
-    bounds = np.linspace(0, len(order), workers + 1).astype(int)
-    chunks = [order[a:b] for a, b in zip(bounds[:-1], bounds[1:])]
-
-    def run(chunk, kern):
-        x_prev = x_rest.copy()
-        for i in chunk:
-            x, _, iterations, cert, body, tf, ta = kern.raw(x_prev, vectors[i, :n_p], tol)
-            ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
-            if not ok:
-                continue            # left for the IPOPT pass
-            x_prev[:] = x
-            mbl = vectors[i, n_p:]
-            over = np.maximum(tf, ta) > mbl
-            table.done[i] = True
-            table.converged[i] = not over.any()
-            table.solver[i] = "newton"
-            table.iterations[i] = iterations[0]
-            table.residual[i] = (force, moment, relative)
-            if has_body:
-                table.body[i] = (body[0], body[1], math.degrees(body[2]))
-            table.t_fair[i], table.t_anchor[i] = tf, ta
-            if over.any():
-                table.reason[i] = "overload: " + "; ".join(
-                    f"leg {table.names[k]} would break: tension "
-                    f"{max(tf[k], ta[k]) / 1e3:.1f} kN > MBL {mbl[k] / 1e3:.1f} kN"
-                    for k in np.flatnonzero(over))
-
-    kernels = [kernel] + [kernel.clone() for _ in range(len(chunks) - 1)]
-    if len(chunks) == 1:
-        run(chunks[0], kernels[0])
-        return
-    threads = [threading.Thread(target=run, args=(c, k)) for c, k in zip(chunks, kernels)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
+    x_prev = x_rest.copy()
+    for row, i in enumerate(points):
+        x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
+        ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
+        if not ok:
+            continue            # left for the IPOPT pass
+        x_prev[:] = x
+        mbl = vectors[i, n_p:]
+        over = np.maximum(tf, ta) > mbl
+        table.done[row] = True
+        table.converged[row] = not over.any()
+        table.solver[row] = "newton"
+        table.iterations[row] = iterations[0]
+        table.residual[row] = (force, moment, relative)
+        if has_body:
+            table.body[row] = (body[0], body[1], math.degrees(body[2]))
+        table.t_fair[row], table.t_anchor[row] = tf, ta
+        if over.any():
+            table.reason[row] = "overload: " + "; ".join(
+                f"leg {table.names[k]} would break: tension "
+                f"{max(tf[k], ta[k]) / 1e3:.1f} kN > MBL {mbl[k] / 1e3:.1f} kN"
+                for k in np.flatnonzero(over))
 
 
-def _solve_each(todo, indices, table, point_case, tol):
+def _solve_each(rows, points, table, point_case, tol):
     """Full solves (IPOPT strategy), warm-started while the structure stays the same."""
     previous = {}
-    for i in todo:
-        pc = point_case(indices[i])
-        key = id(get_problem(pc))        # a state is only meaningful to its own problem
-        try:
-            result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
-        except ConvergenceError as err:
-            if err.result is not None and err.result.converged:
-                table.from_result(i, err.result, reason=err.reason)   # e.g. overload
-            else:
-                table.done[i] = True
-                table.reason[i], table.solver[i] = err.reason, "ipopt"
-                table.iterations[i] = err.iterations
-                table.residual[i, :2] = (err.residual_N, err.residual_Nm)
-            continue
+    for row in rows:
+        with _SOLVE_LOCK:
+            pc = point_case(int(points[row]))
+            key = id(get_problem(pc))        # a state is only meaningful to its own problem
+            try:
+                result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
+            except ConvergenceError as err:
+                if err.result is not None and err.result.converged:
+                    table.from_result(row, err.result, reason=err.reason)   # e.g. overload
+                else:
+                    table.done[row] = True
+                    table.reason[row], table.solver[row] = err.reason, "ipopt"
+                    table.iterations[row] = err.iterations
+                    table.residual[row, :2] = (err.residual_N, err.residual_Nm)
+                continue
         previous[key] = result.state
-        table.from_result(i, result)
+        table.from_result(row, result)
+
+
+# ---- running the chunks ----------------------------------------------------------------------
+
+
+def _run_local(plan: SweepPlan, chunks, workers, finished) -> None:
+    if not chunks:
+        return
+    plan.prepare()
+    if workers is None:
+        workers = os.cpu_count() or 1
+    workers = max(1, min(int(workers), len(chunks)))
+    if plan.n_points < _PARALLEL_MIN_POINTS or not plan.fast:
+        workers = 1          # full solves are serialised anyway
+    if workers == 1:
+        for chunk in chunks:
+            finished(*plan.solve_chunk(chunk))
+        return
+    from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+    pool = ThreadPoolExecutor(max_workers=workers)
+    try:
+        pending = {pool.submit(plan.solve_chunk, c) for c in chunks}
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                finished(*fut.result())
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _client(scheduler):
+    """``(client, created_here)`` for a scheduler address or an existing client."""
+    try:
+        from distributed import Client
+    except ImportError:          # pragma: no cover - a runtime dependency
+        raise CaseError("scheduler", "dask.distributed is not installed") from None
+    if isinstance(scheduler, Client):
+        return scheduler, False
+    if not isinstance(scheduler, str) or "://" not in scheduler:
+        raise CaseError("scheduler", f"{scheduler!r} must be an address like "
+                                     f"tcp://HOST:PORT or a distributed.Client")
+    try:
+        return Client(scheduler, timeout="10s"), True
+    except (OSError, TimeoutError, ValueError) as err:
+        raise CaseError("scheduler", f"cannot connect to {scheduler}: {err}") from None
+
+
+def _run_dask(client, plan: SweepPlan, chunks, finished) -> None:
+    if not chunks:
+        return
+    from distributed import as_completed
+
+    spec = plan.spec()
+    key = _sha(spec)
+    [spec_future] = client.scatter([spec], broadcast=True, hash=False)
+    futures = [client.submit(_remote_chunk, key, spec_future, chunk, pure=False)
+               for chunk in chunks]
+    try:
+        for fut in as_completed(futures):
+            finished(*fut.result())
+    finally:
+        client.cancel(futures)
+
+
+_REMOTE_PLANS: "OrderedDict[str, SweepPlan]" = OrderedDict()
+
+
+def _remote_chunk(key: str, spec: dict, points):
+    """A Dask task: the plan rebuilt from the case-file data (once per worker process),
+    then the same chunk solver as a local run."""
+    with _SOLVE_LOCK:
+        plan = _REMOTE_PLANS.get(key)
+        if plan is None:
+            plan = _REMOTE_PLANS[key] = SweepPlan.from_spec(spec)
+            while len(_REMOTE_PLANS) > 4:
+                _REMOTE_PLANS.popitem(last=False)
+    return plan.solve_chunk(points)
+
+
+def _progress_bar(progress, total: int, initial: int):
+    if not progress:
+        return _NoBar()
+    from tqdm import tqdm
+    file = sys.stderr if progress is True else progress
+    return tqdm(total=total, initial=initial, unit="pt", desc="sweep", file=file,
+                mininterval=0.2, smoothing=0.1)
+
+
+class _NoBar:
+    def update(self, n: int) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
