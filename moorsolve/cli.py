@@ -58,6 +58,7 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=_count, default=7,
                    help="solves per setting; the median time is reported (default 7)")
     _add_check_commands(sub)
+    _add_study_commands(sub)
     return parser
 
 
@@ -82,6 +83,10 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     if args.command in _CHECK_COMMANDS:
         return _CHECK_COMMANDS[args.command](args)
+    if args.command in _STUDY_COMMANDS:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            return _STUDY_COMMANDS[args.command](args)
     from . import load_case, solve
     if args.command == "accuracy":
         return _accuracy(args)
@@ -306,6 +311,83 @@ def _run_inverse(args) -> int:
 
 _CHECK_COMMANDS = {"check": _run_check, "anchor-distance": _run_inverse,
                    "chain-length": _run_inverse, "uplift": _run_inverse}
+
+
+# ---- sweeps and envelopes (issue 6) ---------------------------------------------------------
+
+
+def _workers(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--workers: {text!r} is not a whole number") from None
+    if not 1 <= value <= 1024:
+        raise argparse.ArgumentTypeError(f"--workers: {text} must be from 1 to 1024")
+    return value
+
+
+def _add_study_commands(sub) -> None:
+    from .io.paths import SET_SYNTAX
+    p = sub.add_parser("sweep", help="solve a grid of case edits; results to CSV or parquet")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--set", action="append", required=True, dest="sets", metavar="PATH=VALUES",
+                   help=f"one axis of the grid (repeat for more): {SET_SYNTAX}")
+    p.add_argument("-o", "--output", required=True, help="results file (.csv or .parquet)")
+    p.add_argument("--solver", choices=("newton", "ipopt"), default="newton",
+                   help="newton (default: compiled fast path, IPOPT where it cannot "
+                        "certify) or ipopt for every point")
+    p.add_argument("--tol", type=_tolerance, default=None)
+    p.add_argument("--workers", type=_workers, default=None,
+                   help="local threads (default: the number of cores)")
+    p.add_argument("--resume", action="store_true",
+                   help="finish the points missing from an interrupted run's output")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing output")
+    p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+                   help="run on an existing dask.distributed cluster")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def _run_sweep(args) -> int:
+    from . import load_case, sweep
+    from .io.paths import parse_assignment
+    from .io.sweep_output import check_output_path
+    if args.resume and args.overwrite:
+        print("moorsolve: bad input: --resume and --overwrite exclude each other",
+              file=sys.stderr)
+        return EXIT_BAD_INPUT
+    try:
+        check_output_path(args.output, "--output")
+        grid = {}
+        for text in args.sets:
+            path, values = parse_assignment(text)
+            if path in grid:
+                raise CaseError(f"--set {path}", "given twice; one --set per path")
+            grid[path] = values
+        case = load_case(args.case)
+        progress = sys.stderr if (not args.quiet and sys.stderr.isatty()) else False
+        table = sweep(case, grid, solver=args.solver, tol=args.tol, workers=args.workers,
+                      output=args.output, resume=args.resume, overwrite=args.overwrite,
+                      scheduler=args.scheduler, progress=progress)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {_set_field(exc)}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    failed = int((~table["converged"].astype(bool)).sum())
+    note = f" ({failed} without equilibrium: see the reason column)" if failed else ""
+    _print(f"wrote {args.output}: {len(table)} points{note}")
+    return EXIT_OK
+
+
+def _set_field(exc: CaseError) -> str:
+    """A grid error told in the command line's words (``--set PATH``)."""
+    text = str(exc)
+    if exc.field.startswith("grid['") and exc.field.endswith("']"):
+        return f"--set {exc.field[6:-2]}" + text[len(exc.field):]
+    if exc.field in ("output", "resume", "scheduler"):
+        return f"--{exc.field}" + text[len(exc.field):]
+    return text
+
+
+_STUDY_COMMANDS = {"sweep": _run_sweep}
 
 
 if __name__ == "__main__":

@@ -98,3 +98,103 @@ def _select(items: list, sel, path: str) -> list[int]:
         names = [item.get("name") for item in items if isinstance(item, Mapping)]
         raise CaseError(path, f"no item named {sel!r}; the names are {names}")
     return found
+
+
+# ---- the values of `moorsolve sweep --set PATH=VALUES` -------------------------------------
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_RANGE = re.compile(rf"^({_NUMBER})\s*:\s*({_NUMBER})\s*:\s*({_NUMBER})(?:\s+(\S.*))?$")
+_INT = re.compile(r"^[-+]?\d+$")
+_MAX_RANGE = 1_000_000
+
+SET_SYNTAX = ("PATH=VALUES; VALUES is a comma list (0,45,90), ranges start:stop:step with "
+              "stop included when on the step (0:345:15, 10:30:5 kn), strings with units "
+              "('10 kn,20 kn') and lists in brackets ([1e5,0,0],[2e5,0,0])")
+
+
+def parse_assignment(text: str) -> tuple[str, list]:
+    """``"PATH=VALUES"`` (one ``--set`` of ``moorsolve sweep``) as ``(path, values)``."""
+    if not isinstance(text, str) or "=" not in text:
+        raise CaseError("--set", f"{text!r} must be {SET_SYNTAX}")
+    path, _, raw = text.partition("=")
+    path = path.strip()
+    parse_path(path)
+    return path, parse_values(raw, f"--set {path}")
+
+
+def parse_values(text: str, field: str) -> list:
+    """The values of a ``--set``: a comma list whose items are numbers, ranges
+    ``start:stop:step[ unit]`` (stop included when it falls on the step, to 1e-9 of a
+    step), bracketed lists (``[1e5,0,0]``, items as here) or strings (``10 kn``; quotes
+    optional). Commas inside brackets do not split."""
+    items = _split_top(text, field)
+    values: list = []
+    for item in items:
+        values.extend(_item(item, field))
+    return values
+
+
+def _split_top(text: str, field: str) -> list[str]:
+    items, depth, start = [], 0, 0
+    for k, ch in enumerate(text):
+        if ch == "[":
+            depth += 1
+        elif ch == "]":
+            depth -= 1
+            if depth < 0:
+                raise CaseError(field, f"{text!r}: a ']' without its '['")
+        elif ch == "," and depth == 0:
+            items.append(text[start:k])
+            start = k + 1
+    if depth:
+        raise CaseError(field, f"{text!r}: a '[' without its ']'")
+    items.append(text[start:])
+    items = [i.strip() for i in items]
+    if any(not i for i in items):
+        raise CaseError(field, f"{text!r}: an empty value; write {SET_SYNTAX}")
+    return items
+
+
+def _item(item: str, field: str) -> list:
+    if item.startswith("["):
+        if not item.endswith("]"):
+            raise CaseError(field, f"{item!r}: text after a ']'")
+        inner = item[1:-1].strip()
+        return [parse_values(inner, field) if inner else []]
+    m = _RANGE.match(item)
+    if m:
+        return _range(item, *m.groups(), field)
+    if ":" in item:
+        raise CaseError(field, f"{item!r} is not a range start:stop:step of numbers "
+                               f"(e.g. 0:345:15 or 10:30:5 kn)")
+    if _INT.match(item):
+        return [int(item)]
+    try:
+        return [float(item)] if re.fullmatch(_NUMBER, item) else [_unquote(item)]
+    except ValueError:            # pragma: no cover - the pattern admits floats only
+        return [_unquote(item)]
+
+
+def _unquote(item: str) -> str:
+    if len(item) >= 2 and item[0] == item[-1] and item[0] in "'\"":
+        return item[1:-1]
+    return item
+
+
+def _range(item, a, b, c, unit, field) -> list:
+    start, stop, step = float(a), float(b), float(c)
+    if step == 0:
+        raise CaseError(field, f"{item!r}: the step must not be 0")
+    span = (stop - start) / step
+    if span < -1e-9:
+        raise CaseError(field, f"{item!r}: the step {c} leads away from {b}")
+    count = int(span + 1e-9) + 1
+    if count > _MAX_RANGE:
+        raise CaseError(field, f"{item!r} gives {count} values; at most {_MAX_RANGE}")
+    integral = all(_INT.match(x) for x in (a, b, c))
+    values = [int(a) + k * int(c) if integral else round(start + k * step, 12)
+              for k in range(count)]
+    if unit:
+        return [f"{v:g} {unit.strip()}" if not integral else f"{v} {unit.strip()}"
+                for v in values]
+    return values
