@@ -153,9 +153,9 @@ class _CsvSink(_Sink):
         header, lines = self._lines()
         if len(lines) == self.plan.n_points:
             _atomic_write_text(self.path, header + "".join(lines[i] for i in sorted(lines)))
-        frame = pd.read_csv(self.path, index_col="point")
+        frame = pd.read_csv(self.path, index_col="point", dtype={"reason": str, "solver": str})
         for column in ("reason", "solver"):
-            frame[column] = frame[column].fillna("").astype(str)
+            frame[column] = frame[column].fillna("")
         return frame.sort_index()
 
 
@@ -176,7 +176,8 @@ class _ParquetSink(_Sink):
         return done
 
     def _open(self) -> None:
-        self.parts.mkdir(exist_ok=True)
+        if not self.path.exists():           # a finished file has no parts
+            self.parts.mkdir(exist_ok=True)
 
     def write(self, frame) -> None:
         first = int(frame.index.min())
