@@ -345,6 +345,64 @@ def _add_study_commands(sub) -> None:
     p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                    help="run on an existing dask.distributed cluster")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p = sub.add_parser("envelope", help="offset and worst tension for every heading of the "
+                                        "environment")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--step", type=_step, default=10.0,
+                   help="heading step in degrees (default 10: 0, 10, ..., 350)")
+    p.add_argument("--flows", default=None,
+                   help="which flows turn, comma separated (default: every one the case "
+                        "has of wind, current, waves)")
+    p.add_argument("--plot", metavar="FILE", default=None,
+                   help="write polar plots of offset and worst tension (.png, .pdf, .svg)")
+    p.add_argument("--json", action="store_true", help="print the envelope as JSON")
+    p.add_argument("--solver", choices=("newton", "ipopt"), default="newton")
+    p.add_argument("--tol", type=_tolerance, default=None)
+
+
+def _step(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--step: {text!r} is not a number") from None
+    if not 0 < value <= 180:
+        raise argparse.ArgumentTypeError(f"--step: {text} must be > 0 and <= 180 deg")
+    return value
+
+
+def _run_envelope(args) -> int:
+    import json
+
+    import numpy as np
+
+    from . import load_case
+    from .solve.envelope import format_envelope, offset_envelope
+    try:
+        if args.plot:
+            _check_output(args.plot, "--plot")
+        case = load_case(args.case)
+        flows = None if args.flows is None else [f.strip() for f in args.flows.split(",")]
+        envelope = offset_envelope(case, step_deg=args.step, flows=flows, solver=args.solver,
+                                   tol=args.tol)
+    except CaseError as exc:
+        text = str(exc)
+        if exc.field in ("flows", "step_deg"):
+            text = "--" + exc.field.split("_")[0] + text[len(exc.field):]
+        print(f"moorsolve: bad input: {text}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    if args.plot:
+        from .plot import plot_envelope
+        _save_figure(lambda: plot_envelope(envelope)[0].figure, args.plot)
+    _print(json.dumps(envelope.to_dict(), indent=2) if args.json
+           else format_envelope(envelope))
+    if args.plot and not args.json:
+        print(f"wrote {args.plot}")
+    missing = ~np.isfinite(envelope.worst_tension_N)
+    if missing.any():
+        print(f"moorsolve: no equilibrium at {int(missing.sum())} of "
+              f"{len(missing)} headings", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    return EXIT_OK
 
 
 def _run_sweep(args) -> int:
@@ -387,7 +445,7 @@ def _set_field(exc: CaseError) -> str:
     return text
 
 
-_STUDY_COMMANDS = {"sweep": _run_sweep}
+_STUDY_COMMANDS = {"sweep": _run_sweep, "envelope": _run_envelope}
 
 
 if __name__ == "__main__":

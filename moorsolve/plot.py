@@ -218,3 +218,94 @@ def plot_accuracy(rungs, axes=None):
     ax_err.set_title("Error against a 1e-12 reference")
     ax_time.set_title("What it costs")
     return axes
+
+
+def _closed(theta_deg, values):
+    """Angles [rad] and values with the first point repeated when the headings go round."""
+    theta = np.radians(np.asarray(theta_deg, float))
+    values = np.asarray(values, float)
+    if len(theta) > 2 and np.isclose((theta[0] + 2 * np.pi - theta[-1]) % (2 * np.pi),
+                                     np.diff(theta).mean(), rtol=0.2):
+        theta, values = np.append(theta, theta[0] + 2 * np.pi), np.append(values, values[0])
+    return theta, values
+
+
+def _mark_headings(ax, marks, r_max):
+    for k, (name, heading) in enumerate((marks or {}).items()):
+        t = np.radians(heading)
+        ax.plot([t, t], [0, r_max], color=f"C{k + 3}", linewidth=1.2, linestyle="--")
+        ax.annotate(name, (t, r_max), color=f"C{k + 3}", fontsize=9, ha="center",
+                    va="bottom", annotation_clip=False)
+
+
+def plot_envelope(envelope, axes=None, marks=None):
+    """Polar plots of an offset envelope: offset and worst tension against heading.
+
+    Angles are the heading the environment travels toward, counter-clockwise from +x
+    (east up the page's right). The worst heading is ringed on both.
+
+    Parameters
+    ----------
+    envelope : moorsolve.solve.envelope.Envelope
+    axes : pair of polar matplotlib Axes, optional
+    marks : dict of str to float, optional
+        Named headings [deg] drawn as dashed rays (e.g. ``{"bora": 225}``).
+
+    Returns
+    -------
+    pair of matplotlib Axes
+    """
+    import matplotlib.pyplot as plt
+
+    e = envelope
+    if axes is None:
+        fig = plt.figure(figsize=(10, 4.8), layout="constrained")
+        axes = (fig.add_subplot(1, 2, 1, projection="polar"),
+                fig.add_subplot(1, 2, 2, projection="polar"))
+    ax_off, ax_t = axes
+    ok = np.isfinite(e.worst_tension_N)
+    worst = int(np.argmax(np.where(ok, e.worst_tension_N, -np.inf))) if ok.any() else None
+    for ax, values, label in ((ax_off, e.offset_m, "offset [m]"),
+                              (ax_t, e.worst_tension_N / 1e3, "worst tension [kN]")):
+        theta, r = _closed(e.heading_deg, values)
+        ax.plot(theta, r, "o-", markersize=3)
+        if worst is not None:
+            ax.plot(np.radians(e.heading_deg[worst]), values[worst], "o", markersize=11,
+                    markerfacecolor="none", markeredgecolor="C3")
+        r_max = np.nanmax(values) * 1.05 if ok.any() else 1.0
+        _mark_headings(ax, marks, r_max)
+        ax.set_ylim(0, r_max * 1.02)
+        ax.set_title(label + " against heading (toward)", fontsize=10)
+    if worst is not None:
+        ax_t.set_xlabel(f"worst: {e.worst_leg[worst]} "
+                        f"{e.worst_tension_N[worst] / 1e3:.0f} kN toward "
+                        f"{e.heading_deg[worst]:g} deg", fontsize=9)
+    return axes
+
+
+def plot_polar_field(heading_deg, radius, values, ax=None, radius_label="",
+                     value_label="", marks=None, levels=12):
+    """A filled polar contour of ``values[i, j]`` over headings ``heading_deg[i]`` [deg]
+    and radii ``radius[j]`` (e.g. offset against wind direction and speed).
+
+    Returns
+    -------
+    matplotlib Axes (polar)
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        fig = plt.figure(figsize=(6.4, 5.6), layout="constrained")
+        ax = fig.add_subplot(projection="polar")
+    values = np.asarray(values, float)
+    theta = np.radians(np.asarray(heading_deg, float))
+    theta = np.append(theta, theta[0] + 2 * np.pi)          # close the circle
+    values = np.vstack([values, values[:1]])
+    T, R = np.meshgrid(theta, np.asarray(radius, float), indexing="ij")
+    filled = ax.contourf(T, R, values, levels=levels, cmap="viridis")
+    ax.contour(T, R, values, levels=filled.levels, colors="k", linewidths=0.3)
+    ax.figure.colorbar(filled, ax=ax, label=value_label, shrink=0.8)
+    _mark_headings(ax, marks, float(np.max(radius)))
+    ax.set_ylim(0, float(np.max(radius)))
+    ax.set_title(f"{value_label} (radius: {radius_label})", fontsize=10)
+    return ax

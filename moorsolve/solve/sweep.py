@@ -393,12 +393,14 @@ def _axes(grid) -> list[tuple[tuple, list]]:
         values = list(values.tolist() if isinstance(values, np.ndarray) else values)
         if not values:
             raise CaseError(label, "the list of values is empty")
-        if len(paths) > 1:
+        if isinstance(key, tuple):
             for v in values:
                 if isinstance(v, (str, bytes, Mapping)) or not isinstance(v, Sequence) \
                         or len(v) != len(paths):
                     raise CaseError(label, f"value {v!r} must be a tuple of {len(paths)} "
                                            f"values, one per path")
+            if len(paths) == 1:
+                values = [v[0] for v in values]
         axes.append((paths, values))
     return axes
 

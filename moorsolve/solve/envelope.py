@@ -1,0 +1,195 @@
+"""Offset envelope: the equilibrium for every heading of a given environment.
+
+The environment's wind, current and waves (or a chosen subset) are turned together: the
+envelope's heading is the direction the *reference* flow (the first of the turned flows
+present: wind, then current, then waves) travels toward, counter-clockwise from +x, and
+every other turned flow keeps its angle to it from the case file. An environment whose
+flows are aligned therefore travels toward the heading. Flows not turned, and the constant
+``body.loads.force``, stay as the case gives them. Speeds and wave heights are unchanged.
+
+All headings are one zipped axis of :func:`moorsolve.sweep` (compiled Newton kernel,
+each heading warm-started from its neighbour, IPOPT where the kernel cannot certify).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Optional, Sequence
+
+import numpy as np
+
+from ..errors import CaseError
+from ..model import Case
+from .sweep import sweep
+
+FLOWS = ("wind", "current", "waves")
+
+
+@dataclasses.dataclass(frozen=True)
+class Envelope:
+    """Per heading: offset, its direction, yaw and the worst tension with its leg.
+
+    Arrays run over ``heading_deg``. ``offset_m`` is the horizontal displacement of the
+    body-frame origin, ``offset_direction_deg`` its direction (counter-clockwise from +x,
+    in [0, 360)), ``worst_tension_N`` the largest fairlead or anchor tension of any leg
+    and ``worst_leg`` that leg. A heading without equilibrium has ``converged = False``,
+    its ``reason`` and NaN values; an equilibrium that overloads a leg keeps its values
+    with ``converged = False`` and the overload as ``reason``.
+    """
+
+    case_name: str
+    flows: tuple
+    heading_deg: np.ndarray
+    offset_m: np.ndarray
+    offset_direction_deg: np.ndarray
+    x_m: np.ndarray
+    y_m: np.ndarray
+    yaw_deg: np.ndarray
+    worst_tension_N: np.ndarray
+    worst_leg: tuple
+    converged: np.ndarray
+    reason: tuple
+    table: object = dataclasses.field(repr=False, compare=False)
+
+    def worst(self) -> dict:
+        """The heading with the largest worst tension (an overloaded equilibrium counts)."""
+        tension = np.where(np.isfinite(self.worst_tension_N), self.worst_tension_N, -np.inf)
+        if not np.isfinite(tension).any():
+            raise ValueError("no heading has an equilibrium")
+        return self.row(int(np.argmax(tension)))
+
+    def largest_offset(self) -> dict:
+        """The heading with the largest offset (among those with an equilibrium)."""
+        offset = np.where(np.isfinite(self.offset_m), self.offset_m, -np.inf)
+        if not np.isfinite(offset).any():
+            raise ValueError("no heading has an equilibrium")
+        return self.row(int(np.argmax(offset)))
+
+    def row(self, i: int) -> dict:
+        return {"heading_deg": float(self.heading_deg[i]), "offset_m": _f(self.offset_m[i]),
+                "offset_direction_deg": _f(self.offset_direction_deg[i]),
+                "x_m": _f(self.x_m[i]), "y_m": _f(self.y_m[i]), "yaw_deg": _f(self.yaw_deg[i]),
+                "worst_tension_N": _f(self.worst_tension_N[i]), "worst_leg": self.worst_leg[i],
+                "converged": bool(self.converged[i]), "reason": self.reason[i]}
+
+    def to_dict(self) -> dict:
+        out = {"case": self.case_name, "flows": list(self.flows),
+               "headings": [self.row(i) for i in range(len(self.heading_deg))]}
+        if np.isfinite(self.worst_tension_N).any():
+            out["worst"] = self.worst()
+            out["largest_offset"] = self.largest_offset()
+        return out
+
+
+def _f(value) -> Optional[float]:
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, *,
+                    step_deg: float = 10.0, flows: Optional[Sequence[str]] = None,
+                    solver: str = "newton", tol: Optional[float] = None,
+                    workers: Optional[int] = None) -> Envelope:
+    """The equilibrium of ``case`` with its environment turned to every heading.
+
+    Parameters
+    ----------
+    case : Case
+        From :func:`moorsolve.load_case`; its environment is turned, not changed.
+    headings_deg : sequence of float, optional
+        Headings [deg] the reference flow travels toward; default ``0, step_deg, ...``
+        below 360.
+    step_deg : float
+        Heading step [deg] when ``headings_deg`` is not given; 0 < step <= 180.
+    flows : sequence of {"wind", "current", "waves"}, optional
+        Which flows turn (default: every one the case has).
+    solver, tol, workers
+        As for :func:`moorsolve.sweep`.
+
+    Returns
+    -------
+    Envelope
+    """
+    env = case.environment
+    present = [f for f in FLOWS if getattr(env, f) is not None]
+    if flows is None:
+        flows = present
+        if not flows:
+            raise CaseError("environment", "has no wind, current or waves to turn; an "
+                                           "envelope needs at least one")
+    else:
+        flows = list(flows)
+        for f in flows:
+            if f not in FLOWS:
+                raise CaseError("flows", f"{f!r} is not one of {', '.join(FLOWS)}")
+            if f not in present:
+                raise CaseError("flows", f"{f!r}: the case has no environment.{f} to turn")
+        if not flows or len(set(flows)) != len(flows):
+            raise CaseError("flows", f"{flows!r} must name each flow at most once, at least "
+                                     f"one")
+        flows = [f for f in FLOWS if f in flows]
+    if headings_deg is None:
+        step = float(step_deg)
+        if not 0 < step <= 180:
+            raise CaseError("step_deg", f"{step_deg} must be > 0 and <= 180")
+        headings_deg = np.arange(0.0, 360.0 - 1e-9, step)
+    headings = [float(h) for h in headings_deg]
+    if not headings or not all(math.isfinite(h) for h in headings):
+        raise CaseError("headings_deg", "must be a non-empty list of finite angles")
+
+    reference = getattr(env, flows[0]).toward_deg
+    offsets = [getattr(env, f).toward_deg - reference for f in flows]
+    paths = tuple(f"environment.{f}.toward_deg" for f in flows)
+    values = [tuple(_wrap(h + d) for d in offsets) for h in headings]
+    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers)
+
+    names = [leg.name for leg in case.legs]
+    tension = np.column_stack(
+        [np.fmax(table[f"{n}.fairlead_tension_N"].to_numpy(float),
+                 table[f"{n}.anchor_tension_N"].to_numpy(float)) for n in names])
+    converged = table["converged"].to_numpy(bool)
+    solved = np.isfinite(tension).all(axis=1)          # an overloaded equilibrium too
+    worst_index = np.argmax(np.where(np.isfinite(tension), tension, -np.inf), axis=1)
+    worst = np.where(solved, tension[np.arange(len(table)), worst_index], np.nan)
+    if case.body is not None:
+        x = np.where(solved, table["x_m"].to_numpy(float), np.nan)
+        y = np.where(solved, table["y_m"].to_numpy(float), np.nan)
+        yaw = np.where(solved, table["yaw_deg"].to_numpy(float), np.nan)
+    else:
+        x = y = yaw = np.where(solved, 0.0, np.nan)
+    return Envelope(
+        case_name=case.name, flows=tuple(flows), heading_deg=np.array(headings),
+        offset_m=np.hypot(x, y), offset_direction_deg=np.round(np.degrees(np.arctan2(y, x)), 9) % 360.0,
+        x_m=x, y_m=y, yaw_deg=yaw, worst_tension_N=worst,
+        worst_leg=tuple(names[k] if ok else "" for k, ok in zip(worst_index, solved)),
+        converged=converged, reason=tuple(table["reason"]), table=table)
+
+
+def _wrap(angle: float) -> float:
+    """An angle in [0, 360), rounded so that 0 + 360 k stays exact."""
+    return round(angle % 360.0, 10) % 360.0
+
+
+def format_envelope(envelope: Envelope) -> str:
+    """The envelope as a fixed-width table, with its worst heading."""
+    e = envelope
+    lines = [f"offset envelope: {e.case_name} ({', '.join(e.flows)} turned together)",
+             f"{'toward':>7} {'offset m':>9} {'dir deg':>8} {'yaw deg':>8} {'worst':>8} "
+             f"{'T kN':>10}"]
+    for i, h in enumerate(e.heading_deg):
+        if not math.isfinite(e.worst_tension_N[i]):
+            lines.append(f"{h:7.1f}  no equilibrium: {e.reason[i]}")
+            continue
+        note = "" if e.converged[i] else f"  ({e.reason[i]})"
+        lines.append(f"{h:7.1f} {e.offset_m[i]:9.3f} {e.offset_direction_deg[i]:8.1f} "
+                     f"{e.yaw_deg[i]:8.3f} {e.worst_leg[i]:>8} "
+                     f"{e.worst_tension_N[i] / 1e3:10.1f}{note}")
+    if np.isfinite(e.worst_tension_N).any():
+        w, o = e.worst(), e.largest_offset()
+        lines.append(f"worst tension: {w['worst_leg']} {w['worst_tension_N'] / 1e3:.1f} kN "
+                     f"with the load toward {w['heading_deg']:g} deg")
+        lines.append(f"largest offset: {o['offset_m']:.3f} m toward "
+                     f"{o['offset_direction_deg']:.1f} deg with the load toward "
+                     f"{o['heading_deg']:g} deg")
+    return "\n".join(lines)
