@@ -1,13 +1,14 @@
 """Floating dock (Hu & Tang 2004): how the typhoon load shares itself among the 12 chains
-as its heading turns, with the worst chain per heading.
+as its heading turns, with the worst chain per heading and the worst heading overall.
 
-Run:  python examples/dock_typhoon_headings.py [--out FOLDER]
-Writes dock_typhoon_headings.png (worst tension and offset against heading) into FOLDER.
-One built problem serves every heading; each solve warm-starts from the previous one.
+Run:  python examples/dock_typhoon_headings.py [--out FOLDER] [--step DEG]
+The case's typhoon (wind, current and waves together, toward 70 deg in the case file) is
+turned round the compass by moorsolve.offset_envelope: one sweep, each heading warm-started
+from its neighbour. Writes dock_typhoon_headings.png (polar plots of offset and worst
+tension against heading, the case file's heading marked) into FOLDER.
 """
 
 import argparse
-import dataclasses
 import pathlib
 
 import moorsolve
@@ -16,56 +17,43 @@ HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "cases" / "floating_dock.yaml"
 
 
-def heading_study(headings_deg):
+def heading_study(step_deg=5.0):
     case = moorsolve.load_case(str(CASE))
-    env = case.environment
-    rows, state = [], None
-    for heading in headings_deg:
-        turned = dataclasses.replace(
-            case, environment=dataclasses.replace(
-                env,
-                wind=dataclasses.replace(env.wind, toward_deg=heading),
-                current=dataclasses.replace(env.current, toward_deg=heading),
-                waves=dataclasses.replace(env.waves, toward_deg=heading)))
-        result = moorsolve.solve(turned, start=state)
-        state = result.state
-        worst = max(result.legs, key=lambda leg: leg.fairlead_tension_N)
-        rows.append(dict(heading_deg=heading, x_m=result.body["x_m"], y_m=result.body["y_m"],
-                         yaw_deg=result.body["yaw_deg"], worst_leg=worst.name,
-                         worst_tension_kN=worst.fairlead_tension_N / 1e3,
-                         residual_N=result.certificate.force_N,
-                         iterations=result.iterations))
-    return rows
+    return case, moorsolve.offset_envelope(case, step_deg=step_deg)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=".", help="folder for the plot")
+    parser.add_argument("--step", type=float, default=5.0, help="heading step [deg]")
     args = parser.parse_args(argv)
-    rows = heading_study(range(0, 360, 15))
+    case, env = heading_study(args.step)
+    mbl = {leg.name: leg.line_type.mbl for leg in case.legs}
+
     print(f"{'toward':>7} {'x m':>7} {'y m':>7} {'yaw deg':>8} {'worst':>6} {'T kN':>8} "
-          f"{'resid N':>9}")
-    for r in rows:
-        print(f"{r['heading_deg']:7.0f} {r['x_m']:7.3f} {r['y_m']:7.3f} {r['yaw_deg']:8.4f} "
-              f"{r['worst_leg']:>6} {r['worst_tension_kN']:8.1f} {r['residual_N']:9.1e}")
-    worst = max(rows, key=lambda r: r["worst_tension_kN"])
-    print(f"worst case: load toward {worst['heading_deg']} deg, {worst['worst_leg']} at "
-          f"{worst['worst_tension_kN']:.1f} kN")
+          f"{'T/MBL':>6}")
+    for i, heading in enumerate(env.heading_deg):
+        leg = env.worst_leg[i]
+        print(f"{heading:7.0f} {env.x_m[i]:7.3f} {env.y_m[i]:7.3f} {env.yaw_deg[i]:8.4f} "
+              f"{leg:>6} {env.worst_tension_N[i] / 1e3:8.1f} "
+              f"{env.worst_tension_N[i] / mbl[leg]:6.3f}")
+    worst = env.worst()
+    print(f"worst case: load toward {worst['heading_deg']:g} deg, {worst['worst_leg']} at "
+          f"{worst['worst_tension_N'] / 1e3:.1f} kN "
+          f"(safety factor {mbl[worst['worst_leg']] / worst['worst_tension_N']:.2f})")
+    far = env.largest_offset()
+    print(f"largest offset: {far['offset_m']:.3f} m with the load toward "
+          f"{far['heading_deg']:g} deg")
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4))
-    h = [r["heading_deg"] for r in rows]
-    a1.plot(h, [r["worst_tension_kN"] for r in rows], "o-")
-    a1.set_xlabel("typhoon load toward [deg]")
-    a1.set_ylabel("worst fairlead tension [kN]")
-    a2.plot([r["x_m"] for r in rows], [r["y_m"] for r in rows], "o-")
-    a2.set_aspect("equal")
-    a2.set_xlabel("surge x [m]")
-    a2.set_ylabel("sway y [m]")
-    a2.set_title("offset envelope")
-    fig.tight_layout()
+
+    from moorsolve.plot import plot_envelope
+
+    axes = plot_envelope(env, marks={"case file": case.environment.wind.toward_deg})
+    fig = axes[0].figure
+    fig.suptitle("Floating dock, typhoon turned round the compass")
     out = pathlib.Path(args.out) / "dock_typhoon_headings.png"
     fig.savefig(out, dpi=110)
     plt.close(fig)

@@ -231,11 +231,13 @@ def _closed(theta_deg, values):
 
 
 def _mark_headings(ax, marks, r_max):
+    colours = ("C3", "C1", "C6", "C9")
     for k, (name, heading) in enumerate((marks or {}).items()):
-        t = np.radians(heading)
-        ax.plot([t, t], [0, r_max], color=f"C{k + 3}", linewidth=1.2, linestyle="--")
-        ax.annotate(name, (t, r_max), color=f"C{k + 3}", fontsize=9, ha="center",
-                    va="bottom", annotation_clip=False)
+        t, colour = np.radians(heading), colours[k % len(colours)]
+        ax.plot([t, t], [0, r_max], color=colour, linewidth=2.2)
+        ax.annotate(f"{name} ({heading:g}°)", (t, r_max * 1.2), color=colour, fontsize=9,
+                    fontweight="bold", ha="center", va="center", annotation_clip=False,
+                    bbox=dict(boxstyle="round,pad=0.2", facecolor="white", edgecolor=colour))
 
 
 def plot_envelope(envelope, axes=None, marks=None):

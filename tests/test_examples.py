@@ -18,16 +18,29 @@ def run_example(name, argv, capsys, monkeypatch):
 def test_dock_typhoon_headings(tmp_path, capsys, monkeypatch):
     out = run_example("dock_typhoon_headings.py", ["--out", str(tmp_path)], capsys, monkeypatch)
     assert "worst case: load toward" in out
+    # The dock is port-starboard symmetric: its worst heading is a beam load, 90 or 270.
+    worst = out.split("worst case: load toward ")[1].split()[0]
+    assert worst in ("90", "270")
+    rows = [line.split() for line in out.splitlines()[1:] if line[:7].strip().isdigit()]
+    assert len(rows) == 72
+    assert max(float(r[5]) for r in rows) == float(out.split(" at ")[1].split()[0])
     png = tmp_path / "dock_typhoon_headings.png"
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_buoy_vida_offset(capsys, monkeypatch):
-    out = run_example("buoy_vida_offset.py", [], capsys, monkeypatch)
-    rows = [line.split() for line in out.splitlines()[1:]]
+def test_buoy_vida_offset(tmp_path, capsys, monkeypatch):
+    out = run_example("buoy_vida_offset.py", ["--out", str(tmp_path)], capsys, monkeypatch)
+    rows = [line.split() for line in out.splitlines()[1:] if line.split()]
     bora_30 = next(r for r in rows if r[0] == "bora" and r[1] == "30.0")
     # At rest each chain holds Malacic's 528.5 N; under a 30 m/s bora the NNE chain
     # carries the most and the western one the least.
     rest = next(r for r in rows if r[0] == "bora" and r[1] == "0.0")
     assert rest[4] == "529"
     assert int(bora_30[4]) > int(bora_30[6]) > int(bora_30[8])
+    # Jugo is bora mirrored about the east-west axis: the SSE chain takes the NNE's part.
+    jugo_30 = next(r for r in rows if r[0] == "jugo" and r[1] == "30.0")
+    assert (jugo_30[4], jugo_30[6], jugo_30[8]) == (bora_30[6], bora_30[4], bora_30[8])
+    assert float(jugo_30[3]) == -float(bora_30[3])
+    assert "largest offset:" in out
+    png = tmp_path / "buoy_vida_offset.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
