@@ -160,7 +160,8 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         x = y = yaw = np.where(solved, 0.0, np.nan)
     return Envelope(
         case_name=case.name, flows=tuple(flows), heading_deg=np.array(headings),
-        offset_m=np.hypot(x, y), offset_direction_deg=np.round(np.degrees(np.arctan2(y, x)), 9) % 360.0,
+        offset_m=np.hypot(x, y),
+        offset_direction_deg=np.round(np.degrees(np.arctan2(y, x)), 9) % 360.0,
         x_m=x, y_m=y, yaw_deg=yaw, worst_tension_N=worst,
         worst_leg=tuple(names[k] if ok else "" for k, ok in zip(worst_index, solved)),
         converged=converged, reason=tuple(table["reason"]), table=table)

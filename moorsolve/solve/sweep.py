@@ -108,8 +108,6 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         it is the finished file read back (grid values that are not plain numbers are
         text there, lists as JSON).
     """
-    import pandas as pd
-
     plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size)
     sink = None
     if output is not None:
@@ -128,7 +126,7 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
             if sink is not None:
                 sink.write(plan.frame(points, columns, for_file=True))
             else:
-                frames.append(plan.frame(points, columns))
+                frames.append((points, columns))
             bar.update(len(points))
 
         bar = _progress_bar(progress, plan.n_points, len(done))
@@ -146,7 +144,15 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         return sink.finish()
     if not frames:
         return plan.frame(np.zeros(0, int), _Table(0, plan.names).columns())
-    return pd.concat(frames).sort_index()
+    points = np.concatenate([p for p, _ in frames])
+    order = np.argsort(points, kind="stable")
+    columns = {}
+    for name in frames[0][1]:
+        joined = np.concatenate([np.asarray(c[name], dtype=object if name in ("reason", "solver")
+                                            else None) for _, c in frames])
+        columns[name] = joined[order] if name not in ("reason", "solver") \
+            else [str(v) for v in joined[order]]
+    return plan.frame(points[order], columns)
 
 
 # ---- the plan: what defines the points ------------------------------------------------------
@@ -217,6 +223,7 @@ class SweepPlan:
         self.chunks = [order[a:a + chunk_size] for a in range(0, len(order), chunk_size)]
         self._vectors = None
         self._x_rest = None
+        self._problem = None
 
     # -- identity ---------------------------------------------------------------------------
 
@@ -271,11 +278,11 @@ class SweepPlan:
 
     def prepare(self) -> None:
         """Build (and compile) what the chunks share, once, before they run."""
-        if self.fast:
+        if self.fast and self._x_rest is None:
             with _SOLVE_LOCK:
-                problem = get_problem(self.case)
-                problem.newton()
                 if self._x_rest is None:
+                    self._problem = problem = get_problem(self.case)
+                    _kernel_pool(problem)
                     self._x_rest = initial_point(problem, self.case)
             self.vectors()
 
@@ -285,7 +292,7 @@ class SweepPlan:
         table = _Table(len(points), self.names)
         if self.fast:
             self.prepare()
-            problem = get_problem(self.case)
+            problem = self._problem
             pool = _kernel_pool(problem)
             kernel = pool.acquire()
             try:
