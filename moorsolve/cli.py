@@ -429,6 +429,10 @@ def _run_sweep(args) -> int:
     except CaseError as exc:
         print(f"moorsolve: bad input: {_set_field(exc)}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print(f"moorsolve: interrupted; the finished points are in {args.output} and "
+              f"--resume completes it", file=sys.stderr)
+        return 130
     failed = int((~table["converged"].astype(bool)).sum())
     note = f" ({failed} without equilibrium: see the reason column)" if failed else ""
     _print(f"wrote {args.output}: {len(table)} points{note}")
