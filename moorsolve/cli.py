@@ -58,6 +58,19 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=_count, default=7,
                    help="solves per setting; the median time is reported (default 7)")
     _add_check_commands(sub)
+    p = sub.add_parser("import-moordyn", help="MoorDyn input file (v1 or v2) to a case file")
+    p.add_argument("moordyn", help="MoorDyn input file")
+    p.add_argument("-o", "--output", required=True, help="case file to write (YAML)")
+    p = sub.add_parser("export-moordyn", help="case file to a MoorDyn input file")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("-o", "--output", required=True, help="MoorDyn input file to write")
+    p.add_argument("--version", type=int, choices=(1, 2), default=None,
+                   help="MoorDyn format (default: the version the case came from, else 2)")
+    p.add_argument("--equilibrium", action="store_true",
+                   help="solve first and write the equilibrium positions of the fairleads "
+                        "and free points")
+    p.add_argument("--tol", type=_tolerance, default=None)
+    _solver_option(p)
     return parser
 
 
@@ -82,6 +95,8 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     if args.command in _CHECK_COMMANDS:
         return _CHECK_COMMANDS[args.command](args)
+    if args.command in ("import-moordyn", "export-moordyn"):
+        return _moordyn(args)
     from . import load_case, solve
     if args.command == "accuracy":
         return _accuracy(args)
@@ -301,6 +316,28 @@ def _run_inverse(args) -> int:
          f"{a.uplift_angle_deg:.5f} deg"),
     ] + ([f"order length         {a.order_length_m:12.4f} m"]
          if args.command == "chain-length" else [])))
+    return EXIT_OK
+
+
+def _moordyn(args) -> int:
+    from .io import export_moordyn, import_moordyn
+    try:
+        if args.command == "import-moordyn":
+            if os.path.splitext(args.output)[1].lower() not in (".yaml", ".yml"):
+                raise CaseError("--output", f"{args.output!r} must end in .yaml or .yml")
+            import_moordyn(args.moordyn, args.output)
+        else:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                export_moordyn(args.case, args.output, version=args.version,
+                               equilibrium=args.equilibrium, tol=args.tol, solver=args.solver)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ConvergenceError as exc:
+        print(f"moorsolve: {exc}", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    print(f"wrote {args.output}")
     return EXIT_OK
 
 

@@ -289,15 +289,16 @@ def _table(name: str, key: str, version: int, block: dict) -> list:
 # ---- values ------------------------------------------------------------------------------
 
 
-def _number(md: MoorDynFile, row: Row, index: int, column: str) -> float:
+def _number(md: MoorDynFile, row: Row, index: int, column: str, what: str = "column") -> float:
     token = row.values[index]
+    column = f"{what} {column!r}"
     m = _FORTRAN_EXPONENT.match(token)
     try:
         value = float(f"{m.group(1)}e{m.group(2)}" if m else token)
     except ValueError:
-        raise md.error(row.line, f"column {column!r}: {token!r} is not a number") from None
+        raise md.error(row.line, f"{column}: {token!r} is not a number") from None
     if not math.isfinite(value):
-        raise md.error(row.line, f"column {column!r}: {token!r} is not a finite number")
+        raise md.error(row.line, f"{column}: {token!r} is not a finite number")
     return value
 
 
@@ -523,7 +524,7 @@ def _environment(md: MoorDynFile, points: dict):
             options.append([opt, token])
             continue
         row = Row(number, [token])
-        value = _number(md, row, 0, opt)
+        value = _number(md, row, 0, opt, "option")
         if not value > 0:
             raise md.error(number, f"option {opt!r}: {token!r} must be > 0")
         if key in values:

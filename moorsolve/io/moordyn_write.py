@@ -288,7 +288,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
         if body is None:
             return [fx, fy, fz]
         if coupled_mode:
-            if result is None:
+            if result is None or version == 1:    # v1 Vessel points: platform frame
                 return [fx, fy, fz]
             x, y = _rotate(fx, fy, math.radians(offset[2]))
             return [x + offset[0], y + offset[1], fz]
@@ -421,7 +421,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
         header = [f"--------------------- MoorDyn Input File ({case.name}) ---------------------"
                   if version == 2 else f"MoorDyn input file: {case.name}",
                   "written by moorsolve export-moordyn"]
-    if body is not None and not coupled_mode and version == 1 and any(new_pose):
+    if body is not None and version == 1 and any(new_pose):
         notes.append(f"moorsolve: Vessel points are in the platform frame; the platform "
                      f"reference is at X {new_pose[0]:.9g} m, Y {new_pose[1]:.9g} m, yaw "
                      f"{new_pose[3]:.9g} deg")
