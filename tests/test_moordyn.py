@@ -335,7 +335,8 @@ def test_malformed_rows_name_file_line_and_column(old, new, message, tmp_path):
 
 
 def test_missing_sections_and_unrepresentable_topology(tmp_path):
-    path = _broken(tmp_path, "---------------------- LINES ------", "---------------------- LINEZ --")
+    path = _broken(tmp_path, "---------------------- LINES ------",
+                   "---------------------- LINEZ --")
     with pytest.raises(MoorDynError, match=r"lines\.dat:\d+: unknown section 'LINEZ'"):
         read_moordyn(path)
     text = V2.read_text()

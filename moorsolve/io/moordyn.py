@@ -579,8 +579,9 @@ def _legs(md: MoorDynFile, points: dict, lines: dict, has_body: bool):
         while points[start_point].kind == "free":
             other = next(i for i in at[start_point] if i != start_line)
             if other in seen:
-                raise md.error(points[start_point].line, f"lines {', '.join(map(str, sorted(seen)))}"
-                                                         " form a closed loop through free points")
+                loop = ", ".join(map(str, sorted(seen)))
+                raise md.error(points[start_point].line,
+                               f"lines {loop} form a closed loop through free points")
             seen.add(other)
             a, b = lines[other].ends
             start_point = a if b == start_point else b

@@ -453,7 +453,8 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
                       [point_rows[i] for i in sorted(point_rows)])
         text += table("LINE PROPERTIES",
                       "Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags/Outputs".split(),
-                      "(-) (-) (m) (-) (-) (-) (-)".split(), [line_rows[i] for i in sorted(line_rows)])
+                      "(-) (-) (m) (-) (-) (-) (-)".split(),
+                      [line_rows[i] for i in sorted(line_rows)])
         text.append("---------------------- SOLVER OPTIONS " + "-" * 44)
     else:
         wide = any(len(r) > 10 for r in type_rows)
