@@ -31,3 +31,12 @@ def test_buoy_vida_offset(capsys, monkeypatch):
     rest = next(r for r in rows if r[0] == "bora" and r[1] == "0.0")
     assert rest[4] == "529"
     assert int(bora_30[4]) > int(bora_30[6]) > int(bora_30[8])
+
+
+def test_moordyn_roundtrip(tmp_path, capsys, monkeypatch):
+    out = run_example("moordyn_roundtrip.py", ["--out", str(tmp_path)], capsys, monkeypatch)
+    assert (tmp_path / "floating_dock.dat").exists()
+    assert (tmp_path / "floating_dock_equilibrium.dat").exists()
+    last = out.strip().splitlines()[-1].split()
+    # "largest difference: offset X m, tension Y N": both solves and the held equilibrium agree.
+    assert float(last[3]) < 1e-6 and float(last[6]) < 1e-2
