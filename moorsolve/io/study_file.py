@@ -26,7 +26,9 @@ Schema (SI units or strings with units)::
         set: {PATH: VALUE, ...}                 edits of the case (moorsolve.io.paths)
         headings: [deg, ...] | {every_deg: > 0, from_deg: 0, to_deg: < from + 360}
                                                 one load case per heading: every wind,
-                                                current and waves toward_deg set to it
+                                                current and waves toward_deg set to it,
+                                                and the constant force [Fx, Fy] turned
+                                                toward it (its size and Mz kept)
         limits: {...}                           overrides of the study's limits
     solver: {tol: (0, 1), max_iter: int >= 1}   IPOPT settings of the optimisation
 """
@@ -310,12 +312,20 @@ def _load_cases(raw, path: str, case: Case, limits: Limits) -> tuple:
         else:
             hpath = _join(lpath, "headings")
             flows = [f for f in _FLOWS if getattr(variant.environment, f) is not None]
-            if not flows:
-                raise CaseError(hpath, "the load case has no wind, current or waves to turn")
+            force = (variant.body.loads.force if variant.body is not None else None)
+            if not flows and force is None:
+                raise CaseError(hpath, "the load case has no wind, current, waves or constant "
+                                       "force to turn")
             expanded = []
             for h in _headings(e["headings"], hpath):
                 turned = dict(edits)
                 turned.update({f"environment.{f}.toward_deg": h for f in flows})
+                if force is not None:
+                    # The constant force keeps its size and turns toward the heading.
+                    size = math.hypot(force[0], force[1])
+                    a = math.radians(h)
+                    turned["body.loads.force"] = [size * math.cos(a), size * math.sin(a),
+                                                  force[2]]
                 expanded.append((f"{name} {h:g} deg", turned))
         for lc_name, lc_edits in expanded:
             if lc_name in names:
