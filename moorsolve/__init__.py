@@ -10,10 +10,11 @@ from .errors import CaseError, ConvergenceError, MoorsolveError
 from .io import load_case
 from .model import Case
 from .solve import Certificate, LegResult, Result, solve, sweep
+from .solve.optimise import optimise
 from .solve.study import natural_periods, restoring_curve, sensitivity, stiffness
 
 __version__ = "0.1.0"
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
-           "stiffness", "restoring_curve", "natural_periods", "sensitivity",
+           "stiffness", "restoring_curve", "natural_periods", "sensitivity", "optimise",
            "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

@@ -31,3 +31,14 @@ def test_buoy_vida_offset(capsys, monkeypatch):
     rest = next(r for r in rows if r[0] == "bora" and r[1] == "0.0")
     assert rest[4] == "529"
     assert int(bora_30[4]) > int(bora_30[6]) > int(bora_30[8])
+
+
+def test_dock_chain_optimisation(tmp_path, capsys, monkeypatch):
+    out = run_example("dock_chain_optimisation.py", ["--out", str(tmp_path)], capsys,
+                      monkeypatch)
+    assert "verified: True" in out
+    assert "anchor uplift limit of 281 kN" in out and "would save" in out
+    saved = float(out.split("chain saved: ")[1].split(" t")[0])
+    assert saved > 0
+    png = tmp_path / "dock_chain_optimisation.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
