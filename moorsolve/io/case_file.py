@@ -166,6 +166,23 @@ def _sequence(raw, path: str, what: str) -> list:
     raise CaseError(path, f"{show_value(raw)} is not a list; {path or 'this'} must be {what}")
 
 
+def _rows(raw, path: str, shape: str, *, width: int, min_rows: int, empty: str):
+    """Check that ``raw`` is a list of at least ``min_rows`` rows of ``width`` values each
+    (``shape`` names a row, e.g. ``"[z, speed]"``) and yield ``(row_path, row)``."""
+    rows = _sequence(raw, path, f"a list of rows {shape}")
+    if len(rows) < min_rows:
+        plural = "row" if min_rows == 1 else "rows"
+        raise CaseError(path, f"{len(rows)} row(s); {empty} needs at least {min_rows} "
+                              f"{plural} {shape}")
+    for i, row_raw in enumerate(rows):
+        rpath = _join(path, i)
+        row = _sequence(row_raw, rpath, f"a row {shape}")
+        if len(row) != width:
+            raise CaseError(rpath, f"{show_value(row_raw)} has {len(row)} values; a row is "
+                                   f"{shape}")
+        yield rpath, row
+
+
 def _check_bounds(raw, value: float, kind: str, path: str, *, gt=None, ge=None, lt=None,
                   le=None) -> float:
     def bound(b):
@@ -233,16 +250,9 @@ def _flow(raw, path: str, profile: bool = False) -> Flow:
     rows = None
     if m.get("profile") is not None:
         ppath = _join(path, "profile")
-        items = _sequence(m["profile"], ppath, "a list of rows [z, speed] (z <= 0, ascending)")
-        if not items:
-            raise CaseError(ppath, "no rows; a current profile needs at least one [z, speed]")
         rows = []
-        for i, item in enumerate(items):
-            rpath = _join(ppath, i)
-            row = _sequence(item, rpath, "a row [z, speed]")
-            if len(row) != 2:
-                raise CaseError(rpath, f"{show_value(item)} has {len(row)} values; a row is "
-                                       "[z, speed]")
+        for rpath, row in _rows(m["profile"], ppath, "[z, speed]", width=2, min_rows=1,
+                                empty="a current profile (z <= 0, ascending)"):
             z = _quantity(row[0], _join(rpath, 0), "length", le=0)
             v = _quantity(row[1], _join(rpath, 1), "speed", ge=0)
             if rows and not z > rows[-1][0]:
@@ -422,17 +432,9 @@ def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_
 
 
 def _table(raw, path: str) -> tuple:
-    rows = _sequence(raw, path, "a list of rows [heading_deg, cx, cy, cmz]")
-    if len(rows) < 2:
-        raise CaseError(path, f"{len(rows)} row(s); a coefficient table needs at least 2 rows "
-                              "[heading_deg, cx, cy, cmz]")
     table = []
-    for i, row_raw in enumerate(rows):
-        rpath = _join(path, i)
-        row = _sequence(row_raw, rpath, "a row [heading_deg, cx, cy, cmz]")
-        if len(row) != 4:
-            raise CaseError(rpath, f"{show_value(row_raw)} has {len(row)} values; a row is "
-                                   "[heading_deg, cx, cy, cmz]")
+    for rpath, row in _rows(raw, path, "[heading_deg, cx, cy, cmz]", width=4, min_rows=2,
+                            empty="a coefficient table"):
         heading = _quantity(row[0], _join(rpath, 0), "angle", ge=-180.0, lt=360.0)
         coefficients = tuple(_quantity(v, _join(rpath, j), "dimensionless")
                              for j, v in enumerate(row[1:], start=1))

@@ -644,14 +644,7 @@ def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | No
     cos_t, sin_t = 1 / sec, t / sec
     VA = V - w * L
     if VA >= H * t:
-        Tv = VA + w * s
-        if H > 0:
-            x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
-            z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
-        else:
-            x = np.zeros_like(s)
-            z = s + w * s**2 / 2 * c
-        return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
+        return _hanging_profile(s, H, VA, w, c)
     LB = L - (V - H * t) / w
     k = w * (sin_t + mu * cos_t)
     TA_raw = H * sec - k * LB
