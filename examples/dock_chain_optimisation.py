@@ -2,7 +2,7 @@
 the typhoon from every heading 45 deg apart, as one IPOPT problem.
 
 Run:  python examples/dock_chain_optimisation.py [--out FOLDER]
-The study is cases/floating_dock_study.yaml (breast and end chains as two length groups;
+The study is cases/studies/floating_dock_chain.yaml (breast and end chains, two length groups;
 safety factor 2.0, sinker-block uplift 281 kN, offset 3 m). Prints the report and writes
 dock_chain_optimisation.png (lengths before and after, constraint utilisation) into FOLDER.
 """
@@ -17,7 +17,7 @@ from moorsolve.solve.optimise import optimise
 
 HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "cases" / "floating_dock.yaml"
-STUDY = HERE.parent / "cases" / "floating_dock_study.yaml"
+STUDY = HERE.parent / "cases" / "studies" / "floating_dock_chain.yaml"
 
 
 def main(argv=None):

@@ -14,7 +14,7 @@ from moorsolve.io.study_file import load_study
 from moorsolve.solve.optimise import design_case, load_case_scene, optimise
 
 DOCK = "cases/floating_dock.yaml"
-DOCK_STUDY = "cases/floating_dock_study.yaml"
+DOCK_STUDY = "cases/studies/floating_dock_chain.yaml"
 
 # ---- helpers ---------------------------------------------------------------------------
 
