@@ -76,7 +76,10 @@ def load_study(source, case: Case) -> Study:
     """
     if isinstance(source, (str, PathLike)):
         path = Path(source)
-        data = _read_yaml(path)
+        try:
+            data = _read_yaml(path)
+        except CaseError as exc:
+            raise CaseError(exc.field, exc.detail.replace("case file", "study file")) from None
         default_name = path.stem or "study"
     elif isinstance(source, Mapping):
         data, default_name = source, "study"
