@@ -71,6 +71,15 @@ def _parser() -> argparse.ArgumentParser:
                         "and free points")
     p.add_argument("--tol", type=_tolerance, default=None)
     _solver_option(p)
+    p = sub.add_parser("optimise", help="least line mass or cost over a set of load cases "
+                                        "(design study file)")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--study", required=True, help="design study file (YAML)")
+    p.add_argument("--json", action="store_true", help="print the optimisation as JSON")
+    p.add_argument("-o", "--output", default=None,
+                   help="write the optimised case file (.yaml) when the optimum is verified")
+    p.add_argument("--all-constraints", action="store_true",
+                   help="list every constraint, not only the tightest per load case")
     return parser
 
 
@@ -100,6 +109,8 @@ def main(argv: list[str] | None = None) -> int:
     from . import load_case, solve
     if args.command == "accuracy":
         return _accuracy(args)
+    if args.command == "optimise":
+        return _optimise(args)
     with warnings.catch_warnings():
         # numpy's overflow/invalid-value warnings on absurd input would interleave with the
         # one message the command prints; the certificate and ConvergenceError carry it.
@@ -150,6 +161,52 @@ def _accuracy(args) -> int:
     _print(json.dumps({"case": case.name, "rungs": [r.to_dict() for r in rungs]}, indent=2)
            if args.json else format_ladder(rungs, case.name))
     return EXIT_OK
+
+
+def _optimise(args) -> int:
+    from . import load_case
+    from .io.optimise_report import format_optimisation, optimisation_json
+    from .io.study_file import load_study, write_case_file
+    from .solve.optimise import optimise
+    try:
+        case = load_case(args.case)
+        if args.output is not None:
+            _check_case_output(args.output)
+        study = load_study(args.study, case)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            opt = optimise(case, study)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ConvergenceError as exc:
+        print(f"moorsolve: {exc.reason} ({exc.iterations} iterations, IPOPT status "
+              f"{exc.status or 'n/a'})", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    _print(optimisation_json(opt) if args.json
+           else format_optimisation(opt, every_constraint=args.all_constraints))
+    if not opt.verified:
+        print("moorsolve: the optimum did not pass the independent re-solve of every load "
+              "case; no case file written", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    if args.output is not None:
+        data = dict(opt.optimised_data)
+        data["name"] = f"{case.name} (optimised)"
+        write_case_file(data, args.output, header=(
+            f"{case.name}: optimised by moorsolve optimise --study {args.study}\n"
+            f"{opt.objective} {opt.objective_start:,.0f} -> {opt.objective_optimum:,.0f} "
+            f"{opt.unit}"))
+        if not args.json:
+            print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def _check_case_output(path: str) -> None:
+    if os.path.splitext(path)[1].lower() not in (".yaml", ".yml"):
+        raise CaseError("--output", f"{path!r} must end in .yaml or .yml")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise CaseError("--output", f"folder {folder!r} does not exist")
 
 
 def _check_output(path: str, option: str = "--output") -> None:
