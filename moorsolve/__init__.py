@@ -7,14 +7,19 @@
 """
 
 from .errors import CaseError, ConvergenceError, MoorsolveError
-from .io import load_case
+from .io import (MoorDynError, case_to_moordyn, export_moordyn, import_moordyn, load_case,
+                 moordyn_to_case_data, read_moordyn)
 from .model import Case
 from .solve import Certificate, LegResult, Result, solve, sweep
 from .solve.envelope import offset_envelope
+from .solve.optimise import optimise
 from .solve.study import natural_periods, restoring_curve, sensitivity, stiffness
 
 __version__ = "0.1.0"
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
            "offset_envelope", "stiffness", "restoring_curve", "natural_periods", "sensitivity",
+           "optimise",
+           "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
+           "export_moordyn", "MoorDynError",
            "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

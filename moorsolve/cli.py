@@ -58,6 +58,28 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=_count, default=7,
                    help="solves per setting; the median time is reported (default 7)")
     _add_check_commands(sub)
+    p = sub.add_parser("import-moordyn", help="MoorDyn input file (v1 or v2) to a case file")
+    p.add_argument("moordyn", help="MoorDyn input file")
+    p.add_argument("-o", "--output", required=True, help="case file to write (YAML)")
+    p = sub.add_parser("export-moordyn", help="case file to a MoorDyn input file")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("-o", "--output", required=True, help="MoorDyn input file to write")
+    p.add_argument("--version", type=int, choices=(1, 2), default=None,
+                   help="MoorDyn format (default: the version the case came from, else 2)")
+    p.add_argument("--equilibrium", action="store_true",
+                   help="solve first and write the equilibrium positions of the fairleads "
+                        "and free points")
+    p.add_argument("--tol", type=_tolerance, default=None)
+    _solver_option(p)
+    p = sub.add_parser("optimise", help="least line mass or cost over a set of load cases "
+                                        "(design study file)")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--study", required=True, help="design study file (YAML)")
+    p.add_argument("--json", action="store_true", help="print the optimisation as JSON")
+    p.add_argument("-o", "--output", default=None,
+                   help="write the optimised case file (.yaml) when the optimum is verified")
+    p.add_argument("--all-constraints", action="store_true",
+                   help="list every constraint, not only the tightest per load case")
     _add_study_commands(sub)
     return parser
 
@@ -87,9 +109,13 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             return _STUDY_COMMANDS[args.command](args)
+    if args.command in ("import-moordyn", "export-moordyn"):
+        return _moordyn(args)
     from . import load_case, solve
     if args.command == "accuracy":
         return _accuracy(args)
+    if args.command == "optimise":
+        return _optimise(args)
     with warnings.catch_warnings():
         # numpy's overflow/invalid-value warnings on absurd input would interleave with the
         # one message the command prints; the certificate and ConvergenceError carry it.
@@ -140,6 +166,52 @@ def _accuracy(args) -> int:
     _print(json.dumps({"case": case.name, "rungs": [r.to_dict() for r in rungs]}, indent=2)
            if args.json else format_ladder(rungs, case.name))
     return EXIT_OK
+
+
+def _optimise(args) -> int:
+    from . import load_case
+    from .io.optimise_report import format_optimisation, optimisation_json
+    from .io.study_file import load_study, write_case_file
+    from .solve.optimise import optimise
+    try:
+        case = load_case(args.case)
+        if args.output is not None:
+            _check_case_output(args.output)
+        study = load_study(args.study, case)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            opt = optimise(case, study)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ConvergenceError as exc:
+        print(f"moorsolve: {exc.reason} ({exc.iterations} iterations, IPOPT status "
+              f"{exc.status or 'n/a'})", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    _print(optimisation_json(opt) if args.json
+           else format_optimisation(opt, every_constraint=args.all_constraints))
+    if not opt.verified:
+        print("moorsolve: the optimum did not pass the independent re-solve of every load "
+              "case; no case file written", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    if args.output is not None:
+        data = dict(opt.optimised_data)
+        data["name"] = f"{case.name} (optimised)"
+        write_case_file(data, args.output, header=(
+            f"{case.name}: optimised by moorsolve optimise --study {args.study}\n"
+            f"{opt.objective} {opt.objective_start:,.0f} -> {opt.objective_optimum:,.0f} "
+            f"{opt.unit}"))
+        if not args.json:
+            print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def _check_case_output(path: str) -> None:
+    if os.path.splitext(path)[1].lower() not in (".yaml", ".yml"):
+        raise CaseError("--output", f"{path!r} must end in .yaml or .yml")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise CaseError("--output", f"folder {folder!r} does not exist")
 
 
 def _check_output(path: str, option: str = "--output") -> None:
@@ -306,6 +378,28 @@ def _run_inverse(args) -> int:
          f"{a.uplift_angle_deg:.5f} deg"),
     ] + ([f"order length         {a.order_length_m:12.4f} m"]
          if args.command == "chain-length" else [])))
+    return EXIT_OK
+
+
+def _moordyn(args) -> int:
+    from .io import export_moordyn, import_moordyn
+    try:
+        if args.command == "import-moordyn":
+            if os.path.splitext(args.output)[1].lower() not in (".yaml", ".yml"):
+                raise CaseError("--output", f"{args.output!r} must end in .yaml or .yml")
+            import_moordyn(args.moordyn, args.output)
+        else:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                export_moordyn(args.case, args.output, version=args.version,
+                               equilibrium=args.equilibrium, tol=args.tol, solver=args.solver)
+    except CaseError as exc:
+        print(f"moorsolve: bad input: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except ConvergenceError as exc:
+        print(f"moorsolve: {exc}", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    print(f"wrote {args.output}")
     return EXIT_OK
 
 

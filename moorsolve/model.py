@@ -411,6 +411,9 @@ class Case:
     body: Optional[Body] = None
     solver: SolverOptions = field(default_factory=SolverOptions)
     checks: Optional[Checks] = None
+    #: What a MoorDyn input file held that moorsolve does not use (the case file's ``moordyn``
+    #: block, see ``moorsolve.io.moordyn_block``), kept for export; the solver ignores it.
+    moordyn: Optional[Mapping] = field(default=None, compare=False, repr=False)
     #: The validated case-file data it was built from (for sweeps that edit it by path);
     #: None for a Case built in code.
     source: Optional[Mapping] = field(default=None, compare=False, repr=False)

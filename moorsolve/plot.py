@@ -311,3 +311,67 @@ def plot_polar_field(heading_deg, radius, values, ax=None, radius_label="",
     ax.set_ylim(0, float(np.max(radius)))
     ax.set_title(f"{value_label} (radius: {radius_label})", fontsize=10)
     return ax
+
+
+def plot_optimisation(opt, axes=None):
+    """A design optimisation: line lengths before and after, and constraint utilisation.
+
+    Left: each leg's unstretched length at the start and at the optimum. Right: per load
+    case and constraint kind the tightest utilisation (value over limit, or limit over
+    value for the lower limits: safety factor and grounded length); 1 is the limit.
+
+    Parameters
+    ----------
+    opt : moorsolve.solve.optimise.Optimisation
+    axes : pair of Axes, optional
+
+    Returns
+    -------
+    tuple of Axes
+    """
+    import matplotlib.pyplot as plt
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    ax1, ax2 = axes
+    start = {}
+    for v in opt.variables:
+        if v.kind == "length":
+            start.update(dict.fromkeys(v.legs, v.start))
+    legs = opt.optimised_case.legs
+    names = [leg.name for leg in legs]
+    after = [leg.length for leg in legs]
+    before = [start.get(leg.name, leg.length) for leg in legs]
+    x = np.arange(len(names))
+    ax1.bar(x - 0.2, before, 0.4, label="start", color="0.65")
+    ax1.bar(x + 0.2, after, 0.4, label="optimum", color="tab:blue")
+    ax1.set_xticks(x, names, rotation=90 if len(names) > 12 else 0)
+    lo = min(before + after)
+    ax1.set_ylim(lo * 0.97, max(before + after) * 1.01)
+    ax1.set_ylabel("unstretched length [m]")
+    ax1.set_title(f"{opt.objective}: {opt.objective_start:,.0f} -> "
+                  f"{opt.objective_optimum:,.0f} {opt.unit}")
+    ax1.legend(loc="lower right")
+
+    cases = list(dict.fromkeys(c.load_case for c in opt.constraints))
+    kinds = list(dict.fromkeys(c.kind for c in opt.constraints))
+    width = 0.8 / max(len(kinds), 1)
+    for j, kind in enumerate(kinds):
+        utils = []
+        for lc in cases:
+            group = [c for c in opt.constraints if c.load_case == lc and c.kind == kind]
+            utils.append(max((_utilisation(c) for c in group), default=np.nan))
+        ax2.bar(np.arange(len(cases)) + (j - (len(kinds) - 1) / 2) * width, utils, width,
+                label=kind.replace("_", " "))
+    ax2.axhline(1.0, color="k", lw=1, ls="--")
+    ax2.set_xticks(np.arange(len(cases)), cases, rotation=45, ha="right")
+    ax2.set_ylabel("utilisation (1 = limit)")
+    ax2.set_title("tightest constraint per load case at the optimum")
+    ax2.legend(fontsize=8)
+    ax2.figure.tight_layout()
+    return ax1, ax2
+
+
+def _utilisation(c) -> float:
+    if c.kind in ("safety_factor", "grounded_length"):
+        return c.limit / c.value if c.value > 0 else np.inf
+    return c.value / c.limit if c.limit > 0 else (0.0 if c.value <= 0 else np.inf)

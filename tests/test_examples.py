@@ -44,3 +44,23 @@ def test_buoy_vida_offset(tmp_path, capsys, monkeypatch):
     assert "largest offset:" in out
     png = tmp_path / "buoy_vida_offset.png"
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_moordyn_roundtrip(tmp_path, capsys, monkeypatch):
+    out = run_example("moordyn_roundtrip.py", ["--out", str(tmp_path)], capsys, monkeypatch)
+    assert (tmp_path / "floating_dock.dat").exists()
+    assert (tmp_path / "floating_dock_equilibrium.dat").exists()
+    last = out.strip().splitlines()[-1].split()
+    # "largest difference: offset X m, tension Y N": both solves and the held equilibrium agree.
+    assert float(last[3]) < 1e-6 and float(last[6]) < 1e-2
+
+
+def test_dock_chain_optimisation(tmp_path, capsys, monkeypatch):
+    out = run_example("dock_chain_optimisation.py", ["--out", str(tmp_path)], capsys,
+                      monkeypatch)
+    assert "verified: True" in out
+    assert "anchor uplift limit of 281 kN" in out and "would save" in out
+    saved = float(out.split("chain saved: ")[1].split(" t")[0])
+    assert saved > 0
+    png = tmp_path / "dock_chain_optimisation.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -2,8 +2,13 @@
 
 :func:`load_case` reads a YAML case file (or a dictionary of the same shape), converts
 every quantity to SI and validates it into a :class:`moorsolve.model.Case`.
+:func:`read_moordyn`, :func:`moordyn_to_case_data` and :func:`import_moordyn` bring a MoorDyn
+input file in; :func:`case_to_moordyn` and :func:`export_moordyn` write one.
 """
 
 from .case_file import load_case
+from .moordyn import MoorDynError, import_moordyn, moordyn_to_case_data, read_moordyn
+from .moordyn_write import case_to_moordyn, export_moordyn
 
-__all__ = ["load_case"]
+__all__ = ["load_case", "read_moordyn", "moordyn_to_case_data", "import_moordyn",
+           "case_to_moordyn", "export_moordyn", "MoorDynError"]

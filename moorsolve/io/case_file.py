@@ -45,6 +45,9 @@ Schema (SI units, ``[...]`` lists)::
     checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
              offset_limit, offset_limit_damaged, min_grounded_length,
              min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
+    moordyn: {...}                             optional; MoorDyn columns moorsolve does not use,
+                                               kept for export (moorsolve.io.moordyn_block);
+                                               the solver ignores it
     ANCHOR: {type: drag} | {type: deadweight, allowed_uplift [N]}
             | {type: pile, allowed_uplift_angle_deg}
 """
@@ -90,6 +93,7 @@ from ..model import (
     SolverOptions,
     Waves,
 )
+from .moordyn_block import validate_moordyn_block
 from .units import describe, format_si, show_value, to_si, weight_per_length_to_si
 
 __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
@@ -830,7 +834,7 @@ def _solver(raw, path: str) -> SolverOptions:
 
 def _build_case(data, default_name: str) -> Case:
     m = _mapping(data, "", required=("environment", "line_types", "legs"),
-                 optional=("name", "body", "solver", "checks"))
+                 optional=("name", "body", "solver", "checks", "moordyn"))
     name = default_name if "name" not in m else _name(m["name"], "name", "case name")
     # Environment first: gravity converts weights given as mass per length, and depth
     # places anchors given as [x, y].
@@ -841,6 +845,8 @@ def _build_case(data, default_name: str) -> Case:
     legs = _legs(m["legs"], "legs", environment, line_types)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
     checks = None if m.get("checks") is None else _checks(m["checks"], "checks", legs)
+    moordyn = (None if m.get("moordyn") is None
+               else validate_moordyn_block(m["moordyn"], "moordyn", line_types, legs))
     if body is not None and "yaw" in body.free and all(
             leg.fairlead[0] == 0.0 and leg.fairlead[1] == 0.0 for leg in legs):
         # Every line acts through the body origin: no leg can resist a yaw moment, so the
@@ -849,7 +855,7 @@ def _build_case(data, default_name: str) -> Case:
                                      "(x = y = 0), so nothing restrains yaw; remove yaw from "
                                      "body.free")
     return Case(name=name, environment=environment, line_types=line_types, legs=legs,
-                body=body, solver=solver, checks=checks)
+                body=body, solver=solver, checks=checks, moordyn=moordyn)
 
 
 class _StrictLoader(yaml.SafeLoader):
