@@ -11,10 +11,9 @@ import base64
 import html
 import json
 import math
-import os
-import tempfile
 
 from ..checks import CheckReport
+from .output_files import write_text
 from .results import _finite
 
 __all__ = ["check_json", "format_check_table", "render_html", "write_html_report"]
@@ -298,15 +297,4 @@ def write_html_report(report: CheckReport, case, path: str) -> None:
         images["governing_name"] = governing.name
     images["utilisation"] = figure_png(utilisation_figure(report))
     text = render_html(report, case, images)
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(suffix=".html", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    write_text(path, text)

@@ -34,18 +34,17 @@ from __future__ import annotations
 import math
 import os
 import re
-import tempfile
 from dataclasses import dataclass, field
 from os import PathLike
 from pathlib import Path
 
-import yaml
 
 from ..errors import CaseError
 from .moordyn_block import RAW_SECTIONS
+from .output_files import write_case_yaml
 
 __all__ = ["MoorDynError", "MoorDynFile", "read_moordyn", "moordyn_to_case_data",
-           "import_moordyn", "write_yaml_case"]
+           "import_moordyn"]
 
 #: MoorDyn's own defaults where a file leaves an option out (MoorDyn documentation): the
 #: water density is 1025 kg/m^3 in both versions; gravity 9.80665 (v1) and 9.81 (v2-C).
@@ -728,39 +727,6 @@ _YAML_PREAMBLE = """\
 """
 
 
-def _flow_lists(dumper, data):
-    """Short lists of scalars (points, options) in flow style, everything else block style."""
-    flow = (len(data) <= 4 and all(isinstance(v, (int, float, str, bool, type(None)))
-                                   for v in data)
-            and sum(len(str(v)) for v in data) < 60)
-    return dumper.represent_sequence("tag:yaml.org,2002:seq", data, flow_style=flow)
-
-
-class _Dumper(yaml.SafeDumper):
-    pass
-
-
-_Dumper.add_representer(list, _flow_lists)
-
-
-def write_yaml_case(data: dict, out, preamble: str = "") -> None:
-    """Write a case dictionary as YAML, atomically (nothing is left on failure)."""
-    text = preamble + yaml.dump(data, Dumper=_Dumper, sort_keys=False, allow_unicode=True,
-                                width=100)
-    out = Path(out)
-    folder = out.resolve().parent
-    if not folder.is_dir():
-        raise CaseError("-o", f"folder {str(folder)!r} does not exist")
-    fd, tmp = tempfile.mkstemp(suffix=".yaml", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        os.replace(tmp, out)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
 def import_moordyn(source, out=None) -> dict:
     """Read a MoorDyn file, map it onto a case, validate it, and optionally write the YAML.
 
@@ -796,5 +762,5 @@ def import_moordyn(source, out=None) -> dict:
     except CaseError as exc:
         raise MoorDynError(md.name, None, f"the imported case is not valid: {exc}") from None
     if out is not None:
-        write_yaml_case(data, out, _YAML_PREAMBLE.format(version=md.version, source=md.name))
+        write_case_yaml(data, out, _YAML_PREAMBLE.format(version=md.version, source=md.name))
     return data

@@ -31,13 +31,12 @@ from __future__ import annotations
 
 import logging
 import math
-import os
-import tempfile
 from os import PathLike
 from pathlib import Path
 
 from ..errors import CaseError
 from .moordyn_block import RAW_SECTIONS
+from .output_files import write_text
 
 __all__ = ["case_to_moordyn", "export_moordyn"]
 
@@ -534,12 +533,5 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
         from ..solve import solve
         result = solve(case, tol=tol, solver=solver)
     text = case_to_moordyn(case, version=version, result=result)
-    fd, tmp = tempfile.mkstemp(suffix=".dat", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        os.replace(tmp, out)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    write_text(out, text)
     return result

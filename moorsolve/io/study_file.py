@@ -37,19 +37,17 @@ from __future__ import annotations
 
 import math
 import numbers
-import os
-import tempfile
 from collections.abc import Mapping
 from os import PathLike
 from pathlib import Path
 
-import yaml
 
 from .. import catalog as line_catalog
 from ..design import OBJECTIVES, VARIABLE_KINDS, DesignVariable, Limits, LoadCase, Study
 from ..errors import CaseError
 from ..model import Case
 from .case_file import _join, _mapping, _name, _quantity, _read_yaml, _sequence, load_case
+from .output_files import write_case_yaml as write_case_file
 from .paths import with_values
 from .units import format_si, show_value
 
@@ -348,34 +346,3 @@ def _solver(raw, path: str):
         raise CaseError(_join(path, "max_iter"), f"{show_value(max_iter)} must be an integer "
                                                  "from 1 to 100000")
     return tol, int(max_iter)
-
-
-# ---- writing ------------------------------------------------------------------------------
-
-
-def _plain(node):
-    if isinstance(node, Mapping):
-        return {str(k): _plain(v) for k, v in node.items()}
-    if isinstance(node, (list, tuple)):
-        return [_plain(v) for v in node]
-    if isinstance(node, numbers.Integral) and not isinstance(node, bool):
-        return int(node)
-    if isinstance(node, numbers.Real) and not isinstance(node, bool):
-        return float(node)
-    return node
-
-
-def write_case_file(data: Mapping, path, header: str = "") -> None:
-    """Write case-file ``data`` as YAML to ``path`` atomically (nothing half-written)."""
-    text = yaml.safe_dump(_plain(data), sort_keys=False, default_flow_style=None, width=100)
-    if header:
-        text = "".join(f"# {line}\n" for line in header.splitlines()) + text
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(suffix=".yaml", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)

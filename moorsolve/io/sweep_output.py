@@ -21,11 +21,11 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import tempfile
 import uuid
 from pathlib import Path
 
 from ..errors import CaseError
+from .output_files import replacing, write_text
 
 FORMATS = (".csv", ".parquet")
 _RECORD_VERSION = 1
@@ -99,12 +99,12 @@ class _Sink:
                     shutil.rmtree(q)
                 elif q.exists():
                     q.unlink()
-        _atomic_write_text(self.record_path, json.dumps(self.record(False)))
+        write_text(self.record_path, json.dumps(self.record(False)), sync=True)
         self._open()
 
     def finish(self):
         frame = self._assemble()
-        _atomic_write_text(self.record_path, json.dumps(self.record(True)))
+        write_text(self.record_path, json.dumps(self.record(True)), sync=True)
         return frame
 
 
@@ -114,11 +114,11 @@ class _CsvSink(_Sink):
             return set()
         header, lines = self._lines()
         # Drop a torn last line and duplicates: the file keeps whole rows only.
-        _atomic_write_text(self.path, header + "".join(lines.values()))
+        write_text(self.path, header + "".join(lines.values()), sync=True)
         return set(lines)
 
     def _lines(self):
-        text = self.path.read_text()
+        text = self.path.read_text(encoding="utf-8")
         parts = text.splitlines(keepends=True)
         expected = self._header()
         if not parts or parts[0] != expected:
@@ -139,8 +139,8 @@ class _CsvSink(_Sink):
 
     def _open(self) -> None:
         if not self.path.exists():
-            _atomic_write_text(self.path, self._header())
-        self._file = open(self.path, "a", newline="")
+            write_text(self.path, self._header(), sync=True)
+        self._file = open(self.path, "a", newline="", encoding="utf-8")
 
     def write(self, frame) -> None:
         frame.to_csv(self._file, header=False, lineterminator="\n")
@@ -152,7 +152,8 @@ class _CsvSink(_Sink):
         self._file.close()
         header, lines = self._lines()
         if len(lines) == self.plan.n_points:
-            _atomic_write_text(self.path, header + "".join(lines[i] for i in sorted(lines)))
+            write_text(self.path, header + "".join(lines[i] for i in sorted(lines)),
+                       sync=True)
         frame = pd.read_csv(self.path, index_col="point", dtype={"reason": str, "solver": str})
         for column in ("reason", "solver"):
             frame[column] = frame[column].fillna("")
@@ -182,9 +183,8 @@ class _ParquetSink(_Sink):
     def write(self, frame) -> None:
         first = int(frame.index.min())
         target = self.parts / f"part-{first:09d}-{uuid.uuid4().hex[:8]}.parquet"
-        tmp = self.parts / f".tmp-{uuid.uuid4().hex}"
-        frame.to_parquet(tmp)
-        os.replace(tmp, target)
+        with replacing(target) as tmp:
+            frame.to_parquet(tmp)
 
     def _assemble(self):
         import pandas as pd
@@ -195,34 +195,7 @@ class _ParquetSink(_Sink):
         if frame is None or len(frame) < self.plan.n_points:
             return frame
         frame = frame[~frame.index.duplicated()].sort_index()
-        fd, tmp = tempfile.mkstemp(suffix=".parquet", dir=self.path.parent)
-        os.close(fd)
-        try:
+        with replacing(self.path) as tmp:
             frame.to_parquet(tmp)
-            _publish(tmp, self.path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
         shutil.rmtree(self.parts)
         return pd.read_parquet(self.path)
-
-
-def _atomic_write_text(path: Path, text: str) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", newline="") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        _publish(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
-def _publish(tmp: str, path: Path) -> None:
-    """Rename ``tmp`` onto ``path`` with the permissions a new file would get."""
-    mask = os.umask(0)
-    os.umask(mask)
-    os.chmod(tmp, 0o666 & ~mask)
-    os.replace(tmp, path)
