@@ -1,0 +1,76 @@
+"""``solve``, ``plot`` and ``accuracy``: one case's equilibrium and what its accuracy costs."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from ..errors import ConvergenceError
+from .common import (EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS, check_output,
+                     print_text, save_figure, solver_option, tolerance, whole_number)
+
+
+def add_commands(sub) -> None:
+    p = sub.add_parser("solve", help="solve a case and print the equilibrium")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+    p.add_argument("--tol", type=tolerance, default=None,
+                   help="force residual relative to the largest tension (default 1e-9)")
+    p.add_argument("--no-profiles", action="store_true",
+                   help="leave the line profiles out of the JSON")
+    solver_option(p)
+    p.set_defaults(run=run_solve)
+    p = sub.add_parser("plot", help="plan and elevation views of the equilibrium")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("-o", "--output", required=True, help="image file to write (.png, .pdf, .svg)")
+    p.add_argument("--tol", type=tolerance, default=None)
+    solver_option(p)
+    p.set_defaults(run=run_plot)
+    p = sub.add_parser("accuracy", help="solve time against error over tolerances and "
+                                        "model fidelity")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--json", action="store_true", help="print the ladder as JSON")
+    p.add_argument("--plot", metavar="FILE", default=None,
+                   help="also write time against error as an image (.png, .pdf, .svg)")
+    p.add_argument("--repeats", type=whole_number("--repeats", 1, 1000), default=7,
+                   help="solves per setting; the median time is reported (default 7)")
+    p.set_defaults(run=run_accuracy)
+
+
+def run_solve(args) -> int:
+    from .. import load_case, solve
+    from ..io.results import format_table, to_json
+    result = solve(load_case(args.case), tol=args.tol, solver=args.solver)
+    print_text(to_json(result, profiles=not args.no_profiles) if args.json
+               else format_table(result))
+    return EXIT_OK
+
+
+def run_plot(args) -> int:
+    from .. import load_case, solve
+    from ..plot import plot_equilibrium
+    case = load_case(args.case)
+    check_output(args.output, "--output", IMAGE_EXTENSIONS)
+    result = solve(case, tol=args.tol, solver=args.solver)
+    save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), args.output)
+    print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def run_accuracy(args) -> int:
+    from .. import load_case
+    from ..solve.accuracy import accuracy_ladder, format_ladder
+    case = load_case(args.case)
+    if args.plot:
+        check_output(args.plot, "--plot", IMAGE_EXTENSIONS)
+    try:
+        rungs = accuracy_ladder(case, repeats=args.repeats)
+    except ConvergenceError as exc:
+        print(f"moorsolve: the reference solve failed: {exc}", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    if args.plot:
+        from ..plot import plot_accuracy
+        save_figure(lambda: plot_accuracy(rungs)[0].figure, args.plot)
+    print_text(json.dumps({"case": case.name, "rungs": [r.to_dict() for r in rungs]}, indent=2)
+               if args.json else format_ladder(rungs, case.name))
+    return EXIT_OK
