@@ -192,6 +192,17 @@ def test_cli_sweep_writes_the_grid(tmp_path, capsys):
     assert (tmp_path / "r.csv").read_bytes() == before
 
 
+def test_cli_sweep_with_failed_points_writes_every_row_and_exits_1(tmp_path, capsys):
+    # 100 MN pulls Vida's 50 m chains straight: no equilibrium, a row with the reason.
+    code = main(["sweep", str(BUOY), "--set", "body.loads.force=[1e3,0,0],[1e8,0,0]",
+                 "-o", str(tmp_path / "f.csv")])
+    assert code == 1
+    assert "1 of 2 points have no certified equilibrium" in capsys.readouterr().err
+    table = pd.read_csv(tmp_path / "f.csv", index_col="point")
+    assert list(table["converged"]) == [True, False]
+    assert "pulled straight" in table["reason"][1]
+
+
 @pytest.mark.parametrize("argv, field", [
     (["--set", "environment.wind.sped=1,2"], "--set environment.wind.sped"),
     (["--set", "environment.wind.speed=1,-2"], "--set environment.wind.speed"),

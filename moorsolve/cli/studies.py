@@ -83,9 +83,14 @@ def run_sweep(args) -> int:
         print(f"moorsolve: interrupted; the finished points are in {args.output} and "
               f"--resume completes it", file=sys.stderr)
         return EXIT_INTERRUPTED
+    print_text(f"wrote {args.output}: {len(table)} points")
     failed = int((~table["converged"].astype(bool)).sum())
-    note = f" ({failed} without equilibrium: see the reason column)" if failed else ""
-    print_text(f"wrote {args.output}: {len(table)} points{note}")
+    if failed:
+        # The file is complete (failed points are rows with their reason), but a script
+        # must not mistake the sweep for a clean one: status 1, as for one failed solve.
+        print(f"moorsolve: {failed} of {len(table)} points have no certified equilibrium; "
+              f"see the reason column", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
     return EXIT_OK
 
 
