@@ -462,7 +462,7 @@ def _diagnose(problem, case, result) -> str:
 def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
                   notes=()) -> Result:
     x = np.where(np.isfinite(x), x, 0.0)
-    legs_out, _, load_total, load_vec = (np.asarray(v) for v in problem.report(x, p))
+    legs_out, _, _, load_vec = (np.asarray(v) for v in problem.report(x, p))
     xp = x * problem.x_scale
     q = dict.fromkeys(("surge", "sway", "yaw"), 0.0)
     for i, d in enumerate(problem.free):

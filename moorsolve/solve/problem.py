@@ -119,10 +119,6 @@ class MultiLegKind:
         return len(self.segments) - 1
 
     @property
-    def n_unknowns(self) -> int:
-        return 2 + 2 * self.n_joints
-
-    @property
     def contact(self) -> bool:
         return any(s.block == "lifted" or (s.leg is not None and s.leg.contact)
                    for s in self.segments)
@@ -172,10 +168,6 @@ class DiscreteLegKind:
     @property
     def n_elements(self) -> int:
         return sum(self.elements)
-
-    @property
-    def n_unknowns(self) -> int:
-        return self.n_elements + 3 * (self.n_elements - 1)
 
     @property
     def contact(self) -> bool:
