@@ -256,7 +256,7 @@ def test_steep_taut_span_to_round_off(slope, H_over_wL):
 
     ``asinh(V/H) - asinh(V_A/H)`` cancels when V and V_A have the same sign, losing
     eps*asinh(V/H)*H/w in X: 4e-11 of the length at H/wL = 5e5, which a stiff line
-    (EA/L = 1e11 N/m) turns into a 500 N certificate residual (tests/hard_cases/
+    (EA/L = 1e11 N/m) turns into a 500 N certificate residual (tests/data/hard_cases/
     stiff_light_line.yaml failed on it). The block's asinh(w L (V+V_A)/(V T_A + V_A T_F))
     keeps X to round-off.
     """

@@ -13,8 +13,8 @@ from moorsolve.io import case_to_moordyn, import_moordyn, moordyn_to_case_data, 
 from moorsolve.io.moordyn import MoorDynError
 
 HERE = pathlib.Path(__file__).resolve().parent
-V2 = HERE / "moordyn" / "semisub_v2.dat"
-V1 = HERE / "moordyn" / "spar_v1.dat"
+V2 = HERE / "data" / "moordyn" / "semisub_v2.dat"
+V1 = HERE / "data" / "moordyn" / "spar_v1.dat"
 CASES = HERE.parent / "cases"
 
 

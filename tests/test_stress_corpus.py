@@ -1,4 +1,4 @@
-"""The stress corpus (tests/hard_cases/): cases at the edge of every regime switch.
+"""The stress corpus (tests/data/hard_cases/): cases at the edge of every regime switch.
 
 Each case either converges with a residual below the certificate threshold, with the
 physics the edge demands (checked here), or raises ConvergenceError naming the leg and the
@@ -24,7 +24,7 @@ import yaml
 from moorsolve import ConvergenceError, load_case, solve
 
 HERE = Path(__file__).resolve().parent
-CORPUS = HERE / "hard_cases"
+CORPUS = HERE / "data" / "hard_cases"
 CASES = HERE.parent / "cases"
 
 
