@@ -11,9 +11,9 @@ import argparse
 import pathlib
 
 import moorsolve
-from moorsolve.io.optimise_report import format_optimisation
+from moorsolve.report.optimise import format_optimisation
 from moorsolve.plot import plot_optimisation
-from moorsolve.solve.optimise import optimise
+from moorsolve.studies.optimise import optimise
 
 HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "cases" / "floating_dock.yaml"

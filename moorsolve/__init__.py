@@ -10,10 +10,11 @@ from .errors import CaseError, ConvergenceError, MoorsolveError
 from .io import (MoorDynError, case_to_moordyn, export_moordyn, import_moordyn, load_case,
                  moordyn_to_case_data, read_moordyn)
 from .model import Case
-from .solve import Certificate, LegResult, Result, solve, sweep
-from .solve.envelope import offset_envelope
-from .solve.optimise import optimise
-from .solve.study import natural_periods, restoring_curve, sensitivity, stiffness
+from .solve import Certificate, LegResult, Result, solve
+from .studies.sweep import sweep
+from .studies.envelope import offset_envelope
+from .studies.optimise import optimise
+from .studies.study import natural_periods, restoring_curve, sensitivity, stiffness
 
 __version__ = "0.1.0"
 

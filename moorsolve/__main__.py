@@ -1,5 +1,5 @@
 """`python -m moorsolve` runs the command line, as the `moorsolve` script does."""
 
-from moorsolve.cli import main
+from .cli import main
 
 raise SystemExit(main())

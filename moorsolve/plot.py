@@ -178,7 +178,7 @@ def plot_accuracy(rungs, axes=None):
 
     Parameters
     ----------
-    rungs : list of moorsolve.solve.accuracy.Rung
+    rungs : list of moorsolve.studies.accuracy.Rung
     axes : pair of matplotlib Axes, optional
 
     Returns
@@ -248,7 +248,7 @@ def plot_envelope(envelope, axes=None, marks=None):
 
     Parameters
     ----------
-    envelope : moorsolve.solve.envelope.Envelope
+    envelope : moorsolve.studies.envelope.Envelope
     axes : pair of polar matplotlib Axes, optional
     marks : dict of str to float, optional
         Named headings [deg] drawn as dashed rays (e.g. ``{"bora": 225}``).
@@ -322,7 +322,7 @@ def plot_optimisation(opt, axes=None):
 
     Parameters
     ----------
-    opt : moorsolve.solve.optimise.Optimisation
+    opt : moorsolve.studies.optimise.Optimisation
     axes : pair of Axes, optional
 
     Returns

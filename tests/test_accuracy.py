@@ -7,7 +7,7 @@ import pytest
 
 import moorsolve
 from moorsolve.cli import main
-from moorsolve.solve.accuracy import accuracy_ladder
+from moorsolve.studies.accuracy import accuracy_ladder
 
 CASES = Path(__file__).parent.parent / "cases"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

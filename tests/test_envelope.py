@@ -9,7 +9,7 @@ import pytest
 import moorsolve
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
-from moorsolve.io.paths import with_values
+from moorsolve.model.paths import with_values
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 BUOY = CASES / "buoy_vida.yaml"

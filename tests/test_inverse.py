@@ -1,4 +1,4 @@
-"""Hu & Tang's inverse questions (seed 001, Tables 1-4) through moorsolve.solve.inverse.
+"""Hu & Tang's inverse questions (seed 001, Tables 1-4) through moorsolve.studies.inverse.
 
 Each is driven by the quantities the paper gives (REFERENCE.md section 4) with tolerances
 matching the printed digits; w in t/m is converted with g = 10 as in the paper.
@@ -9,7 +9,7 @@ import math
 import pytest
 
 from moorsolve.cli import main
-from moorsolve.solve.inverse import (
+from moorsolve.studies.inverse import (
     minimum_anchor_distance,
     required_chain_length,
     uplift_at_distance,

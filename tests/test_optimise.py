@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 import moorsolve
 from moorsolve.errors import CaseError, ConvergenceError
 from moorsolve.io.study_file import load_study
-from moorsolve.solve.optimise import design_case, load_case_scene, optimise
+from moorsolve.studies.optimise import design_case, load_case_scene, optimise
 
 DOCK = "cases/floating_dock.yaml"
 DOCK_STUDY = "cases/studies/floating_dock_chain.yaml"
@@ -57,7 +57,7 @@ def objective(study, case, design):
 
 
 def _objective(case, study, design):
-    from moorsolve.solve.optimise import objective_value
+    from moorsolve.studies.optimise import objective_value
     return objective_value(design_case(case, study, design), study)
 
 

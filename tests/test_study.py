@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.io.paths import with_values
-from moorsolve.solve.study import (mooring_force, natural_periods, restoring_curve,
+from moorsolve.model.paths import with_values
+from moorsolve.studies.study import (mooring_force, natural_periods, restoring_curve,
                                    stiffness)
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -70,7 +70,7 @@ def test_stiffness_is_symmetric_and_matches_finite_differences(name, edits):
     assert np.max(np.abs(_normalised(K) - _normalised(Kfd))) < 1e-5
     # Translational stiffness is positive definite for a spread mooring.
     assert np.all(np.linalg.eigvalsh(K[:2, :2]) > 0)
-    assert np.allclose(result.stiffness(), K, rtol=0, atol=1e-9 * np.max(np.abs(K)))
+    assert np.allclose(moorsolve.stiffness(result), K, rtol=0, atol=1e-9 * np.max(np.abs(K)))
 
 
 def test_friction_changes_stiffness_but_keeps_it_symmetric():
@@ -212,7 +212,7 @@ def _path_editor(path):
 def _fd_check(case, outputs, params):
     """``params``: name -> (editor, value, step). Checks every output/parameter pair."""
     result = moorsolve.solve(case, tol=TOL)
-    sens = result.sensitivity(outputs, list(params))
+    sens = moorsolve.sensitivity(result, outputs, list(params))
     for j, (name, (edit, value, h)) in enumerate(params.items()):
         up = moorsolve.solve(edit(case, value + h), tol=TOL)
         down = moorsolve.solve(edit(case, value - h), tol=TOL)
@@ -276,18 +276,18 @@ def test_buoy_sensitivities_with_friction_and_grounded_chain():
 def test_sensitivity_rejects_what_it_cannot_differentiate():
     result = moorsolve.solve(_case("floating_dock.yaml"))
     with pytest.raises(ValueError, match="body.loads.force"):
-        result.sensitivity("x_m", "body.loads.force[0]")
+        moorsolve.sensitivity(result, "x_m", "body.loads.force[0]")
     buoy = moorsolve.solve(_case("buoy_vida.yaml"))
     with pytest.raises(ValueError, match="no current"):
-        buoy.sensitivity("x_m", "environment.current.speed")
+        moorsolve.sensitivity(buoy, "x_m", "environment.current.speed")
     with pytest.raises(ValueError, match="seabed"):
-        result.sensitivity("x_m", "legs[L3].anchor_z")
+        moorsolve.sensitivity(result, "x_m", "legs[L3].anchor_z")
     with pytest.raises(ValueError, match="no leg 'L99'"):
-        result.sensitivity("legs[L99].fairlead_tension_N", "legs[L3].length")
+        moorsolve.sensitivity(result, "legs[L99].fairlead_tension_N", "legs[L3].length")
     with pytest.raises(ValueError, match="output"):
-        result.sensitivity("legs[L3].colour", "legs[L3].length")
+        moorsolve.sensitivity(result, "legs[L3].colour", "legs[L3].length")
     with pytest.raises(ValueError, match="parameter"):
-        result.sensitivity("x_m", "legs[L3].colour")
+        moorsolve.sensitivity(result, "x_m", "legs[L3].colour")
     ship = moorsolve.solve(_case("ship_97m.yaml"))
     with pytest.raises(ValueError, match="no seabed friction"):
-        ship.sensitivity("x_m", "environment.seabed.friction")
+        moorsolve.sensitivity(ship, "x_m", "environment.seabed.friction")

@@ -9,8 +9,8 @@ import pytest
 
 import moorsolve
 from moorsolve.errors import CaseError, ConvergenceError
-from moorsolve.io.paths import with_values
-from moorsolve.solve.sweep import snake_order
+from moorsolve.model.paths import with_values
+from moorsolve.studies.sweep import snake_order
 
 CASES = Path(__file__).parent.parent / "cases"
 

@@ -13,9 +13,9 @@ import pytest
 import moorsolve
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
-from moorsolve.io.paths import parse_assignment, parse_values
+from moorsolve.model.paths import parse_assignment, parse_values
 
-sweep_module = importlib.import_module("moorsolve.solve.sweep")
+sweep_module = importlib.import_module("moorsolve.studies.sweep")
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "cases"
 BUOY = CASES / "buoy_vida.yaml"

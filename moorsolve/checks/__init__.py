@@ -5,7 +5,8 @@ removed in turn) and checks line tension against the selected standard's factors
 uplift against each anchor type, the grounded length and the body offset.
 """
 
-from .criteria import STANDARDS, Criterion, criteria_table, criterion
+from ..model.scene import STANDARDS
+from .criteria import Criterion, criteria_table, criterion
 from .run import CheckItem, CheckReport, ConditionResult, run_checks
 
 __all__ = ["STANDARDS", "CheckItem", "CheckReport", "ConditionResult", "Criterion",

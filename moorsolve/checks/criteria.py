@@ -14,7 +14,6 @@ from functools import lru_cache
 from importlib import resources
 
 #: Standards with a criteria table, as accepted by ``checks.standard`` and ``--standard``.
-STANDARDS = ("api-rp-2sk", "dnv-os-e301")
 #: The analysis type moorsolve performs.
 ANALYSIS = "quasi-static"
 

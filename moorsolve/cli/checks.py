@@ -55,7 +55,7 @@ def run_check(args) -> int:
         check_output(args.report, "--report", (".html", ".htm"), describe=".html")
     report = run_checks(case, standard=args.standard, tol=args.tol,
                         damaged=False if args.no_damaged else None)
-    from ..io.check_report import check_json, format_check_table, write_html_report
+    from ..report.check_html import check_json, format_check_table, write_html_report
     if args.report is not None:
         write_html_report(report, case, args.report)
     print_text(check_json(report) if args.json else format_check_table(report))
@@ -65,8 +65,8 @@ def run_check(args) -> int:
 
 
 def run_inverse(args) -> int:
-    from ..io.units import to_si, weight_per_length_to_si
-    from ..solve import inverse
+    from ..model.units import to_si, weight_per_length_to_si
+    from ..studies import inverse
     try:
         gravity = to_si(args.gravity, "acceleration", "--gravity")
         if not gravity > 0:

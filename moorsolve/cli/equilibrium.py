@@ -39,7 +39,7 @@ def add_commands(sub) -> None:
 
 def run_solve(args) -> int:
     from .. import load_case, solve
-    from ..io.results import format_table, to_json
+    from ..report.text import format_table, to_json
     result = solve(load_case(args.case), tol=args.tol, solver=args.solver)
     print_text(to_json(result, profiles=not args.no_profiles) if args.json
                else format_table(result))
@@ -59,7 +59,7 @@ def run_plot(args) -> int:
 
 def run_accuracy(args) -> int:
     from .. import load_case
-    from ..solve.accuracy import accuracy_ladder, format_ladder
+    from ..studies.accuracy import accuracy_ladder, format_ladder
     case = load_case(args.case)
     if args.plot:
         check_output(args.plot, "--plot", IMAGE_EXTENSIONS)

@@ -15,7 +15,7 @@ from .common import (EXIT_INTERRUPTED, EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTEN
 
 
 def add_commands(sub) -> None:
-    from ..io.paths import SET_SYNTAX
+    from ..model.paths import SET_SYNTAX
     p = sub.add_parser("sweep", help="solve a grid of case edits; results to CSV or parquet")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("--set", action="append", required=True, dest="sets", metavar="PATH=VALUES",
@@ -60,7 +60,7 @@ def add_commands(sub) -> None:
 
 def run_sweep(args) -> int:
     from .. import load_case, sweep
-    from ..io.paths import parse_assignment
+    from ..model.paths import parse_assignment
     from ..io.sweep_output import check_output_path
     if args.resume and args.overwrite:
         return bad_input("--resume and --overwrite exclude each other")
@@ -107,7 +107,7 @@ def _set_field(exc: CaseError) -> str:
 def run_envelope(args) -> int:
 
     from .. import load_case
-    from ..solve.envelope import format_envelope, offset_envelope
+    from ..studies.envelope import format_envelope, offset_envelope
     try:
         if args.plot:
             check_output(args.plot, "--plot", IMAGE_EXTENSIONS)
@@ -137,9 +137,9 @@ def run_envelope(args) -> int:
 
 def run_optimise(args) -> int:
     from .. import load_case
-    from ..io.optimise_report import format_optimisation, optimisation_json
+    from ..report.optimise import format_optimisation, optimisation_json
     from ..io.study_file import load_study, write_case_file
-    from ..solve.optimise import optimise
+    from ..studies.optimise import optimise
     case = load_case(args.case)
     if args.output is not None:
         check_output(args.output, "--output", YAML_EXTENSIONS)

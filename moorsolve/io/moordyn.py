@@ -26,7 +26,7 @@ Mapping onto a case (see :func:`moordyn_to_case_data`): each chain of lines join
 through free points that join exactly two lines becomes one leg, from its fixed point (the
 anchor) to its fairlead (a point on the body: Coupled, Vessel or Body#); a free point's mass
 and volume become a clump on the joint. Columns moorsolve does not use go into the case
-file's ``moordyn`` block (:mod:`moorsolve.io.moordyn_block`) and come back on export.
+file's ``moordyn`` block (:mod:`moorsolve.model.moordyn_block`) and come back on export.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ from pathlib import Path
 
 
 from ..errors import CaseError
-from .moordyn_block import RAW_SECTIONS
+from ..model.moordyn_block import RAW_SECTIONS
 from .output_files import write_case_yaml
 
 __all__ = ["MoorDynError", "MoorDynFile", "read_moordyn", "moordyn_to_case_data",

@@ -35,7 +35,7 @@ from os import PathLike
 from pathlib import Path
 
 from ..errors import CaseError
-from .moordyn_block import RAW_SECTIONS
+from ..model.moordyn_block import RAW_SECTIONS
 from .output_files import write_text
 
 __all__ = ["case_to_moordyn", "export_moordyn"]

@@ -23,7 +23,7 @@ Schema (SI units or strings with units)::
        offset_limit: > 0 [m]}
     load_cases:                                 required, at least one
       - name: str
-        set: {PATH: VALUE, ...}                 edits of the case (moorsolve.io.paths)
+        set: {PATH: VALUE, ...}                 edits of the case (moorsolve.model.paths)
         headings: [deg, ...] | {every_deg: > 0, from_deg: 0, to_deg: < from + 360}
                                                 one load case per heading: every wind,
                                                 current and waves toward_deg set to it,
@@ -43,13 +43,14 @@ from pathlib import Path
 
 
 from .. import catalog as line_catalog
-from ..design import OBJECTIVES, VARIABLE_KINDS, DesignVariable, Limits, LoadCase, Study
+from ..model.study import OBJECTIVES, VARIABLE_KINDS, DesignVariable, Limits, LoadCase, Study
 from ..errors import CaseError
 from ..model import Case
-from .case_file import _join, _mapping, _name, _quantity, _read_yaml, _sequence, load_case
+from ..model.fields import check_list, check_mapping, check_name, field_path, quantity
+from .case_file import _read_yaml, load_case
 from .output_files import write_case_yaml as write_case_file
-from .paths import with_values
-from .units import format_si, show_value
+from ..model.paths import with_values
+from ..model.units import format_si, show_value
 
 __all__ = ["load_study", "load_case_variant", "write_case_file"]
 
@@ -84,10 +85,10 @@ def load_study(source, case: Case) -> Study:
     else:
         raise CaseError("study", f"{show_value(source)} is not a study: give a path to a "
                                  "YAML file or a dict")
-    m = _mapping(data, "", required=("variables", "load_cases"),
+    m = check_mapping(data, "", required=("variables", "load_cases"),
                  optional=("name", "objective", "line_types", "anchor_cost", "currency",
                            "limits", "solver"))
-    name = default_name if "name" not in m else _name(m["name"], "name", "study name")
+    name = default_name if "name" not in m else check_name(m["name"], "name", "study name")
     objective = m.get("objective", "mass")
     if not isinstance(objective, str) or objective not in OBJECTIVES:
         raise CaseError("objective", f"{show_value(objective)} is not an objective; allowed: "
@@ -105,7 +106,7 @@ def load_study(source, case: Case) -> Study:
         if objective == "cost" and lt_name not in cost:
             raise CaseError(f"line_types.{lt_name}.cost_per_length",
                             f"required for the cost objective (line type {lt_name!r})")
-    anchor_cost = 0.0 if m.get("anchor_cost") is None else _quantity(
+    anchor_cost = 0.0 if m.get("anchor_cost") is None else quantity(
         m["anchor_cost"], "anchor_cost", "dimensionless", ge=0)
     currency = m.get("currency", "EUR")
     if not isinstance(currency, str) or not currency.strip():
@@ -120,16 +121,16 @@ def load_study(source, case: Case) -> Study:
 
 
 def _line_types(raw, case: Case):
-    m = _mapping(raw, "line_types", optional=tuple(case.line_types))
+    m = check_mapping(raw, "line_types", optional=tuple(case.line_types))
     mass, cost = {}, {}
     for lt_name, entry in m.items():
-        path = _join("line_types", lt_name)
-        e = _mapping(entry, path, optional=("mass_per_length", "cost_per_length"))
+        path = field_path("line_types", lt_name)
+        e = check_mapping(entry, path, optional=("mass_per_length", "cost_per_length"))
         if e.get("mass_per_length") is not None:
-            mass[lt_name] = _quantity(e["mass_per_length"], _join(path, "mass_per_length"),
+            mass[lt_name] = quantity(e["mass_per_length"], field_path(path, "mass_per_length"),
                                       "mass_per_length", gt=0)
         if e.get("cost_per_length") is not None:
-            cost[lt_name] = _quantity(e["cost_per_length"], _join(path, "cost_per_length"),
+            cost[lt_name] = quantity(e["cost_per_length"], field_path(path, "cost_per_length"),
                                       "dimensionless", ge=0)
     return mass, cost
 
@@ -138,17 +139,17 @@ def _leg_names(raw, path: str, case: Case) -> tuple:
     names = [leg.name for leg in case.legs]
     if raw == "*":
         return tuple(names)
-    items = [raw] if isinstance(raw, str) else _sequence(
+    items = [raw] if isinstance(raw, str) else check_list(
         raw, path, '"*", a leg name or a list of leg names')
     if not items:
         raise CaseError(path, "the list is empty; give at least one leg")
     out = []
     for i, item in enumerate(items):
         if not isinstance(item, str) or item not in names:
-            raise CaseError(_join(path, i) if not isinstance(raw, str) else path,
+            raise CaseError(field_path(path, i) if not isinstance(raw, str) else path,
                             f"no leg named {show_value(item)}; the legs are {names}")
         if item in out:
-            raise CaseError(_join(path, i), f"leg {item!r} is listed twice")
+            raise CaseError(field_path(path, i), f"leg {item!r} is listed twice")
         out.append(item)
     return tuple(out)
 
@@ -171,55 +172,56 @@ def _variables(raw, path: str, case: Case) -> tuple:
     taken: dict = {}
     out = []
     for var_name, entry in raw.items():
-        vpath = _join(path, var_name)
+        vpath = field_path(path, var_name)
         if not isinstance(var_name, str) or not var_name.strip():
             raise CaseError(vpath, f"{show_value(var_name)} is not a variable name")
-        e = _mapping(entry, vpath, required=("type", "legs", "lower", "upper"),
+        e = check_mapping(entry, vpath, required=("type", "legs", "lower", "upper"),
                      optional=("start",))
         kind = e["type"]
         if not isinstance(kind, str) or kind not in VARIABLE_KINDS:
-            raise CaseError(_join(vpath, "type"), f"{show_value(kind)} is not a variable type; "
+            raise CaseError(field_path(vpath, "type"),
+                            f"{show_value(kind)} is not a variable type; "
                                                   f"allowed: {', '.join(VARIABLE_KINDS)}")
-        legs = _leg_names(e["legs"], _join(vpath, "legs"), case)
+        legs = _leg_names(e["legs"], field_path(vpath, "legs"), case)
         for leg_name in legs:
             leg = legs_by_name[leg_name]
             group = "length" if kind == "length" else "anchor"
             if (leg_name, group) in taken:
-                raise CaseError(_join(vpath, "legs"),
+                raise CaseError(field_path(vpath, "legs"),
                                 f"leg {leg_name!r} is already moved by variable "
                                 f"{taken[leg_name, group]!r}; a leg's {group} may belong to "
                                 "one variable only")
             taken[leg_name, group] = var_name
             if kind == "length" and leg.multi_segment:
-                raise CaseError(_join(vpath, "legs"),
+                raise CaseError(field_path(vpath, "legs"),
                                 f"leg {leg_name!r} has {len(leg.segments)} segments; length "
                                 "variables apply to one-segment legs")
             if kind != "length":
                 if case.environment.seabed.sloped:
-                    raise CaseError(_join(vpath, "type"),
+                    raise CaseError(field_path(vpath, "type"),
                                     "anchor variables need a flat seabed (on a slope the "
                                     "anchor's depth would change with its position)")
                 if base_value(case, leg, kind) <= 0:
-                    raise CaseError(_join(vpath, "legs"),
+                    raise CaseError(field_path(vpath, "legs"),
                                     f"leg {leg_name!r} has its anchor under the "
                                     f"{'fairlead' if kind == 'anchor_distance' else 'origin'}"
                                     ": it has no heading to move along")
-        lower = _quantity(e["lower"], _join(vpath, "lower"), "length", gt=0)
-        upper = _quantity(e["upper"], _join(vpath, "upper"), "length", gt=lower)
+        lower = quantity(e["lower"], field_path(vpath, "lower"), "length", gt=0)
+        upper = quantity(e["upper"], field_path(vpath, "upper"), "length", gt=lower)
         values = [base_value(case, legs_by_name[n], kind) for n in legs]
         if e.get("start") is not None:
-            start = _quantity(e["start"], _join(vpath, "start"), "length", gt=0)
-            spath = _join(vpath, "start")
+            start = quantity(e["start"], field_path(vpath, "start"), "length", gt=0)
+            spath = field_path(vpath, "start")
         else:
             # Case files round coordinates (the dock's anchors to 0.1 mm): values within
             # 1e-4 of each other share their mean.
             if max(values) - min(values) > 1e-4 * max(values):
-                raise CaseError(_join(vpath, "start"),
+                raise CaseError(field_path(vpath, "start"),
                                 f"the legs {list(legs)} have different case values "
                                 f"({', '.join(format_si(v, 'length') for v in values)}); "
                                 "give the shared starting value")
             start = sum(values) / len(values)
-            spath = _join(vpath, "legs")
+            spath = field_path(vpath, "legs")
         if not lower <= start <= upper:
             raise CaseError(spath, f"the starting value {format_si(start, 'length')} is "
                                    f"outside the bounds [{format_si(lower, 'length')}, "
@@ -230,7 +232,7 @@ def _variables(raw, path: str, case: Case) -> tuple:
 
 
 def _limits(raw, path: str, case: Case, defaults: Limits) -> Limits:
-    m = _mapping(raw, path, optional=_LIMIT_KEYS)
+    m = check_mapping(raw, path, optional=_LIMIT_KEYS)
     values = {}
     bounds = {"safety_factor": ("dimensionless", dict(gt=1)),
               "max_anchor_uplift": ("force", dict(ge=0)),
@@ -239,7 +241,7 @@ def _limits(raw, path: str, case: Case, defaults: Limits) -> Limits:
     for key in _LIMIT_KEYS:
         if key in m:
             kind, b = bounds[key]
-            values[key] = None if m[key] is None else _quantity(m[key], _join(path, key),
+            values[key] = None if m[key] is None else quantity(m[key], field_path(path, key),
                                                                 kind, **b)
         else:
             values[key] = getattr(defaults, key)
@@ -247,11 +249,11 @@ def _limits(raw, path: str, case: Case, defaults: Limits) -> Limits:
         missing = [leg.name for leg in case.legs
                    if any(not seg.line_type.mbl for seg in leg.segments)]
         if missing:
-            raise CaseError(_join(path, "safety_factor"),
+            raise CaseError(field_path(path, "safety_factor"),
                             f"needs a breaking load (mbl) for every line; legs {missing} "
                             "have none")
     if values["offset_limit"] is not None and case.body is None:
-        raise CaseError(_join(path, "offset_limit"), "the case has no body to offset")
+        raise CaseError(field_path(path, "offset_limit"), "the case has no body to offset")
     return Limits(**values)
 
 
@@ -270,36 +272,36 @@ def load_case_variant(case: Case, edits: Mapping, path: str = "set") -> Case:
 
 def _headings(raw, path: str) -> list:
     if isinstance(raw, Mapping):
-        m = _mapping(raw, path, required=("every_deg",), optional=("from_deg", "to_deg"))
-        step = _quantity(m["every_deg"], _join(path, "every_deg"), "angle", gt=0, le=360)
-        start = _quantity(m.get("from_deg", 0.0), _join(path, "from_deg"), "angle")
+        m = check_mapping(raw, path, required=("every_deg",), optional=("from_deg", "to_deg"))
+        step = quantity(m["every_deg"], field_path(path, "every_deg"), "angle", gt=0, le=360)
+        start = quantity(m.get("from_deg", 0.0), field_path(path, "from_deg"), "angle")
         if m.get("to_deg") is None:
             # A full turn: the heading one step short of coming back to the first.
             count = int(math.ceil(360.0 / step - 1e-9))
         else:
-            end = _quantity(m["to_deg"], _join(path, "to_deg"), "angle", ge=start,
+            end = quantity(m["to_deg"], field_path(path, "to_deg"), "angle", ge=start,
                             lt=start + 360.0)
             count = int(math.floor((end - start) / step + 1e-9)) + 1
         if count > 360:
-            raise CaseError(_join(path, "every_deg"), f"{count} headings: at most 360")
+            raise CaseError(field_path(path, "every_deg"), f"{count} headings: at most 360")
         return [start + k * step for k in range(count)]
-    items = _sequence(raw, path, "a list of headings [deg] or {every_deg, from_deg, to_deg}")
+    items = check_list(raw, path, "a list of headings [deg] or {every_deg, from_deg, to_deg}")
     if not items:
         raise CaseError(path, "the list is empty; give at least one heading")
-    return [_quantity(v, _join(path, i), "angle") for i, v in enumerate(items)]
+    return [quantity(v, field_path(path, i), "angle") for i, v in enumerate(items)]
 
 
 def _load_cases(raw, path: str, case: Case, limits: Limits) -> tuple:
-    items = _sequence(raw, path, "a list of load cases")
+    items = check_list(raw, path, "a list of load cases")
     if not items:
         raise CaseError(path, "the list is empty; give at least one load case")
     out, names = [], set()
     for i, entry in enumerate(items):
-        lpath = _join(path, i)
-        e = _mapping(entry, lpath, required=("name",), optional=("set", "headings", "limits"))
-        name = _name(e["name"], _join(lpath, "name"), "load case name")
+        lpath = field_path(path, i)
+        e = check_mapping(entry, lpath, required=("name",), optional=("set", "headings", "limits"))
+        name = check_name(e["name"], field_path(lpath, "name"), "load case name")
         edits = e.get("set") or {}
-        spath = _join(lpath, "set")
+        spath = field_path(lpath, "set")
         if not isinstance(edits, Mapping):
             raise CaseError(spath, f"{show_value(edits)} must be a mapping of case paths to "
                                    "values")
@@ -307,11 +309,11 @@ def _load_cases(raw, path: str, case: Case, limits: Limits) -> tuple:
             if not isinstance(key, str):
                 raise CaseError(spath, f"key {show_value(key)} is not a case path")
         variant = load_case_variant(case, dict(edits), spath)
-        lc_limits = _limits(e.get("limits") or {}, _join(lpath, "limits"), variant, limits)
+        lc_limits = _limits(e.get("limits") or {}, field_path(lpath, "limits"), variant, limits)
         if e.get("headings") is None:
             expanded = [(name, dict(edits))]
         else:
-            hpath = _join(lpath, "headings")
+            hpath = field_path(lpath, "headings")
             flows = [f for f in _FLOWS if getattr(variant.environment, f) is not None]
             force = (variant.body.loads.force if variant.body is not None else None)
             if not flows and force is None:
@@ -330,19 +332,19 @@ def _load_cases(raw, path: str, case: Case, limits: Limits) -> tuple:
                 expanded.append((f"{name} {h:g} deg", turned))
         for lc_name, lc_edits in expanded:
             if lc_name in names:
-                raise CaseError(_join(lpath, "name"), f"load case {lc_name!r} appears twice")
+                raise CaseError(field_path(lpath, "name"), f"load case {lc_name!r} appears twice")
             names.add(lc_name)
             out.append(LoadCase(name=lc_name, edits=lc_edits, limits=lc_limits))
     return tuple(out)
 
 
 def _solver(raw, path: str):
-    m = _mapping(raw, path, optional=("tol", "max_iter"))
-    tol = 1e-8 if m.get("tol") is None else _quantity(m["tol"], _join(path, "tol"),
+    m = check_mapping(raw, path, optional=("tol", "max_iter"))
+    tol = 1e-8 if m.get("tol") is None else quantity(m["tol"], field_path(path, "tol"),
                                                       "dimensionless", gt=0, lt=1)
     max_iter = m.get("max_iter", 500)
     if isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral) \
             or not 1 <= max_iter <= 100_000:
-        raise CaseError(_join(path, "max_iter"), f"{show_value(max_iter)} must be an integer "
+        raise CaseError(field_path(path, "max_iter"), f"{show_value(max_iter)} must be an integer "
                                                  "from 1 to 100000")
     return tol, int(max_iter)

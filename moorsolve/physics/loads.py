@@ -23,13 +23,8 @@ import casadi
 from ..constants import (HU_TANG_AIR_DENSITY_TECH, HU_TANG_GRAVITY,
                          HU_TANG_WATER_DENSITY_TECH)
 from ..errors import CaseError
-from ..model import (BodyLoads, DragLoad, DriftCoefficient, Environment, HuTangCurrent,
-                     HuTangDrift, HuTangWind)
 
 __all__ = [
-    "EFFECT_ORDER",
-    "body_loads",
-    "effect_names",
     "hu_tang_wind_kN",
     "hu_tang_current_kN",
     "hu_tang_drift_kN",
@@ -41,9 +36,6 @@ __all__ = [
     "drift_coefficient_body",
     "body_to_global",
 ]
-
-#: The body load effects, in the order they are reported.
-EFFECT_ORDER = ("wind", "current", "wave_drift", "force")
 
 _N_PER_KN = 1.0e3               # Hu & Tang give their results in kN
 _CURRENT_EXPONENT = 1.83        # Hu & Tang (2004), seed 001 section 3: v^1.83
@@ -260,7 +252,7 @@ def _signed_square_sin(theta):
     return s * casadi.fabs(s)
 
 
-def drag_load_body(model: DragLoad, density, speed, heading_rad, field="drag"):
+def drag_load_body(model, density, speed, heading_rad, field="drag"):
     """Quadratic drag ``0.5 rho C A V^2`` of a wind or current, in the body frame.
 
     Parameters
@@ -305,7 +297,7 @@ def drag_load_body(model: DragLoad, density, speed, heading_rad, field="drag"):
     return fx, fy, mz
 
 
-def hu_tang_wind_body(model: HuTangWind, speed, heading_rad, field="wind"):
+def hu_tang_wind_body(model, speed, heading_rad, field="wind"):
     """Hu & Tang wind load in the body frame [N, N, N m].
 
     Parameters
@@ -353,7 +345,7 @@ def hu_tang_wind_body(model: HuTangWind, speed, heading_rad, field="wind"):
     return fx, fy, _centre_moment(model.centre, fx, fy)
 
 
-def hu_tang_current_body(model: HuTangCurrent, speed, heading_rad):
+def hu_tang_current_body(model, speed, heading_rad):
     """Hu & Tang current load along the flow, in the body frame [N, N, N m].
 
     Parameters
@@ -380,7 +372,7 @@ def hu_tang_current_body(model: HuTangCurrent, speed, heading_rad):
     return fx, fy, _centre_moment(model.centre, fx, fy)
 
 
-def hu_tang_drift_body(model: HuTangDrift, hs, heading_rad):
+def hu_tang_drift_body(model, hs, heading_rad):
     """Hu & Tang mean wave drift in the body frame [N, N, N m].
 
     Parameters
@@ -411,7 +403,7 @@ def hu_tang_drift_body(model: HuTangDrift, hs, heading_rad):
     return fx, fy, _centre_moment(model.centre, fx, fy)
 
 
-def drift_coefficient_body(model: DriftCoefficient, water_density, gravity, hs, heading_rad):
+def drift_coefficient_body(model, water_density, gravity, hs, heading_rad):
     """Mean wave drift from drift coefficients, in the body frame [N, N, N m].
 
     Parameters
@@ -466,130 +458,3 @@ def body_to_global(fx_body, fy_body, yaw):
 
 
 # ---- the body's load effects -----------------------------------------------------------------
-
-def effect_names(loads: BodyLoads, environment: Environment) -> list:
-    """The body load effects a case simulates, in the fixed order of :data:`EFFECT_ORDER`.
-
-    Parameters
-    ----------
-    loads : BodyLoads
-    environment : Environment
-
-    Returns
-    -------
-    list of str
-        Among ``"wind"``, ``"current"``, ``"wave_drift"``, ``"force"``: a load model counts
-        when it is declared and its environment (wind, current, waves) is present; a
-        constant force counts whenever it is given.
-    """
-    present = {
-        "wind": loads.wind is not None and environment.wind is not None,
-        "current": loads.current is not None and environment.current is not None,
-        "wave_drift": loads.wave_drift is not None and environment.waves is not None,
-        "force": loads.force is not None,
-    }
-    return [name for name in EFFECT_ORDER if present[name]]
-
-
-def _to_global(body_load, yaw):
-    fx, fy, mz = body_load
-    gx, gy = body_to_global(fx, fy, yaw)
-    return gx, gy, mz
-
-
-def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind_toward,
-               current_speed, current_toward, wave_hs, wave_toward) -> dict:
-    """Forces and yaw moments of every simulated body load effect.
-
-    Parameters
-    ----------
-    loads : BodyLoads
-        The load models the body declares.
-    environment : Environment
-        Says which of wind, current and waves are present, and gives the densities
-        (``air_density`` for wind drag, ``water_density`` for current drag and drift
-        coefficients) and ``gravity``. Its speeds and headings are not read: they are the
-        arguments below, so a built problem can change them.
-    yaw : float or casadi.SX or casadi.MX
-        Body yaw [rad].
-    wind_speed, current_speed : float or casadi.SX or casadi.MX
-        [m/s]; ignored when that flow is absent.
-    wind_toward, current_toward, wave_toward : float or casadi.SX or casadi.MX
-        Direction of travel [rad], counter-clockwise from global +x; ignored when absent.
-    wave_hs : float or casadi.SX or casadi.MX
-        Significant wave height [m]; ignored when there are no waves.
-
-    Returns
-    -------
-    dict of str to tuple of 3
-        Effect name (order of :func:`effect_names`) to ``(Fx, Fy, Mz)``: force in the global
-        frame [N] and yaw moment about the body-frame origin [N m]. ``"force"`` is the
-        declared constant ``[Fx, Fy, Mz]``, already global.
-
-    Raises
-    ------
-    CaseError
-        If a load slot holds a model it does not accept (wind: ``DragLoad`` or
-        ``HuTangWind``; current: ``DragLoad`` or ``HuTangCurrent``; wave drift:
-        ``HuTangDrift`` or ``DriftCoefficient``), the constant force is not 3 numbers, or
-        a table or lateral-area pair is invalid.
-
-    Notes
-    -----
-    The heading relative to the body is ``theta = toward - yaw``; each model gives its
-    body-frame force and moment (see the ``*_body`` functions), then the force is rotated
-    by ``yaw`` (:func:`body_to_global`); the moment is the same in both frames. Load model
-    definitions: :mod:`moorsolve.model`; Hu & Tang forms: seed 001 section 3,
-    REFERENCE.md section 3. The Hu & Tang forms keep the paper's own constants (densities
-    in kgf s^2/m^4, g = 9.8) and do not use ``environment``'s densities.
-    """
-    names = effect_names(loads, environment)
-    effects = {}
-    if "wind" in names:
-        theta = wind_toward - yaw
-        model = loads.wind
-        if isinstance(model, DragLoad):
-            body = drag_load_body(model, environment.air_density, wind_speed, theta,
-                                  field="body.loads.wind")
-        elif isinstance(model, HuTangWind):
-            body = hu_tang_wind_body(model, wind_speed, theta, field="body.loads.wind")
-        else:
-            raise CaseError("body.loads.wind", f"{type(model).__name__} is not a wind load "
-                            "model; expected DragLoad or HuTangWind")
-        effects["wind"] = _to_global(body, yaw)
-    if "current" in names:
-        theta = current_toward - yaw
-        model = loads.current
-        if isinstance(model, DragLoad):
-            body = drag_load_body(model, environment.water_density, current_speed, theta,
-                                  field="body.loads.current")
-        elif isinstance(model, HuTangCurrent):
-            body = hu_tang_current_body(model, current_speed, theta)
-        else:
-            raise CaseError("body.loads.current", f"{type(model).__name__} is not a current "
-                            "load model; expected DragLoad or HuTangCurrent")
-        effects["current"] = _to_global(body, yaw)
-    if "wave_drift" in names:
-        theta = wave_toward - yaw
-        model = loads.wave_drift
-        if isinstance(model, HuTangDrift):
-            body = hu_tang_drift_body(model, wave_hs, theta)
-        elif isinstance(model, DriftCoefficient):
-            body = drift_coefficient_body(model, environment.water_density,
-                                          environment.gravity, wave_hs, theta)
-        else:
-            raise CaseError("body.loads.wave_drift", f"{type(model).__name__} is not a wave "
-                            "drift model; expected HuTangDrift or DriftCoefficient")
-        effects["wave_drift"] = _to_global(body, yaw)
-    if "force" in names:
-        force = loads.force
-        try:
-            values = tuple(float(v) for v in force)
-        except (TypeError, ValueError):
-            raise CaseError("body.loads.force", f"{force!r} must be 3 numbers "
-                            "[Fx N, Fy N, Mz N m]") from None
-        if len(values) != 3:
-            raise CaseError("body.loads.force", f"{force!r} must be 3 numbers "
-                            "[Fx N, Fy N, Mz N m]")
-        effects["force"] = values
-    return effects

@@ -5,6 +5,5 @@ The only package that calls ``casadi.nlpsol``.
 
 from .equilibrium import get_problem, solve
 from .result import Certificate, LegResult, Result
-from .sweep import sweep
 
-__all__ = ["solve", "sweep", "get_problem", "Result", "LegResult", "Certificate"]
+__all__ = ["solve", "get_problem", "Result", "LegResult", "Certificate"]

@@ -53,7 +53,7 @@ import casadi as ca
 import numpy as np
 
 from ..model import DEGREES_OF_FREEDOM, Case, Leg
-from ..physics import loads as body_load_models
+from . import body_loads as body_load_models
 from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
                                 sloped_leg_function, straight_segment_function)
 

@@ -142,7 +142,7 @@ class Result:
     state : numpy.ndarray
         The solution vector (scaled), for warm starts.
     case : Case or None
-        The case solved, for the study functions (:mod:`.study`: stiffness, sensitivity).
+        The case solved, for the study functions (:mod:`moorsolve.studies.study`).
     """
 
     converged: bool
@@ -156,18 +156,6 @@ class Result:
     state: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
     notes: tuple = ()
     case: Optional[object] = field(default=None, repr=False, compare=False)
-
-    def sensitivity(self, outputs, parameters):
-        """Exact derivatives of equilibrium outputs by case parameters; see
-        :func:`moorsolve.solve.study.sensitivity`."""
-        from .study import sensitivity
-        return sensitivity(self, outputs, parameters)
-
-    def stiffness(self):
-        """Mooring stiffness matrix at this equilibrium; see
-        :func:`moorsolve.solve.study.stiffness`."""
-        from .study import stiffness
-        return stiffness(self)
 
     @property
     def iterations(self) -> int:

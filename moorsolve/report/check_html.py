@@ -13,8 +13,8 @@ import json
 import math
 
 from ..checks import CheckReport
-from .output_files import write_text
-from .results import _finite
+from ..io.output_files import write_text
+from .text import _finite
 
 __all__ = ["check_json", "format_check_table", "render_html", "write_html_report"]
 

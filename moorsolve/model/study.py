@@ -73,7 +73,7 @@ class Limits:
 class LoadCase:
     """One condition the design must survive: edits of the base case and its limits.
 
-    ``edits`` maps dotted case paths (:mod:`moorsolve.io.paths`) to case-file values.
+    ``edits`` maps dotted case paths (:mod:`moorsolve.model.paths`) to case-file values.
     """
 
     name: str

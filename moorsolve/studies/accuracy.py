@@ -24,7 +24,7 @@ import statistics
 
 from ..errors import ConvergenceError
 from ..model import Case
-from .equilibrium import solve
+from ..solve.equilibrium import solve
 
 TOLERANCES = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
 REFERENCE_TOL = 1e-12

@@ -23,9 +23,9 @@ import casadi as ca
 import numpy as np
 
 from ..model import DEGREES_OF_FREEDOM, Body, BodyLoads, Case
-from .equilibrium import get_problem, solve
-from .problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
-from .result import Result
+from ..solve.equilibrium import get_problem, solve
+from ..solve.problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
+from ..solve.result import Result
 
 #: The three horizontal-plane degrees of freedom, in the order of every matrix here.
 DOFS = DEGREES_OF_FREEDOM

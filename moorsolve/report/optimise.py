@@ -29,7 +29,7 @@ def optimisation_json(opt) -> str:
 
 
 def format_optimisation(opt, every_constraint: bool = False) -> str:
-    """A readable report of an :class:`~moorsolve.solve.optimise.Optimisation`.
+    """A readable report of an :class:`~moorsolve.studies.optimise.Optimisation`.
 
     Constraints are listed per load case and kind by their tightest leg (every one with
     ``every_constraint``); active ones are marked ``*``.

@@ -51,12 +51,12 @@ from dataclasses import dataclass, field
 import casadi as ca
 import numpy as np
 
-from ..design import Limits, Study
+from ..model.study import Limits, Study
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from ..physics.catenary import LegKind
-from .equilibrium import get_problem, solve
-from .problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
+from ..solve.equilibrium import get_problem, solve
+from ..solve.problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
 
 log = logging.getLogger(__name__)
 
@@ -297,7 +297,7 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
     case : Case
         The base case (from :func:`moorsolve.load_case`).
     study : Study, str, pathlib.Path or mapping
-        A validated :class:`~moorsolve.design.Study` or a study file / dict
+        A validated :class:`~moorsolve.model.study.Study` or a study file / dict
         (:func:`moorsolve.io.study_file.load_study`).
     verify : bool
         Re-solve every load case independently at the optimum and check each constraint.

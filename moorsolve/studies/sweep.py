@@ -1,6 +1,6 @@
 """Many solves of one scene: a cartesian grid of case edits, one built problem for all.
 
-``grid`` maps dotted case paths (:mod:`moorsolve.io.paths`) to lists of values. Each axis
+``grid`` maps dotted case paths (:mod:`moorsolve.model.paths`) to lists of values. Each axis
 value is applied to the case-file data and validated once (so units and field names work
 as in a case file). A key may also be a tuple of paths whose values are tuples, one value
 per path: a *zipped* axis (``("environment.wind.toward_deg",
@@ -43,8 +43,8 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
-from .equilibrium import get_problem, initial_point, solve
-from .problem import parameter_vector, structure_key
+from ..solve.equilibrium import get_problem, initial_point, solve
+from ..solve.problem import parameter_vector, structure_key
 
 _PARALLEL_MIN_POINTS = 64
 _MIN_CHUNK = 64
@@ -168,7 +168,7 @@ class SweepPlan:
     def __init__(self, case: Case, grid: Mapping, *, solver: str = "newton",
                  tol: float | None = None, chunk_size: int | None = None):
         from ..io import load_case
-        from ..io.paths import with_values
+        from ..model.paths import with_values
 
         if solver not in ("newton", "ipopt"):
             raise ValueError(f"solver {solver!r}: must be 'newton' or 'ipopt'")
@@ -379,7 +379,7 @@ def _sha(obj) -> str:
 
 
 def _axes(grid) -> list[tuple[tuple, list]]:
-    from ..io.paths import parse_path
+    from ..model.paths import parse_path
 
     if not isinstance(grid, Mapping) or not grid:
         raise CaseError("grid", "must be a non-empty mapping of case paths to lists of values")

@@ -1,0 +1,26 @@
+"""The validated description of a mooring scene.
+
+Frozen dataclasses, SI units throughout, degrees only in names ending ``_deg``. A
+:class:`Case` is what every other part of moorsolve consumes; :func:`build_case` makes one
+from plain data (a case-file dictionary) and checks it, whatever the source (YAML, a dict,
+a MoorDyn file). Nothing here imports CasADi.
+
+Coordinates: x, y horizontal, z up, z = 0 at the still-water level, seabed at z = -depth
+(or a plane through that point at the origin, :class:`Seabed`). ``toward_deg`` is the
+direction a wind, current or wave train travels toward, counter-clockwise from +x.
+"""
+
+from .environment import Environment, Flow, Seabed, Waves
+from .lines import ANCHOR_KINDS, AnchorType, Clump, Leg, LineDrag, LineType, Segment
+from .loads import (BodyLoads, DragLoad, DriftCoefficient, HuTangCurrent, HuTangDrift,
+                    HuTangWind)
+from .scene import DEGREES_OF_FREEDOM, STANDARDS, Body, Case, Checks, SolverOptions
+
+__all__ = ["Environment", "Flow", "Seabed", "Waves", "ANCHOR_KINDS", "AnchorType", "Clump",
+           "Leg", "LineDrag", "LineType", "Segment", "BodyLoads", "DragLoad",
+           "DriftCoefficient", "HuTangCurrent", "HuTangDrift", "HuTangWind",
+           "DEGREES_OF_FREEDOM", "STANDARDS", "Body", "Case", "Checks", "SolverOptions"]
+
+from .build import build_case  # noqa: E402  (after the dataclasses it builds)
+
+__all__ += ["build_case"]

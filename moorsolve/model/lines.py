@@ -1,0 +1,158 @@
+"""Line types, segments, clumps and anchors: what a mooring line is made of."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+@dataclass(frozen=True)
+class LineDrag:
+    """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
+
+    Per unit stretched length, with ``q = rho d / 2``, ``U_n`` and ``U_t`` the flow's
+    components normal and tangential to the line and ``chi`` the angle of attack:
+    normal ``q normal |U_n| U_n`` (``normal sin^2 chi`` times ``q v^2``; Merkin's fit is
+    1.1), tangential ``q tangential |U_t| U_t`` (skin friction, on the diameter), and side
+    ``q side |U_n| |U_t|`` normal to both line and flow (laid ropes; sign by lay).
+    """
+
+    normal: float
+    tangential: float = 0.0
+    side: float = 0.0
+
+
+@dataclass(frozen=True)
+class LineType:
+    """Properties of one kind of line.
+
+    Attributes
+    ----------
+    name : str
+    weight_in_water : float
+        Submerged weight per unit unstretched length [N/m]; negative for a buoyant line,
+        zero for a neutrally buoyant one.
+    ea : float or None
+        Axial stiffness [N]; None for an inextensible line.
+    mbl : float or None
+        Minimum breaking load [N].
+    diameter : float or None
+        Outer (hydrodynamic) diameter [m]; needed for wall tension and line drag.
+    drag : LineDrag or None
+        Drag coefficients: in a case with a current the leg is then discretised.
+    sealed : bool
+        True for a line whose wall keeps water out of its cross-section (cable, pipe,
+        sheathed rope). Its wall tension differs from the effective tension by the
+        hydrostatic pressure on the outer area (REFERENCE.md section 2); a chain is not sealed.
+    catalog : str or None
+        The line-catalogue entry the properties came from (``moorsolve.catalog``), if any.
+    corrosion_allowance : float
+        Diameter reduction [m] already applied to ``mbl`` (catalogue lines only).
+    source : str or None
+        Where the catalogue values come from (citation), for reports.
+    """
+
+    name: str
+    weight_in_water: float
+    ea: Optional[float] = None
+    mbl: Optional[float] = None
+    diameter: Optional[float] = None
+    sealed: bool = False
+    drag: Optional[LineDrag] = None
+    catalog: Optional[str] = None
+    corrosion_allowance: float = 0.0
+    source: Optional[str] = None
+
+    @property
+    def elastic(self) -> bool:
+        return self.ea is not None
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A length of one line type [m, unstretched]."""
+
+    line_type: LineType
+    length: float
+
+
+ANCHOR_KINDS = ("drag", "deadweight", "pile")
+
+
+@dataclass(frozen=True)
+class AnchorType:
+    """What an anchor allows, for the mooring checks.
+
+    ``drag``: no uplift at all (the line must leave the anchor horizontally);
+    ``deadweight`` (sinker block, Hu & Tang's floating dock): an upward pull up to
+    ``allowed_uplift`` [N]; ``pile``: an uplift angle at the anchor up to
+    ``allowed_uplift_angle_deg``.
+    """
+
+    kind: str = "drag"
+    allowed_uplift: float = 0.0
+    allowed_uplift_angle_deg: float = 0.0
+
+
+@dataclass(frozen=True)
+class Clump:
+    """A point load at a joint between two segments: a clump weight or a buoy.
+
+    Attributes
+    ----------
+    weight : float
+        Net downward force in water [N]: ``g (mass - water_density volume)`` when given by
+        mass and volume; negative for a buoy.
+    mass : float or None
+        Mass [kg], when the case gave one.
+    volume : float or None
+        Displaced volume [m^3], when the case gave one.
+    """
+
+    weight: float
+    mass: Optional[float] = None
+    volume: Optional[float] = None
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One mooring leg from its anchor (end A) to its fairlead (end F).
+
+    Attributes
+    ----------
+    name : str
+    anchor : tuple of 3 floats
+        Global position [m]. An anchor on the seabed has z = -depth; one above it (a pile
+        head, a mid-water point) gives its own z and is modelled without seabed contact.
+    fairlead : tuple of 3 floats
+        Position [m] in the body frame, or global when the case has no body.
+    segments : tuple of Segment
+        From anchor to fairlead.
+    clumps : tuple of (Clump or None)
+        One entry per joint between consecutive segments (``len(segments) - 1``), from the
+        anchor up; None (or an empty tuple for all joints) is a bare joint.
+    """
+
+    name: str
+    anchor: tuple
+    fairlead: tuple
+    segments: tuple
+    anchor_type: Optional[AnchorType] = None
+    clumps: tuple = ()
+
+    @property
+    def joint_clumps(self) -> tuple:
+        """The clump at every joint (None for a bare joint), ``len(segments) - 1`` entries."""
+        n = len(self.segments) - 1
+        return tuple(self.clumps) + (None,) * (n - len(self.clumps))
+
+    @property
+    def multi_segment(self) -> bool:
+        return len(self.segments) > 1
+
+    @property
+    def line_type(self) -> LineType:
+        return self.segments[0].line_type
+
+    @property
+    def length(self) -> float:
+        return sum(s.length for s in self.segments)

@@ -1,0 +1,91 @@
+"""The scene: bodies, solver options, mooring checks and the validated Case."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Optional
+
+from .environment import Environment
+from .lines import AnchorType
+from .loads import BodyLoads
+
+DEGREES_OF_FREEDOM = ("surge", "sway", "yaw")
+#: Criteria tables known to ``moorsolve.checks`` (``checks.standard``).
+STANDARDS = ("api-rp-2sk", "dnv-os-e301")
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid floating body moving in the horizontal plane.
+
+    ``free`` lists the solved degrees of freedom among surge, sway and yaw; the others are
+    held at their case-file value (zero offset).
+    """
+
+    free: tuple = DEGREES_OF_FREEDOM
+    loads: BodyLoads = field(default_factory=BodyLoads)
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Solver settings a case may carry; the CLI's ``--tol`` overrides ``tol``.
+
+    ``tol`` is the certified force residual relative to the largest line tension.
+    ``line_elements`` is the number of elements of a discretised leg (one in a current with
+    drag data).
+    """
+
+    tol: float = 1e-9
+    max_iter: int = 200
+    max_time_s: float = 5.0
+    line_elements: int = 20
+
+
+@dataclass(frozen=True)
+class Checks:
+    """Acceptance limits for ``moorsolve check`` (the factors come from the standard's table).
+
+    Attributes
+    ----------
+    standard : str
+        Criteria table: ``api-rp-2sk`` or ``dnv-os-e301``.
+    consequence_class : int
+        DNV-OS-E301 consequence class (1 or 2); unused by API RP 2SK.
+    offset_limit, offset_limit_damaged : float or None
+        Largest horizontal offset of the body origin [m], intact and with one leg broken
+        (the damaged limit defaults to the intact one).
+    min_grounded_length, min_grounded_length_damaged : float or None
+        Least unstretched length [m] that must stay on the seabed in every leg whose anchor
+        is on the seabed (Hu & Tang keep 45 m); the damaged value defaults to the intact one.
+    anchor : AnchorType
+        Default anchor type for legs that do not give their own.
+    damaged : bool
+        Also run the damaged conditions (each leg removed in turn).
+    """
+
+    standard: str = "api-rp-2sk"
+    consequence_class: int = 1
+    offset_limit: Optional[float] = None
+    offset_limit_damaged: Optional[float] = None
+    min_grounded_length: Optional[float] = None
+    min_grounded_length_damaged: Optional[float] = None
+    anchor: AnchorType = field(default_factory=AnchorType)
+    damaged: bool = True
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    environment: Environment
+    line_types: dict
+    legs: tuple
+    body: Optional[Body] = None
+    solver: SolverOptions = field(default_factory=SolverOptions)
+    checks: Optional[Checks] = None
+    #: What a MoorDyn input file held that moorsolve does not use (the case file's ``moordyn``
+    #: block, see ``moorsolve.model.moordyn_block``), kept for export; the solver ignores it.
+    moordyn: Optional[Mapping] = field(default=None, compare=False, repr=False)
+    #: The validated case-file data it was built from (for sweeps that edit it by path);
+    #: None for a Case built in code.
+    source: Optional[Mapping] = field(default=None, compare=False, repr=False)
