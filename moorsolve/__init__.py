@@ -14,7 +14,8 @@ from .solve import Certificate, LegResult, Result, solve
 from .studies.sweep import sweep
 from .studies.envelope import offset_envelope
 from .studies.optimise import optimise
-from .studies.study import natural_periods, restoring_curve, sensitivity, stiffness
+from .studies.sensitivity import sensitivity
+from .studies.stiffness import natural_periods, restoring_curve, stiffness
 
 __version__ = "0.1.0"
 

@@ -43,8 +43,11 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
-from ..solve.equilibrium import get_problem, initial_point, solve
-from ..solve.problem import parameter_vector, structure_key
+from ..solve.cache import get_problem
+from ..solve.equilibrium import solve
+from ..solve.start import initial_point
+from ..solve.layout import parameter_vector
+from ..solve.problem import structure_key
 
 _PARALLEL_MIN_POINTS = 64
 _MIN_CHUNK = 64

@@ -1,0 +1,37 @@
+"""A small least-recently-used map guarded by its own lock, for caches shared by threads."""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+
+
+class LockedLRU:
+    """``get``/``put`` of at most ``capacity`` entries; safe to use from many threads."""
+
+    def __init__(self, capacity: int):
+        self._capacity = capacity
+        self._items: OrderedDict = OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, key, default=None):
+        with self._lock:
+            value = self._items.get(key, default)
+            if key in self._items:
+                self._items.move_to_end(key)
+            return value
+
+    def put(self, key, value) -> None:
+        with self._lock:
+            self._items[key] = value
+            self._items.move_to_end(key)
+            while len(self._items) > self._capacity:
+                self._items.popitem(last=False)
+
+    def __len__(self) -> int:
+        with self._lock:
+            return len(self._items)
+
+    def clear(self) -> None:
+        with self._lock:
+            self._items.clear()
