@@ -37,7 +37,6 @@ inextensible line between fixed ends is long enough to reach.
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Mapping
 
 import numpy as np
@@ -78,13 +77,8 @@ def _matrix6(raw, path: str) -> tuple:
         if len(row) != 6:
             raise CaseError(rpath, f"{show_value(row_raw)} has {len(row)} values; a row of a 6x6 "
                                    "matrix has 6")
-        values = []
-        for j, v in enumerate(row):
-            if isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v):
-                raise CaseError(field_path(rpath, j), f"{show_value(v)} is not a finite number "
-                                                      "(SI units)")
-            values.append(float(v))
-        out.append(tuple(values))
+        out.append(tuple(quantity(v, field_path(rpath, j), "dimensionless")
+                         for j, v in enumerate(row)))
     return tuple(out)
 
 

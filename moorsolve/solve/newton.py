@@ -240,3 +240,20 @@ class NewtonKernel:
         out["status"] = int(out["status"][0])
         out["iterations"] = int(out["iterations"][0])
         return out
+
+
+class KernelPool:
+    """Newton kernels of one problem, one per concurrently running caller: each clone has
+    its own buffers over the same compiled library."""
+
+    def __init__(self, kernel: NewtonKernel):
+        import threading
+        self._base, self._free, self._lock = kernel, [kernel], threading.Lock()
+
+    def acquire(self) -> NewtonKernel:
+        with self._lock:
+            return self._free.pop() if self._free else self._base.clone()
+
+    def release(self, kernel: NewtonKernel) -> None:
+        with self._lock:
+            self._free.append(kernel)

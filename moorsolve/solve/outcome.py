@@ -136,7 +136,7 @@ def _end_fields(name, a, b, fa, fb) -> dict:
         anchor_horizontal_N=float(math.hypot(fa[0], fa[1])),
         anchor_vertical_N=float(fa[2]),
         anchor=tuple(float(v) for v in a), fairlead=tuple(float(v) for v in b),
-        fairlead_force=tuple(float(v) for v in fb))
+        fairlead_force=tuple(float(v) for v in fb), anchor_force=tuple(float(v) for v in fa))
 
 
 def _orient(profile: dict, lower, upper, flipped: bool) -> dict:

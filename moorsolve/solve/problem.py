@@ -36,6 +36,7 @@ from ..model import DOFS, Case
 from ..physics.hydrostatics import linear_buoyancy, member_buoyancy, weight
 from ..physics.kinematics import cross, generalized_forces, rotation_matrix
 from . import body_loads as body_load_models
+from .concurrency import SYMBOLIC_LOCK
 from .discrete import discrete_leg
 from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
@@ -127,7 +128,9 @@ class EquilibriumProblem:
         #: Closed-form starting points by parameters (see :mod:`.start`); guarded by
         #: :attr:`lock`.
         self.start_cache: dict = {}
-        self._build()
+        self._kernel_pool = None
+        with SYMBOLIC_LOCK:
+            self._build()
 
     @property
     def lock(self) -> threading.RLock:
@@ -477,7 +480,8 @@ class EquilibriumProblem:
                         "mu_strategy": "adaptive",
                     },
                 }
-                self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
+                with SYMBOLIC_LOCK:
+                    self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
             return self._nlp_solvers[key]
 
     def newton(self):
@@ -485,8 +489,17 @@ class EquilibriumProblem:
         with self._lock:
             if self._newton is None:
                 from .newton import NewtonKernel
-                self._newton = NewtonKernel(self)
+                with SYMBOLIC_LOCK:
+                    self._newton = NewtonKernel(self)
             return self._newton
+
+    def kernel_pool(self):
+        """Clones of the Newton kernel, one per concurrently running caller (sweeps)."""
+        with self._lock:
+            if self._kernel_pool is None:
+                from .newton import KernelPool
+                self._kernel_pool = KernelPool(self.newton())
+            return self._kernel_pool
 
     def bounds(self) -> tuple:
         lb = np.full(self.n_x, -np.inf)

@@ -54,9 +54,9 @@ class LegResult:
     and bottom tension, horizontal tension, grounded length, largest tension, utilisation)
     and ``joints`` (per joint: position, height above the seabed, seabed reaction, clump
     weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
-    segment utilisation. ``fairlead_force`` is the force [N] the line exerts on its
-    fairlead, global ``(Fx, Fy, Fz)``: along the leg's plane for an analytic leg, with a
-    sideways part for a line in a current.
+    segment utilisation. ``fairlead_force`` and ``anchor_force`` are the forces [N] the
+    line exerts on its ends B and A, global ``(Fx, Fy, Fz)``: in the line's vertical plane
+    for an analytic line, with a sideways part for a line in a current.
     """
 
     name: str
@@ -80,6 +80,7 @@ class LegResult:
     segments: tuple = ()
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
+    anchor_force: Optional[tuple] = None
 
     @property
     def utilisation(self) -> Optional[float]:
@@ -115,6 +116,8 @@ class LegResult:
         }
         if self.fairlead_force is not None:
             d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
+        if self.anchor_force is not None:
+            d["anchor_force_N"] = [float(v) for v in self.anchor_force]
         if self.segments:
             d["segments"] = [dict(s) for s in self.segments]
             d["joints"] = [dict(j) for j in self.joints]

@@ -17,7 +17,7 @@ from ..model.build_network import end_position as case_end_position
 from ..physics.catenary import LegKind, initial_state, leg_profile
 from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
-from .lru import LockedLRU
+from .concurrency import LockedLRU
 
 #: Closed-form line states by scene (structure and parameters).
 _REST_STATES = LockedLRU(256)

@@ -1,9 +1,21 @@
-"""A small least-recently-used map guarded by its own lock, for caches shared by threads."""
+"""What lets many threads use moorsolve at once: locked caches and the symbolic-build lock.
+
+CasADi's symbolic expressions share reference-counted nodes that are not safe to create or
+destroy from two threads at once, so every construction of a CasADi graph or Function
+(building a problem, its Newton kernel, an IPOPT solver, a derived study function) happens
+under :data:`SYMBOLIC_LOCK`. Evaluating a built Function is guarded per problem
+(:attr:`moorsolve.solve.problem.EquilibriumProblem.lock`); compiled kernels give each
+thread its own buffers.
+"""
 
 from __future__ import annotations
 
 import threading
 from collections import OrderedDict
+
+
+#: Held while a CasADi graph or Function is built (re-entrant: builds nest).
+SYMBOLIC_LOCK = threading.RLock()
 
 
 class LockedLRU:
