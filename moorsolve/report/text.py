@@ -62,7 +62,8 @@ def format_table(result: Result) -> str:
         fx, fy, mz = load
         lines.append(f"load         {name:<15} Fx {fx / 1e3:10.2f} kN  Fy {fy / 1e3:10.2f} kN  "
                      f"Mz {mz / 1e3:12.1f} kN m")
-    header = (f"{'leg' if result.form == 'legs' else 'line':<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
+    word = "leg" if result.form == "legs" else "line"
+    header = (f"{word:<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
               f"{'V_anch kN':>11}{'grounded m':>12}{'util':>7}  state")
     lines += ["", header, "-" * len(header)]
     for leg in result.legs:
