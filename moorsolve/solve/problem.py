@@ -407,12 +407,16 @@ class EquilibriumProblem:
         self._xs, self._p, self._g = xs, p, g_all
 
     def _first_body_summary(self, poses, p):
-        """``[x, y, yaw]`` of the first body: displacement from its case pose."""
+        """``[x, y, yaw]`` of the first body (displacement from its case pose), then, in a
+        network case, every body's absolute pose (6 each, m and rad)."""
         if not poses:
             return ca.SX.zeros(3)
         q = poses[0]
         q0 = p[self.layout.slice(f"body[{self.case.bodies[0].name}].pose")]
-        return ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        first = ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        if self.case.form != "network":
+            return first
+        return ca.vertcat(first, *[ca.vertcat(*pose) for pose in poses])
 
     def _segment_values(self, p) -> dict:
         """Each multi-segment or lumped line's segment parameters (line order)."""
