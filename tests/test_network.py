@@ -487,3 +487,26 @@ def test_sweep_reports_every_body_and_envelope_names_its_body():
         moorsolve.offset_envelope(case, step_deg=90)
     env = moorsolve.offset_envelope(case, step_deg=90, body="east")
     assert np.all(np.isfinite(env.offset_m)) and len(env.offset_m) == 4
+
+
+def test_box_hull_heave_and_a_hull_pushed_out_of_its_exact_range():
+    """A floating box: its exact buoyancy balances the weight at the draft m / (rho L W);
+    pushed down and heeled until its deck edge goes under, the solve refuses with the
+    reason."""
+    data = {
+        "environment": {"depth": 100.0},
+        "line_types": {"rope": {"weight_in_water": 0.0, "ea": 1e8}},
+        "bodies": [{"name": "barge", "mass": 1.0e6, "free": ["heave", "roll", "pitch"],
+                    "centre_of_gravity": [0, 0, -1.0],
+                    "hull": [{"shape": "box", "length": 40.0, "width": 10.0,
+                              "bottom": -5.0, "top": 3.0}]}],
+        "lines": [{"name": "L", "from": [0, 0, -100], "to": {"body": "barge",
+                                                              "at": [0, 0, -5]},
+                   "segments": [{"type": "rope", "length": 200.0}]}]}
+    result = solve(load_case(data), tol=1e-12)
+    draft = 1.0e6 / (1025.0 * 400.0)
+    # The bottom (body z = -5) sits at the draft below the water: origin at 5 - draft.
+    assert result.bodies[0]["z_m"] == pytest.approx(5.0 - draft, rel=1e-9)
+    data["bodies"][0]["loads"] = {"force": [0, 0, -2.0e7, 4.0e7, 0, 0]}
+    with pytest.raises(moorsolve.ConvergenceError, match="hull member 0"):
+        solve(load_case(data))
