@@ -2,12 +2,19 @@
 
 ``run_checks(case)`` solves the intact condition and every damaged condition (each leg
 removed in turn) and checks line tension against the selected standard's factors, anchor
-uplift against each anchor type, the grounded length and the body offset.
+uplift against each anchor type, the grounded length and the body offset. Names are
+imported on first use (:mod:`moorsolve._lazy`).
 """
 
+from __future__ import annotations
+
+from .._lazy import lazy_exports
 from ..model.scene import STANDARDS
-from .criteria import Criterion, criteria_table, criterion
-from .run import CheckItem, CheckReport, ConditionResult, run_checks
+
+_NAMES = {"Criterion": ".criteria", "criteria_table": ".criteria", "criterion": ".criteria",
+          "CheckItem": ".run", "CheckReport": ".run", "ConditionResult": ".run",
+          "run_checks": ".run"}
+__getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
 __all__ = ["STANDARDS", "CheckItem", "CheckReport", "ConditionResult", "Criterion",
            "criteria_table", "criterion", "run_checks"]

@@ -11,7 +11,7 @@ from .common import (EXIT_NO_EQUILIBRIUM, EXIT_OK, bad_input, check_output, prin
 
 
 def add_commands(sub) -> None:
-    from ..checks import STANDARDS
+    from ..model.scene import STANDARDS
     p = sub.add_parser("check", help="mooring checks: intact and damaged conditions")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("--standard", choices=STANDARDS, default=None,

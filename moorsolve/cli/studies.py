@@ -6,8 +6,6 @@ from __future__ import annotations
 import json
 import sys
 
-import numpy as np
-
 from ..errors import CaseError, ConvergenceError
 from .common import (EXIT_INTERRUPTED, EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS,
                      YAML_EXTENSIONS, bad_input, check_output, heading_step, print_text,
@@ -129,6 +127,8 @@ def run_envelope(args) -> int:
            else format_envelope(envelope))
     if args.plot and not args.json:
         print(f"wrote {args.plot}")
+    import numpy as np
+
     missing = ~np.isfinite(envelope.worst_tension_N)
     if missing.any():
         print(f"moorsolve: no equilibrium at {int(missing.sum())} of "

@@ -23,6 +23,9 @@ __all__ = ["Environment", "Flow", "Seabed", "Waves", "ANCHOR_KINDS", "AnchorType
            "DriftCoefficient", "HuTangCurrent", "HuTangDrift", "HuTangWind",
            "DEGREES_OF_FREEDOM", "STANDARDS", "Case", "Checks", "SolverOptions"]
 
-from .build import build_case  # noqa: E402  (after the dataclasses it builds)
+from .._lazy import lazy_exports  # noqa: E402
+
+# Building validates (and may convert units): imported on first use.
+__getattr__, __dir__ = lazy_exports(__name__, {"build_case": ".build"}, globals())
 
 __all__ += ["build_case"]

@@ -2,8 +2,10 @@
 
 A quantity in a case file is either a plain number, taken as SI (m, N, kg, s, N/m, m/s,
 kg/m^3, m^2; degrees for angles), or a string holding a number and a unit such as
-``"0.13 t/m"``, ``"372 kN"``, ``"81 mm"`` or ``"20 kn"``. Units are read by one module-level
-pint registry; nothing outside ``moorsolve.io`` sees pint.
+``"0.13 t/m"``, ``"372 kN"``, ``"81 mm"`` or ``"20 kn"``. Units are read by one pint
+registry, made when the first unit string is read (importing pint costs a few tenths of a
+second, so a case of plain numbers never pays it); nothing outside ``moorsolve.io`` sees
+pint.
 
 Every failure raises :class:`moorsolve.errors.CaseError` naming the field.
 """
@@ -15,17 +17,36 @@ import math
 import numbers
 import re
 import reprlib
-
-import pint
+import threading
 
 from ..errors import CaseError
 
-__all__ = ["UREG", "KINDS", "to_si", "weight_per_length_to_si", "format_si", "describe",
-           "show_value"]
+__all__ = ["registry", "KINDS", "to_si", "weight_per_length_to_si", "format_si",
+           "describe", "show_value"]
 
-#: The one unit registry of moorsolve. In pint ``t`` is the metric tonne, ``tf`` the
-#: tonne-force, ``kgf`` the kilogram-force and ``kn`` / ``kt`` the knot.
-UREG = pint.UnitRegistry()
+_REGISTRY = []
+_REGISTRY_LOCK = threading.Lock()
+
+
+def registry():
+    """The one unit registry of moorsolve, made on first use (also ``units.UREG``).
+
+    In pint ``t`` is the metric tonne, ``tf`` the tonne-force, ``kgf`` the kilogram-force
+    and ``kn`` / ``kt`` the knot.
+    """
+    if not _REGISTRY:
+        with _REGISTRY_LOCK:
+            if not _REGISTRY:
+                import pint
+                _REGISTRY.append(pint.UnitRegistry())
+    return _REGISTRY[0]
+
+
+def __getattr__(name):
+    if name == "UREG":
+        return registry()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 #: kind -> (SI unit as pint reads it, SI symbol shown in messages, noun for messages)
 KINDS = {
@@ -75,9 +96,10 @@ _UNIT = r"[A-Za-z_]+(?:\s*(?:\^|\*\*)\s*[+-]?\d{1,2})?"
 _UNIT_EXPR = rf"{_UNIT}(?:\s*[*/]\s*{_UNIT}|\s+{_UNIT})*"
 _QUANTITY_RE = re.compile(rf"^\s*({_NUMBER})\s*({_UNIT_EXPR})?\s*$")
 
-_DIMENSIONALITY = {kind: UREG.parse_units(unit).dimensionality
-                   for kind, (unit, _, _) in KINDS.items()
-                   if kind not in ("angle", "dimensionless")}
+
+@functools.lru_cache(maxsize=None)
+def _dimensionality(kind: str):
+    return registry().parse_units(KINDS[kind][0]).dimensionality
 
 
 def format_si(value: float, kind: str) -> str:
@@ -172,7 +194,7 @@ def _real_to_float(number, raw, field: str) -> float:
 
 def _parse_units(text: str, raw, field: str):
     try:
-        return UREG.parse_units(text)
+        return registry().parse_units(text)
     except Exception:  # pint raises many exception types; each one means "not a unit"
         raise CaseError(field, f"{show_value(raw)}: {text!r} is not a known unit") from None
 
@@ -199,10 +221,10 @@ def _string_to_si(raw: str, kinds: tuple, field: str):
         if kind == "angle":
             if str(units) not in _ANGLE_UNITS:
                 continue
-        elif units.dimensionality != _DIMENSIONALITY[kind]:
+        elif units.dimensionality != _dimensionality(kind):
             continue
         try:
-            value = UREG.Quantity(number, units).to(KINDS[kind][0]).magnitude
+            value = registry().Quantity(number, units).to(KINDS[kind][0]).magnitude
         except Exception:  # an offset or logarithmic unit: not a plain quantity
             raise _not_a(raw, kind, field) from None
         return _finite(float(value), raw, field), kind

@@ -1,11 +1,16 @@
 """Build the CasADi problem from a Case, solve it (IPOPT or the compiled Newton kernel),
 certify it, check its stability and return a Result.
 
-The only package that calls ``casadi.nlpsol``.
+The only package that calls ``casadi.nlpsol``. Its names are imported on first use
+(:mod:`moorsolve._lazy`): importing the package loads no CasADi.
 """
 
-from .cache import get_problem
-from .equilibrium import solve
-from .result import Certificate, LegResult, Result, Stability
+from __future__ import annotations
+
+from .._lazy import lazy_exports
+
+_NAMES = {"solve": ".equilibrium", "get_problem": ".cache", "Result": ".result",
+          "LegResult": ".result", "Certificate": ".result", "Stability": ".result"}
+__getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
 __all__ = ["solve", "get_problem", "Result", "LegResult", "Certificate", "Stability"]
