@@ -43,8 +43,18 @@ def solve(case, **options):
     package; the function is bound here, after the (light) package, so importing any of
     the package's modules later leaves it in place.
     """
-    from .solve.equilibrium import solve as run
+    run = _SOLVE or _import_solve()
     return run(case, **options)
+
+
+_SOLVE = None
+
+
+def _import_solve():
+    global _SOLVE
+    from .solve.equilibrium import solve as run
+    _SOLVE = run
+    return run
 
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",

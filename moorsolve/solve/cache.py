@@ -12,6 +12,7 @@ import threading
 from collections import OrderedDict
 
 from ..model import Case
+from .prepared import HashedKey, per_case
 from .problem import EquilibriumProblem, structure_key
 from .start import scales
 
@@ -31,8 +32,8 @@ class ProblemCache:
         # equilibrium, which one it finds), so they are part of the key: a case gets the same
         # problem whatever was solved before it. Rounding them to powers of two lets cases
         # that differ a little (a sweep, a damaged condition) share one build.
-        force_scale, length_scale = (2.0 ** round(math.log2(v)) for v in scales(case))
-        key = (structure_key(case), force_scale, length_scale)
+        key = problem_key(case)
+        force_scale, length_scale = key[1:]
         with self._lock:
             problem = self._problems.get(key)
             if problem is not None:
@@ -57,6 +58,14 @@ class ProblemCache:
     def clear(self) -> None:
         with self._lock:
             self._problems.clear()
+
+
+@per_case
+def problem_key(case: Case) -> HashedKey:
+    """The key of ``case``'s problem: its structure and its scales rounded to powers of two
+    (see :meth:`ProblemCache.get`); computed once per case object."""
+    force_scale, length_scale = (2.0 ** round(math.log2(v)) for v in scales(case))
+    return HashedKey((structure_key(case), force_scale, length_scale))
 
 
 #: The process's problem cache.

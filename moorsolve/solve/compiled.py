@@ -60,17 +60,25 @@ def _compiler() -> list[str] | None:
 
 def compile_function(fn: ca.Function) -> "CompiledFunction | None":
     """``fn`` as a compiled library, from the disk cache when it is there already."""
+    compiled = compile_functions([fn])
+    return None if compiled is None else compiled[0]
+
+
+def compile_functions(fns: list) -> "list[CompiledFunction] | None":
+    """The functions ``fns`` compiled into one library (named after the first), from the
+    disk cache when it is there already; one :class:`CompiledFunction` each, or None."""
     if os.environ.get("MOORSOLVE_NO_COMPILE"):
         return None
+    name = fns[0].name()
     cc = _compiler()
     if cc is None:
-        log.warning("no C compiler found; %s runs interpreted", fn.name())
+        log.warning("no C compiler found; %s runs interpreted", name)
         return None
-    name = fn.name()
     with tempfile.TemporaryDirectory() as tmp:
         source = Path(tmp) / f"{name}.c"
         gen = ca.CodeGenerator(source.name, {"with_header": False})
-        gen.add(fn)
+        for fn in fns:
+            gen.add(fn)
         gen.generate(tmp + os.sep)
         text = source.read_bytes()
         flags = _FLAGS if len(text) < _LARGE_SOURCE else ("-O1",) + _FLAGS[1:]
@@ -84,7 +92,7 @@ def compile_function(fn: ca.Function) -> "CompiledFunction | None":
                 except (OSError, subprocess.SubprocessError) as err:
                     log.warning("compiling %s failed (%s); it runs interpreted", name, err)
                     return None
-    return CompiledFunction(fn, target)
+    return [CompiledFunction(fn, target) for fn in fns]
 
 
 def _build(cc: list[str], flags: tuple, source: Path, target: Path) -> None:
@@ -126,6 +134,9 @@ class CompiledFunction:
         for i in range(fn.n_out()):
             if not fn.sparsity_out(i).is_dense():
                 raise ValueError(f"output {fn.name_out(i)} of {name} must be dense")
+        #: Name and (rows, columns) of every output, for callers that reshape them.
+        self.output_names = fn.name_out()
+        self.output_shapes = [fn.sparsity_out(i).shape for i in range(fn.n_out())]
         self.inputs = [np.zeros(fn.nnz_in(i)) for i in range(fn.n_in())]
         self.outputs = [np.zeros(fn.nnz_out(i)) for i in range(fn.n_out())]
         self._iw = np.zeros(max(n_iw, 1), dtype=np.int64)

@@ -32,6 +32,8 @@ from ..model import Case
 from .cache import get_problem
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
+from .prepared import geometry_key
+from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable
 from .start import initial_point
@@ -63,7 +65,10 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
     if not (problem.n_q and problem.load_names):
         return x0
     p_rest = problem.parameters(case, 0.0)
-    key = b"rest:" + p_rest.tobytes()
+    # At load factor 0 nothing acts through the loads: one rest state per geometry (a
+    # lumped line's start is drawn under its current, so there all parameters count).
+    key = b"rest:" + (p_rest.tobytes() if any(k.discrete for k in problem.kinds)
+                      else geometry_key(case)[1])
     with problem.lock:
         cached = problem.start_cache.get(key)
         if cached is not None:
@@ -139,23 +144,29 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             used = "newton" if x is not None else "ipopt"
         if x is None:
             x = _ipopt_strategy(problem, case, p_full, tol, start, stats, t0)
-        certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
+        # One evaluation gives the certificate, the stiffness and every reported array.
+        post = problem.post(np.where(np.isfinite(x), x, 0.0), p_full)
+        certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
         failed_status = stats["status"] in _FAILED_STATUSES
         if certified and failed_status:
             notes.append(f"IPOPT ended with {stats['status']} but the point certifies: the "
                          "certificate, recomputed from the solution, is what is reported")
         assessment = None
         if certified and stability:
-            x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats)
+            x_found = x
+            x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats,
+                                                 post["stiffness"])
             notes += extra
-            certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
-        outside = hull_out_of_range(problem, x, p_full) if certified else []
+            if x is not x_found:
+                post = problem.post(np.where(np.isfinite(x), x, 0.0), p_full)
+                certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
+        outside = hull_out_of_range(problem, x, p_full, post) if certified else []
         elapsed = time.perf_counter() - t0
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
                            iterations=stats["iterations"], solve_time_s=elapsed)
         result = build_result(problem, case, x, p_full, cert, certified, used, notes,
-                              assessment)
+                              assessment, post)
     if not certified:
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
@@ -164,7 +175,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         raise ConvergenceError("; ".join(outside), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
-    broken = over_mbl(result)
+    broken = over_mbl(result, problem, post)
     if broken and not allow_overload:
         raise ConvergenceError(
             "overload: " + "; ".join(broken) + " (the mooring cannot hold this load; "
@@ -184,13 +195,13 @@ def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
     x0 = np.asarray(start, float) if start is not None else rest_point(problem, case, tol)
     out = kernel.solve(x0, p_full, tol)
     stats["iterations"] += out["iterations"]
-    certified = problem.certify(out["x"], p_full, tol)[0]
+    certified = _kernel_certified(problem, out, tol)
     if not certified and start is None:
         # As in the IPOPT strategy: a slack rest state can be a poor start.
         x0 = initial_point(problem, case)
         out = kernel.solve(x0, p_full, tol)
         stats["iterations"] += out["iterations"]
-        certified = problem.certify(out["x"], p_full, tol)[0]
+        certified = _kernel_certified(problem, out, tol)
     stats["status"] = STATUS_TEXT[out["status"]]
     if certified and not (start is None and _turn_jump(problem, x0, out["x"])):
         return out["x"], notes
@@ -269,12 +280,27 @@ def _turn_jump(problem, x_rest, x) -> bool:
     return False
 
 
-def _stable_point(problem, case, x, p, tol, stats):
+def _kernel_certified(problem, out: dict, tol: float) -> bool:
+    """Whether the kernel's point certifies, from the exact certificate it returns."""
+    force, moment, t_max = out["certificate"]
+    return bool(np.all(np.isfinite(out["x"]))) and problem.judge(force, moment, t_max, tol)[0]
+
+
+def _judge(problem, x, post, tol) -> tuple:
+    """:meth:`EquilibriumProblem.certify` from the certificate in ``post``."""
+    if not np.all(np.isfinite(x)):
+        return False, math.inf, math.inf, math.inf
+    force, moment, t_max = (float(v) for v in np.ravel(post["certificate"]))
+    return problem.judge(force, moment, t_max, tol)
+
+
+def _stable_point(problem, case, x, p, tol, stats, stiffness=None):
     """The stability of ``x``; where unstable, a stable equilibrium if one is found.
+    ``stiffness`` is the condensed stiffness at ``x`` when the caller has it.
 
     Returns ``(x, Stability, notes)``.
     """
-    assessment = assess(problem, x, p)
+    assessment = assess(problem, x, p, stiffness)
     if assessment.stable:
         return x, assessment, []
     lb, ub = problem.bounds()
@@ -329,16 +355,25 @@ def polish(problem, x, p, lb, ub, stats, tol):
     return x
 
 
-def over_mbl(result: Result) -> list:
-    """``"leg NAME would break ..."`` for every line above its minimum breaking load."""
-    out = []
-    for leg in result.legs:
-        u = leg.utilisation
-        if u is not None and u > 1.0:
-            out.append(f"leg {leg.name} would break: tension "
-                       f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
-                       f"> MBL {leg.mbl_N / 1e3:.1f} kN")
-    return out
+def over_mbl(result: Result, problem=None, post=None) -> list:
+    """``"leg NAME would break ..."`` for every line above its minimum breaking load.
+
+    ``problem`` and ``post`` (the arrays the result was made from) let one-segment lines
+    be judged from their end forces without making the legs.
+    """
+    if problem is not None and post is not None and all(k.single for k in problem.kinds):
+        table = np.atleast_2d(post["lines"])
+        ia, ib = LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FBx")
+        tension = np.maximum(np.linalg.norm(table[:, ia:ia + 3], axis=1),
+                             np.linalg.norm(table[:, ib:ib + 3], axis=1))
+        lines = result.case.lines
+        mbl = np.array([line.line_type.mbl or np.inf for line in lines])
+        ends = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
+    else:
+        ends = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
+                for leg in result.legs if leg.utilisation is not None and leg.utilisation > 1]
+    return [f"leg {name} would break: tension {tension / 1e3:.1f} kN > MBL {mbl / 1e3:.1f} kN"
+            for name, tension, mbl in ends if mbl and tension / mbl > 1.0]
 
 
 def _diagnose(problem, case, result) -> str:

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import Case
+from . import prepared
 
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
               "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor")
@@ -137,13 +138,28 @@ def point_parameters(case: Case) -> np.ndarray:
 
 
 def parameter_vector(case: Case, load_factor: float = 1.0, kinds=None) -> np.ndarray:
-    """The full parameter vector ``p`` of ``case``'s problem."""
-    if kinds is None:
-        from .lines import line_kinds
-        kinds = line_kinds(case)
-    return np.concatenate([environment_parameters(case, load_factor), line_parameters(case),
-                           segment_parameters(case, kinds), body_parameters(case),
-                           point_parameters(case)])
+    """The full parameter vector ``p`` of ``case``'s problem (a fresh array).
+
+    Assembled once per case object from the blocks below (:func:`.prepared.case_parameters`);
+    ``kinds``, the case's own line kinds, is accepted for the callers that hold them.
+    """
+    return prepared.case_parameters(case, load_factor)
+
+
+#: Index of the load factor in every parameter vector.
+LOAD_FACTOR_INDEX = ENV_PARAMS.index("load_factor")
+
+
+def load_entries(layout: "ParameterLayout") -> np.ndarray:
+    """Mask of the entries that act on the problem only through the load factor: the flow
+    speeds, headings and wave height, the constant forces, the current profile and the
+    load factor itself (at load factor 0 the problem does not depend on them)."""
+    mask = np.zeros(layout.size, dtype=bool)
+    for name, where in layout.names.items():
+        if (name.startswith("env.") or name == "current.profile"
+                or (name.startswith("body[") and name.endswith("].force"))):
+            mask[where] = True
+    return mask
 
 
 @dataclass(frozen=True)

@@ -197,11 +197,15 @@ class NewtonKernel:
     """
 
     def __init__(self, problem, *, compile: bool = True):
-        from .compiled import compile_function
+        from .compiled import compile_functions
 
         self.problem = problem
         self.function = newton_function(problem)
-        self._lib = compile_function(self.function) if compile else None
+        # The problem's post function (certificate, stiffness, report) goes into the
+        # same library: a solved point becomes a Result without an interpreted call.
+        libs = compile_functions([self.function, problem.post_function()]) if compile \
+            else None
+        self._lib, self._post = libs if libs is not None else (None, None)
         self.compiled = self._lib is not None
 
     def clone(self) -> "NewtonKernel":
@@ -209,7 +213,18 @@ class NewtonKernel:
         other = object.__new__(NewtonKernel)
         other.problem, other.function, other.compiled = self.problem, self.function, self.compiled
         other._lib = self._lib.clone() if self._lib is not None else None
+        other._post = self._post.clone() if self._post is not None else None
         return other
+
+    def post(self, x: np.ndarray, p: np.ndarray) -> dict:
+        """The problem's post function (:meth:`EquilibriumProblem.post_function`) at
+        ``x``, compiled: fresh numpy arrays by output name, in their CasADi shapes."""
+        lib = self._post
+        lib.inputs[0][:] = x
+        lib.inputs[1][:] = p
+        lib()
+        return {name: out.reshape(shape, order="F").copy()
+                for name, shape, out in zip(lib.output_names, lib.output_shapes, lib.outputs)}
 
     def raw(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
         """Run the kernel; its outputs in order, as views of this kernel's buffers

@@ -18,35 +18,45 @@ from ..physics.catenary import (LegKind, leg_profile, segment_profile, sloped_le
 from ..physics.wall_tension import wall_tension
 from .lines import SEGMENT_COLUMNS
 from .problem import LINE_COLUMNS, ROTATIONS
-from .result import LegResult, Result
+from .result import LazyProfile, LegList, LegResult, Result
 
 _PROFILE_POINTS = 51
 
 
 def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", notes=(),
-                 stability=None) -> Result:
-    """The :class:`Result` of the scaled point ``x`` of ``problem`` at parameters ``p``."""
+                 stability=None, post=None) -> Result:
+    """The :class:`Result` of the scaled point ``x`` of ``problem`` at parameters ``p``.
+
+    ``post`` is :meth:`EquilibriumProblem.post` at ``x`` when the caller has it. The legs
+    are made from its arrays when first read, and a one-segment line's profile when it is
+    first read (:class:`~.result.LegList`, :class:`~.result.LazyProfile`): the same
+    numbers, paid for only by a caller that reads them.
+    """
     x = np.where(np.isfinite(x), x, 0.0)
-    table, unbalanced, load_vec, poses, point_pos, _, _ = (
-        np.asarray(v) for v in problem.report(x, p))
-    table = np.atleast_2d(table)
+    if post is None:
+        post = problem.post(x, p)
+    table = np.atleast_2d(post["lines"])
+    poses, point_pos, load_vec = post["poses"], post["points"], post["loads"]
     xp = x * problem.x_scale
-    seg_table = np.atleast_2d(np.asarray(problem.segment_report(x, p)))
-    node_table = np.atleast_2d(np.asarray(problem.node_report(x, p)))
-    legs = []
-    for i, (line, kind) in enumerate(zip(case.lines, problem.kinds)):
-        row = dict(zip(LINE_COLUMNS, (float(v) for v in table[i])))
-        u = float(xp[problem.line_offsets[i]])
-        if kind.discrete:
-            nodes = np.array([r for r in node_table if int(r[0]) == i])
-            legs.append(_discrete_result(case, line, kind, row, nodes))
-        elif kind.multi:
-            rows = [dict(zip(SEGMENT_COLUMNS, (float(v) for v in r)))
-                    for r in seg_table if int(r[0]) == i]
-            legs.append(_multi_result(case, line, kind, row, rows, u))
-        else:
-            legs.append(_single_result(case, line, kind, row, u))
-    poses = np.asarray(poses, dtype=float).ravel()
+    seg_table = np.atleast_2d(post["segments"])
+    node_table = np.atleast_2d(post["nodes"])
+
+    def make_legs():
+        for i, (line, kind) in enumerate(zip(case.lines, problem.kinds)):
+            row = dict(zip(LINE_COLUMNS, table[i].tolist()))
+            u = float(xp[problem.line_offsets[i]])
+            if kind.discrete:
+                nodes = np.array([r for r in node_table if int(r[0]) == i])
+                yield _discrete_result(case, line, kind, row, nodes)
+            elif kind.multi:
+                rows = [dict(zip(SEGMENT_COLUMNS, r.tolist()))
+                        for r in seg_table if int(r[0]) == i]
+                yield _multi_result(case, line, kind, row, rows, u)
+            else:
+                yield _single_result(case, line, kind, row, u)
+
+    legs = LegList(make_legs)
+    poses = np.asarray(poses, dtype=float).ravel(order="F")
     bodies = []
     for bi, body in enumerate(case.bodies):
         q = poses[6 * bi: 6 * bi + 6]
@@ -67,7 +77,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
             body = dict(body, z_m=off["z_m"], roll_deg=off["roll_deg"],
                         pitch_deg=off["pitch_deg"])
     points = []
-    point_pos = np.asarray(point_pos, dtype=float).ravel()
+    point_pos = np.asarray(point_pos, dtype=float).ravel(order="F")
     for pi, point in enumerate(case.free_points):
         xyz = point_pos[3 * pi: 3 * pi + 3]
         j = problem.nodes.index(("point", pi, "zeta"))
@@ -75,7 +85,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
         points.append({"name": point.name, "x_m": float(xyz[0]), "y_m": float(xyz[1]),
                        "z_m": float(xyz[2]), "seabed_reaction_N": reaction})
     loads = {}
-    lv = np.asarray(load_vec, dtype=float).ravel()
+    lv = np.asarray(load_vec, dtype=float).ravel(order="F")
     legacy = case.form == "legs"
     for k, name in enumerate(problem.load_names):
         f = lv[6 * k: 6 * k + 6]
@@ -92,13 +102,16 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                   points=tuple(points), stability=stability, form=case.form)
 
 
-def hull_out_of_range(problem, x, p) -> list:
+def hull_out_of_range(problem, x, p, post=None) -> list:
     """``"body B: hull member j ..."`` for every exact hull member whose formula does not
-    hold at the scaled point ``x`` (the waterplane crosses its bottom or top face)."""
+    hold at the scaled point ``x`` (the waterplane crosses its bottom or top face);
+    ``post`` is :meth:`EquilibriumProblem.post` at ``x`` when the caller has it."""
     case = problem.case
     if not any(body.hull for body in case.bodies):
         return []
-    flags = np.asarray(problem.report(x, p)[6], dtype=float).ravel()
+    if post is None:
+        post = problem.post(x, p)
+    flags = np.asarray(post["hull_in_range"], dtype=float).ravel()
     out, k = [], 0
     for body in case.bodies:
         for j, _ in enumerate(body.hull):
@@ -113,6 +126,8 @@ def hull_out_of_range(problem, x, p) -> list:
 def _line_notes(case, problem, legs) -> list:
     env = case.environment
     notes = []
+    if all(kind.single and kind.contact for kind in problem.kinds):
+        return notes             # nothing to say of anchored one-segment lines
     for lr, kind in zip(legs, problem.kinds):
         if kind.single and not kind.contact and lr.profile["z_m"].size and np.any(
                 lr.profile["z_m"] < np.array([env.seabed_z(px, py) for px, py in zip(
@@ -138,8 +153,8 @@ def _ends(row: dict) -> tuple:
     """End A and B positions and the forces on them, from a report row."""
     a = (row["ax"], row["ay"], row["az"])
     b = (row["bx"], row["by"], row["bz"])
-    fa = np.array([row["FAx"], row["FAy"], row["FAz"]])
-    fb = np.array([row["FBx"], row["FBy"], row["FBz"]])
+    fa = (row["FAx"], row["FAy"], row["FAz"])
+    fb = (row["FBx"], row["FBy"], row["FBz"])
     return a, b, fa, fb
 
 
@@ -147,10 +162,10 @@ def _end_fields(name, a, b, fa, fb) -> dict:
     """The CONTRACT fields of a line's two ends from the forces on them."""
     return dict(
         name=name,
-        fairlead_tension_N=float(np.linalg.norm(fb)),
+        fairlead_tension_N=math.hypot(*fb),
         horizontal_tension_N=float(math.hypot(fb[0], fb[1])),
         fairlead_vertical_N=float(-fb[2]),
-        anchor_tension_N=float(np.linalg.norm(fa)),
+        anchor_tension_N=math.hypot(*fa),
         anchor_horizontal_N=float(math.hypot(fa[0], fa[1])),
         anchor_vertical_N=float(fa[2]),
         anchor=tuple(float(v) for v in a), fairlead=tuple(float(v) for v in b),
@@ -188,20 +203,24 @@ def _single_result(case, line, kind, row, u) -> LegResult:
     grounded, susp_x, X, Z = row["grounded"], row["suspended_x"], row["X"], row["Z"]
     ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-9 else (1.0, 0.0)
     mu = env.seabed.friction if kind.friction else 0.0
-    slope = 0.0
-    if kind.lifted:
-        h = max(lower[2] - env.seabed_z(lower[0], lower[1]), 0.0)
-        prof = segment_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea, h=h,
-                               X=X, Z=Z, n=_PROFILE_POINTS)
-    elif kind.sloped:
-        slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
-        prof = sloped_leg_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea,
-                                  mu=mu, t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
-    else:
-        prof = leg_profile(kind.block, H=H, V=VF, L=line.length, w=lt.weight_in_water,
-                           ea=lt.ea, mu=mu, X=X, Z=Z, n=_PROFILE_POINTS)
-    profile = _orient(prof, lower, upper, kind.flipped)
-    _add_wall_tension(profile, line, env)
+    slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy if kind.sloped else 0.0
+
+    def draw() -> dict:
+        if kind.lifted:
+            h = max(lower[2] - env.seabed_z(lower[0], lower[1]), 0.0)
+            prof = segment_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea,
+                                   h=h, X=X, Z=Z, n=_PROFILE_POINTS)
+        elif kind.sloped:
+            prof = sloped_leg_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water,
+                                      ea=lt.ea, mu=mu, t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
+        else:
+            prof = leg_profile(kind.block, H=H, V=VF, L=line.length, w=lt.weight_in_water,
+                               ea=lt.ea, mu=mu, X=X, Z=Z, n=_PROFILE_POINTS)
+        profile = _orient(prof, lower, upper, kind.flipped)
+        _add_wall_tension(profile, line, env)
+        return profile
+
+    profile = LazyProfile(draw)
     fields = _end_fields(line.name, a, b, fa, fb)
     anchored = kind.block.contact
     td = max(X - susp_x, 0.0) if (anchored and grounded > 0) else 0.0

@@ -42,6 +42,7 @@ from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED
                      build_layout, parameter_vector)
 from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
                     seabed_height, single_block)
+from .prepared import HashedKey, line_ends_of, line_kinds_of, per_case
 
 #: Columns of the lines table of ``EquilibriumProblem.report``: the horizontal and vertical
 #: tension at end B (``H``, ``VF``: the upward force B exerts on the line), the horizontal
@@ -54,6 +55,10 @@ LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X
                 "bx", "by", "fx", "fy", "J00", "J10", "J01", "J11",
                 "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz")
 ROTATIONS = ("roll", "pitch", "yaw")
+#: Outputs of :meth:`EquilibriumProblem.post_function`: the certificate, the condensed
+#: stiffness, the seven outputs of ``report``, and the segment and node tables.
+POST_OUTPUTS = ("certificate", "stiffness", "lines", "unbalanced", "loads", "poses",
+                "points", "wrenches", "hull_in_range", "segments", "nodes")
 POINT_DOFS = ("x", "y", "zeta")
 
 
@@ -130,6 +135,7 @@ class EquilibriumProblem:
         #: :attr:`lock`.
         self.start_cache: dict = {}
         self._kernel_pool = None
+        self._post = None
         with SYMBOLIC_LOCK:
             self._build()
 
@@ -468,6 +474,45 @@ class EquilibriumProblem:
                   and moment_ok)
         return ok, force, moment, relative
 
+    # -- everything a Result needs, in one evaluation -------------------------------------
+    def post_function(self) -> ca.Function:
+        """``post(x, p)``: the certificate ``[force, moment, t_max]``, the condensed
+        stiffness of the free body DOFs (:func:`.stability.stiffness_graph`) and the outputs
+        of :attr:`report`, :attr:`segment_report` and :attr:`node_report` (see
+        :data:`POST_OUTPUTS`), all dense: what certifying, the stability check and the
+        Result need from a solved point, in one call. Compiled with the Newton kernel."""
+        with self._lock:
+            if self._post is None:
+                from .stability import stiffness_graph
+                with SYMBOLIC_LOCK:
+                    x = ca.MX.sym("x", self.n_x)
+                    p = ca.MX.sym("p", self.n_p)
+                    outs = [ca.vertcat(*self.certificate(x, p)),
+                            stiffness_graph(self, self.jacobian(x, p)),
+                            *self.report(x, p), self.segment_report(x, p),
+                            self.node_report(x, p)]
+                    self._post = ca.Function("moorsolve_post", [x, p],
+                                             [ca.densify(o) for o in outs],
+                                             ["x", "p"], list(POST_OUTPUTS))
+            return self._post
+
+    def post(self, x, p) -> dict:
+        """:meth:`post_function` at the scaled point ``x``: numpy arrays by name, through
+        the compiled kernel's library when it is built, else interpreted."""
+        kernel = self._newton
+        if kernel is not None and kernel.compiled:
+            return kernel.post(x, p)
+        try:
+            values = self.post_function()(x, p)
+        except RuntimeError:
+            # A singular condensed block stops the interpreted QR solve: report the
+            # stiffness as unknown (the stability check then condenses it itself).
+            n_b = sum(owner == "body" for owner, _, _ in self.nodes)
+            values = [ca.vertcat(*self.certificate(x, p)), np.full((n_b, n_b), np.nan),
+                      *self.report(x, p), self.segment_report(x, p), self.node_report(x, p)]
+        return {name: np.asarray(v, dtype=float)
+                for name, v in zip(POST_OUTPUTS, values)}
+
     # -- solvers --------------------------------------------------------------------
     def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
         """An IPOPT solver for the feasibility NLP, cached per setting.
@@ -531,24 +576,24 @@ class EquilibriumProblem:
         return parameter_vector(case, load_factor, self.kinds)
 
 
+@per_case
 def structure_key(case: Case) -> tuple:
-    """What decides the shape of the built problem (not its parameter values)."""
+    """What decides the shape of the built problem (not its parameter values); computed
+    once per case object."""
     bodies = tuple(
         (b.name, tuple(b.free), b.mass is not None, b.hydrostatics is not None,
          tuple(m.shape for m in b.hull), b.stiffness is not None,
          dataclasses.replace(b.loads, force=None), b.loads.force is not None)
         for b in case.bodies)
-    ends = tuple((line.a.kind, line.a.on_seabed, line.a.point, line.a.body,
-                  line.b.kind, line.b.on_seabed, line.b.point, line.b.body)
-                 for line in case.lines)
-    return (
-        tuple(line_kinds(case)), ends, bodies, tuple(p.name for p in case.free_points),
+    return HashedKey((
+        line_kinds_of(case), line_ends_of(case), bodies,
+        tuple(p.name for p in case.free_points),
         case.form,
         case.environment.wind is not None, case.environment.current is not None,
         case.environment.waves is not None,
         case.environment.air_density, case.environment.water_density,
         case.environment.gravity,
-    )
+    ))
 
 
 __all__ = ["EquilibriumProblem", "structure_key", "LINE_COLUMNS", "LineKind",

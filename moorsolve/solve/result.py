@@ -2,10 +2,72 @@
 
 from __future__ import annotations
 
+import threading
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Optional
 
 import numpy as np
+
+
+class _Deferred:
+    """A value made by ``make()`` on first use, once, under a lock (many threads may ask)."""
+
+    __slots__ = ("_make", "_value", "_lock")
+
+    def __init__(self, make):
+        self._make, self._value, self._lock = make, None, threading.Lock()
+
+    def value(self):
+        if self._make is not None:
+            with self._lock:
+                if self._make is not None:
+                    self._value, self._make = self._make(), None
+        return self._value
+
+
+class LazyProfile(Mapping):
+    """A line's profile (``x_m``, ``y_m``, ``z_m``, ``tension_N``, ...), drawn from the
+    solved end forces on first access: the same numbers as drawing it at once, paid for
+    only by a caller that reads it (a plot, a report, ``to_dict()``)."""
+
+    __slots__ = ("_data",)
+
+    def __init__(self, draw):
+        self._data = _Deferred(draw)
+
+    def __getitem__(self, key):
+        return self._data.value()[key]
+
+    def __iter__(self):
+        return iter(self._data.value())
+
+    def __len__(self) -> int:
+        return len(self._data.value())
+
+    def __repr__(self) -> str:
+        return f"LazyProfile({sorted(self)})"
+
+
+class LegList(Sequence):
+    """The legs of a Result, made from the solved arrays on first access (all at once)."""
+
+    __slots__ = ("_legs",)
+
+    def __init__(self, make):
+        self._legs = _Deferred(lambda: list(make()))
+
+    def __getitem__(self, index):
+        return self._legs.value()[index]
+
+    def __len__(self) -> int:
+        return len(self._legs.value())
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Sequence) and list(self) == list(other)
+
+    def __repr__(self) -> str:
+        return repr(self._legs.value())
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ and then from turned starts (a weathervaning ship may need to turn half round).
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
 
@@ -37,11 +38,26 @@ _ZERO = 1e-7
 _PROBES = (1e-3, 1e-2)
 
 
+#: Per problem: its kept and condensed unknowns, homogenising factors and DOF names.
+_LAYOUTS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _layout(problem) -> tuple:
+    """``(keep, rest, h, names)`` of ``problem``, worked out once."""
+    found = _LAYOUTS.get(problem)
+    if found is None:
+        keep = [j for j, (owner, _, _) in enumerate(problem.nodes) if owner == "body"]
+        kept = set(keep)
+        rest = [j for j in range(problem.n_x) if j not in kept]
+        keep, rest = np.array(keep, dtype=int), np.array(rest, dtype=int)
+        found = (keep, rest, homogenising(problem, keep), _dof_names(problem, keep))
+        _LAYOUTS[problem] = found
+    return found
+
+
 def _split(problem):
     """Indices of the body unknowns (kept) and of everything condensed out."""
-    keep = [j for j, (owner, _, _) in enumerate(problem.nodes) if owner == "body"]
-    rest = [j for j in range(problem.n_x) if j not in set(keep)]
-    return np.array(keep, dtype=int), np.array(rest, dtype=int)
+    return _layout(problem)[:2]
 
 
 def _rows(problem, cols):
@@ -79,6 +95,27 @@ def condensed_stiffness(problem, x, p) -> tuple:
                           else problem.force_scale for j in keep])
     K = -(row_scale[:, None] * A) / problem.x_scale[keep][None, :]
     return K, keep
+
+
+def stiffness_graph(problem, J):
+    """:func:`condensed_stiffness` as a CasADi expression of the Jacobian ``J`` (MX): the
+    condensed unknowns eliminated by a sparse QR solve, so the compiled kernel returns the
+    stiffness with the equilibrium. Non-finite where the condensed block is singular (the
+    caller then uses :func:`condensed_stiffness`)."""
+    import casadi as ca
+
+    keep, rest = _split(problem)
+    if keep.size == 0:
+        return ca.MX(0, 0)
+    rq, rr = _rows(problem, keep).tolist(), _rows(problem, rest).tolist()
+    keep_l, rest_l = keep.tolist(), rest.tolist()
+    A = J[rq, keep_l]
+    if rest.size:
+        A = A - J[rq, rest_l] @ ca.solve(J[rr, rest_l], J[rr, keep_l], "qr")
+    row_scale = np.array([problem.moment_scale if problem.rotational[j]
+                          else problem.force_scale for j in keep])
+    return ca.densify(-(ca.DM(np.diag(row_scale)) @ A) @ ca.DM(np.diag(
+        1.0 / problem.x_scale[keep])))
 
 
 def _dof_names(problem, keep) -> list:
@@ -144,16 +181,29 @@ def _restoring(problem, x, p, keep, mode) -> list:
     return out
 
 
-def assess(problem, x, p) -> Stability:
-    """The :class:`Stability` of the scaled point ``x`` (an equilibrium of ``problem``)."""
-    keep, _ = _split(problem)
+def assess(problem, x, p, stiffness=None) -> Stability:
+    """The :class:`Stability` of the scaled point ``x`` (an equilibrium of ``problem``).
+
+    ``stiffness``, the condensed stiffness at ``x`` if the caller has it (the compiled
+    kernel returns it, :func:`stiffness_graph`), saves recomputing it. Where every
+    eigenvalue is clearly away from zero with a positive real part the point is stable
+    and nothing more is done; a zero or negative one is examined as described in the
+    module notes.
+    """
+    keep, _, h, names = _layout(problem)
     if keep.size == 0:
         return Stability(stable=True, min_eigenvalue=math.inf)
-    K, keep = condensed_stiffness(problem, x, p)
-    h = homogenising(problem, keep)
+    if stiffness is not None and np.isfinite(stiffness).all():
+        K = np.asarray(stiffness, dtype=float).reshape(keep.size, keep.size)
+    else:
+        K, keep = condensed_stiffness(problem, x, p)
     Kh = K / h[None, :] / h[:, None]
+    values = np.linalg.eigvals(Kh)
+    scale = max(float(np.max(np.abs(values))), 1e-300)
+    if (np.abs(values) > _ZERO * scale).all() and (values.real >= 0).all():
+        return Stability(stable=True, min_eigenvalue=float(np.min(values.real)),
+                         eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
     values, vectors = np.linalg.eig(Kh)
-    names = _dof_names(problem, keep)
     scale = max(float(np.max(np.abs(values))), 1e-300)
     unstable, neutral = [], []
     stable = True

@@ -18,6 +18,7 @@ from ..physics.catenary import LegKind, initial_state, leg_profile
 from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
 from .concurrency import LockedLRU
+from .prepared import geometry_key, line_kinds_of, per_case
 
 #: Closed-form line states by scene (structure and parameters).
 _REST_STATES = LockedLRU(256)
@@ -50,8 +51,27 @@ def equivalent_line(case: Case, line, lower) -> tuple:
     return LegKind(elastic=False, contact=on_seabed and w > 0, neutral=(w == 0)), w
 
 
+#: Scales by geometry (:func:`.prepared.geometry_key`), for scenes without lumped lines.
+_SCALES = LockedLRU(256)
+
+
+@per_case
 def scales(case: Case) -> tuple:
-    """Typical tension [N] and length [m] of the scene, for scaling the unknowns."""
+    """Typical tension [N] and length [m] of the scene, for scaling the unknowns.
+
+    Without a lumped line (whose flow load counts) they depend on the geometry alone, and
+    are remembered by it."""
+    if any(kind.discrete for kind in line_kinds_of(case)):
+        return _scales(case)
+    key = geometry_key(case)
+    found = _SCALES.get(key)
+    if found is None:
+        found = _scales(case)
+        _SCALES.put(key, found)
+    return found
+
+
+def _scales(case: Case) -> tuple:
     tensions = [sum(abs(seg.line_type.weight_in_water) * seg.length for seg in line.segments)
                 + sum(abs(c.weight) for c in line.joint_clumps if c is not None)
                 for line in case.lines]
@@ -62,18 +82,13 @@ def scales(case: Case) -> tuple:
     return force, max(case.environment.depth, 1.0)
 
 
-def _state_key(case: Case) -> bytes:
-    from .problem import structure_key
-    return repr(structure_key(case)).encode() + parameter_vector(case, 1.0).tobytes()
-
-
 def rest_line_states(case: Case) -> list:
     """Closed-form starting ``(u, V)`` of every line with the scene at its case pose.
 
-    Remembered by everything they depend on: the bisections cost milliseconds, far more
-    than a compiled Newton solve.
+    Remembered by everything they depend on (:func:`.prepared.geometry_key`: not the
+    loads): the bisections cost milliseconds, far more than a compiled Newton solve.
     """
-    key = _state_key(case)
+    key = geometry_key(case)
     states = _REST_STATES.get(key)
     if states is None:
         states = tuple(_compute_rest_states(case))
@@ -226,9 +241,14 @@ def initial_point(problem, case: Case) -> np.ndarray:
     """Scaled starting vector: bodies at their case pose, points where the case puts them,
     lines in their closed-form states.
 
-    Remembered per problem and parameters (in the problem's own cache, under its lock).
+    Remembered per problem and load-free parameters (in the problem's own cache, under its
+    lock).
     """
-    key = b"start:" + parameter_vector(case, 1.0, problem.kinds).tobytes()
+    # A lumped line starts from a shape drawn under the current: its start depends on
+    # the flow too. Every other start depends on the geometry alone.
+    loads_matter = any(kind.discrete for kind in problem.kinds)
+    key = b"start:" + (parameter_vector(case).tobytes() if loads_matter
+                       else geometry_key(case)[1])
     with problem.lock:
         cached = problem.start_cache.get(key)
     if cached is not None:

@@ -1,0 +1,203 @@
+"""What a solve derives from a Case, computed once per Case object.
+
+A :class:`~moorsolve.model.Case` is frozen, so everything that depends on it alone (its line
+kinds, its structure key, its parameter vector, its scales) can be computed at its first
+use and kept beside it: :func:`per_case` memoises a function of a case in a table keyed by
+the object's identity, with a weak reference that drops the entry when the case is freed.
+One solve asks for each of these several times (the problem cache, the start points, the
+rest state); a sweep or a benchmark asks again for the same case object.
+
+Cases made from one another by :func:`dataclasses.replace` (a new load on the same lines)
+share their ``lines`` tuple: the line kinds, the costliest part of the structure key, are
+also kept per lines tuple and the context they depend on (:func:`line_kinds_of`).
+
+:func:`load_free` strips a parameter vector of what only acts through the load factor
+(flows, constant forces, the load factor itself): the rest state and the closed-form start
+depend on nothing else, so they are found once per geometry, not once per load.
+
+Everything here is safe to call from many threads: the tables are guarded by one lock and
+the values are immutable (parameter vectors are handed out as copies).
+"""
+
+from __future__ import annotations
+
+import functools
+import threading
+import weakref
+
+import numpy as np
+
+from . import layout
+from .concurrency import LockedLRU
+
+# Re-entrant: a case freed while the table is locked calls _forget on the same thread.
+_LOCK = threading.RLock()
+#: id(case) -> (weak reference to the case, {function: value}).
+_TABLE: dict = {}
+
+
+def _forget(key: int, ref) -> None:
+    with _LOCK:
+        entry = _TABLE.get(key)
+        if entry is not None and entry[0] is ref:
+            del _TABLE[key]
+
+
+def per_case(fn):
+    """Memoise ``fn(case)`` per Case object (see the module notes). ``fn`` must return an
+    immutable value or one its callers never modify."""
+
+    @functools.wraps(fn)
+    def wrapper(case):
+        key = id(case)
+        # Reads need no lock (a dict lookup is atomic); writes take it.
+        entry = _TABLE.get(key)
+        if entry is not None and entry[0]() is case:
+            values = entry[1]
+            if fn in values:
+                return values[fn]
+        value = fn(case)
+        with _LOCK:
+            entry = _TABLE.get(key)
+            if entry is None or entry[0]() is not case:
+                ref = weakref.ref(case, functools.partial(_forget, key))
+                entry = _TABLE[key] = (ref, {})
+            entry[1].setdefault(fn, value)
+            return entry[1][fn]
+
+    return wrapper
+
+
+class HashedKey(tuple):
+    """A tuple that computes its hash once (keys made of dataclasses hash slowly, and a
+    case's keys are looked up at every solve)."""
+
+    def __new__(cls, items):
+        key = super().__new__(cls, items)
+        key._hash = tuple.__hash__(key)
+        return key
+
+    def __hash__(self) -> int:
+        return self._hash
+
+
+#: Line kinds per lines tuple and context (see :func:`line_kinds_of`).
+_KINDS = LockedLRU(256)
+
+
+def _kinds_context(case) -> tuple:
+    """Everything besides the lines that :func:`~.lines.line_kind` reads: the seabed, the
+    current (whether there is one, its profile's length), the elements of a lumped line
+    and every body's case pose (which end of a line hanging between bodies is lower)."""
+    env = case.environment
+    current = env.current
+    return (env.depth, env.seabed, current is not None,
+            len(current.profile) if current is not None and current.profile else 0,
+            case.solver.line_elements,
+            tuple((b.name, tuple(b.position), tuple(b.orientation_deg)) for b in case.bodies))
+
+
+@per_case
+def line_kinds_of(case) -> tuple:
+    """:func:`~.lines.line_kinds` of ``case``, as a tuple, computed once per case and per
+    lines tuple in the same context."""
+    from .lines import line_kinds
+
+    key = (id(case.lines), _kinds_context(case))
+    hit = _KINDS.get(key)
+    if hit is not None and hit[0] is case.lines:
+        return hit[1]
+    kinds = HashedKey(line_kinds(case))
+    _KINDS.put(key, (case.lines, kinds))
+    return kinds
+
+
+#: What each line's ends are attached to, per lines tuple.
+_ENDS = LockedLRU(256)
+
+
+def line_ends_of(case) -> HashedKey:
+    """Per line, what its ends are attached to (part of the structure key), once per
+    lines tuple."""
+    hit = _ENDS.get(id(case.lines))
+    if hit is not None and hit[0] is case.lines:
+        return hit[1]
+    ends = HashedKey((line.a.kind, line.a.on_seabed, line.a.point, line.a.body,
+                      line.b.kind, line.b.on_seabed, line.b.point, line.b.body)
+                     for line in case.lines)
+    _ENDS.put(id(case.lines), (case.lines, ends))
+    return ends
+
+
+#: The line and seabed blocks of parameter vectors, per lines tuple and seabed.
+_LINE_BLOCKS = LockedLRU(256)
+
+
+@per_case
+def _parameters(case) -> np.ndarray:
+    env = case.environment
+    kinds = line_kinds_of(case)
+    key = (id(case.lines), env.depth, env.seabed,
+           env.current.profile if env.current is not None else None)
+    hit = _LINE_BLOCKS.get(key)
+    if hit is not None and hit[0] is case.lines:
+        lines = hit[1]
+    else:
+        lines = np.concatenate([layout.line_parameters(case),
+                                layout.segment_parameters(case, kinds)])
+        _LINE_BLOCKS.put(key, (case.lines, lines))
+    p = np.concatenate([layout.environment_parameters(case, 1.0), lines,
+                        layout.body_parameters(case), layout.point_parameters(case)])
+    p.setflags(write=False)
+    return p
+
+
+def case_parameters(case, load_factor: float = 1.0) -> np.ndarray:
+    """The parameter vector of ``case`` (a fresh array) at ``load_factor``."""
+    p = _parameters(case).copy()
+    p[layout.LOAD_FACTOR_INDEX] = load_factor
+    return p
+
+
+#: Load masks per line kinds tuple and the shape of the bodies and points.
+_MASKS = LockedLRU(64)
+
+
+@per_case
+def load_mask(case) -> np.ndarray:
+    """Entries of ``case``'s parameter vector that act only through the load factor."""
+    kinds = line_kinds_of(case)
+    key = (id(kinds), tuple((b.stiffness is not None, len(b.hull)) for b in case.bodies),
+           len(case.free_points),
+           bool(case.environment.current is not None and case.environment.current.profile))
+    hit = _MASKS.get(key)
+    if hit is not None and hit[0] is kinds:
+        return hit[1]
+    mask = layout.load_entries(layout.build_layout(case, kinds))
+    mask.setflags(write=False)
+    _MASKS.put(key, (kinds, mask))
+    return mask
+
+
+def load_free(case, p: np.ndarray) -> bytes:
+    """``p`` with its load entries (:func:`load_mask`) zeroed, as bytes: a key for what
+    does not depend on the loads (the rest state, the closed-form start)."""
+    q = np.array(p, dtype=float)
+    q[load_mask(case)] = 0.0
+    return q.tobytes()
+
+
+@per_case
+def geometry_key(case) -> HashedKey:
+    """``case``'s structure key and its load-free parameters: equal for two cases whose
+    rest states are equal."""
+    from .problem import structure_key
+
+    return HashedKey((structure_key(case), load_free(case, _parameters(case))))
+
+
+def clear() -> None:
+    """Forget every memoised value (for tests that measure a first solve)."""
+    with _LOCK:
+        _TABLE.clear()
+    _KINDS.clear()
