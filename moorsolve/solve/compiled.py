@@ -138,7 +138,13 @@ class CompiledFunction:
         self.output_names = fn.name_out()
         self.output_shapes = [fn.sparsity_out(i).shape for i in range(fn.n_out())]
         self.inputs = [np.zeros(fn.nnz_in(i)) for i in range(fn.n_in())]
-        self.outputs = [np.zeros(fn.nnz_out(i)) for i in range(fn.n_out())]
+        # The outputs are views of one buffer, so a caller keeps them all with one copy
+        # (:meth:`copy_outputs`).
+        sizes = [fn.nnz_out(i) for i in range(fn.n_out())]
+        ends = np.cumsum([0] + sizes)
+        self._slices = [slice(int(a), int(b)) for a, b in zip(ends[:-1], ends[1:])]
+        self.output_buffer = np.zeros(max(int(ends[-1]), 1))
+        self.outputs = [self.output_buffer[sl] for sl in self._slices]
         self._iw = np.zeros(max(n_iw, 1), dtype=np.int64)
         self._w = np.zeros(max(n_w, 1))
         arg = (_REAL_P * max(n_arg, 1))()
@@ -149,6 +155,16 @@ class CompiledFunction:
             res[i] = r.ctypes.data_as(_REAL_P)
         self._args = (arg, res, self._iw.ctypes.data_as(ctypes.POINTER(_CINT)),
                       self._w.ctypes.data_as(_REAL_P), 0)
+
+    def copy_outputs(self, shaped: bool = False) -> list:
+        """Copies of the last outputs (one copy of the buffer, then views of it); with
+        ``shaped`` a matrix output in its CasADi (column-major) shape, a column flat."""
+        buffer = self.output_buffer.copy()
+        if not shaped:
+            return [buffer[sl] for sl in self._slices]
+        # Columns stay flat views; matrices are reshaped (column-major).
+        return [buffer[sl] if shape[1] == 1 else buffer[sl].reshape(shape, order="F")
+                for sl, shape in zip(self._slices, self.output_shapes)]
 
     def clone(self) -> "CompiledFunction":
         return CompiledFunction(self.fn, self.library)

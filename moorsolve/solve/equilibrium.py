@@ -32,7 +32,7 @@ from ..model import Case
 from .cache import get_problem
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
-from .prepared import geometry_key
+from .prepared import geometry_key, per_case
 from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable
@@ -145,7 +145,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         if x is None:
             x = _ipopt_strategy(problem, case, p_full, tol, start, stats, t0)
         # One evaluation gives the certificate, the stiffness and every reported array.
-        post = problem.post(np.where(np.isfinite(x), x, 0.0), p_full)
+        post = problem.post(_finite(x), p_full)
         certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
         failed_status = stats["status"] in _FAILED_STATUSES
         if certified and failed_status:
@@ -154,11 +154,10 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         assessment = None
         if certified and stability:
             x_found = x
-            x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats,
-                                                 post["stiffness"])
+            x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats, post)
             notes += extra
             if x is not x_found:
-                post = problem.post(np.where(np.isfinite(x), x, 0.0), p_full)
+                post = problem.post(_finite(x), p_full)
                 certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
         outside = hull_out_of_range(problem, x, p_full, post) if certified else []
         elapsed = time.perf_counter() - t0
@@ -280,27 +279,34 @@ def _turn_jump(problem, x_rest, x) -> bool:
     return False
 
 
+def _finite(x: np.ndarray) -> np.ndarray:
+    """``x`` with any non-finite entry replaced by 0 (for reporting a failed point)."""
+    return x if np.isfinite(x).all() else np.where(np.isfinite(x), x, 0.0)
+
+
 def _kernel_certified(problem, out: dict, tol: float) -> bool:
     """Whether the kernel's point certifies, from the exact certificate it returns."""
-    force, moment, t_max = out["certificate"]
-    return bool(np.all(np.isfinite(out["x"]))) and problem.judge(force, moment, t_max, tol)[0]
+    force, moment, t_max = out["certificate"].tolist()
+    return bool(np.isfinite(out["x"]).all()) and problem.judge(force, moment, t_max, tol)[0]
 
 
 def _judge(problem, x, post, tol) -> tuple:
     """:meth:`EquilibriumProblem.certify` from the certificate in ``post``."""
-    if not np.all(np.isfinite(x)):
+    if not np.isfinite(x).all():
         return False, math.inf, math.inf, math.inf
-    force, moment, t_max = (float(v) for v in np.ravel(post["certificate"]))
+    force, moment, t_max = post["certificate"].ravel().tolist()
     return problem.judge(force, moment, t_max, tol)
 
 
-def _stable_point(problem, case, x, p, tol, stats, stiffness=None):
+def _stable_point(problem, case, x, p, tol, stats, post=None):
     """The stability of ``x``; where unstable, a stable equilibrium if one is found.
-    ``stiffness`` is the condensed stiffness at ``x`` when the caller has it.
+    ``post`` (:meth:`EquilibriumProblem.post` at ``x``) gives the condensed stiffness and
+    the kernel's stability test when the caller has it.
 
     Returns ``(x, Stability, notes)``.
     """
-    assessment = assess(problem, x, p, stiffness)
+    assessment = assess(problem, x, p, None if post is None else post["stiffness"],
+                        post is not None and post["clearly_stable"].item() > 0.5)
     if assessment.stable:
         return x, assessment, []
     lb, ub = problem.bounds()
@@ -355,6 +361,16 @@ def polish(problem, x, p, lb, ub, stats, tol):
     return x
 
 
+_FA = slice(LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FAx") + 3)
+_FB = slice(LINE_COLUMNS.index("FBx"), LINE_COLUMNS.index("FBx") + 3)
+
+
+@per_case
+def _mbl(case) -> np.ndarray:
+    """Each line's minimum breaking load [N] (inf where none is given)."""
+    return np.array([line.line_type.mbl or np.inf for line in case.lines])
+
+
 def over_mbl(result: Result, problem=None, post=None) -> list:
     """``"leg NAME would break ..."`` for every line above its minimum breaking load.
 
@@ -362,12 +378,13 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
     be judged from their end forces without making the legs.
     """
     if problem is not None and post is not None and all(k.single for k in problem.kinds):
-        table = np.atleast_2d(post["lines"])
-        ia, ib = LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FBx")
-        tension = np.maximum(np.linalg.norm(table[:, ia:ia + 3], axis=1),
-                             np.linalg.norm(table[:, ib:ib + 3], axis=1))
         lines = result.case.lines
-        mbl = np.array([line.line_type.mbl or np.inf for line in lines])
+        mbl = _mbl(result.case)
+        if not np.isfinite(mbl).any():
+            return []
+        f = post["lines"]
+        tension = np.maximum(np.sqrt(np.square(f[:, _FA]).sum(axis=1)),
+                             np.sqrt(np.square(f[:, _FB]).sum(axis=1)))
         ends = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
     else:
         ends = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)

@@ -184,9 +184,12 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     body, t_fair, t_anchor = problem.summary(xk, p)
     return ca.Function("moorsolve_newton", [x, p, tol],
                        [xk, status, count, cert, body, t_fair, t_anchor],
-                       ["x0", "p", "tol"],
-                       ["x", "status", "iterations", "certificate", "body",
-                        "fairlead_tension", "anchor_tension"])
+                       ["x0", "p", "tol"], list(_OUTPUTS))
+
+
+#: Outputs of the kernel (:func:`newton_function`).
+_OUTPUTS = ("x", "status", "iterations", "certificate", "body", "fairlead_tension",
+            "anchor_tension")
 
 
 class NewtonKernel:
@@ -223,8 +226,7 @@ class NewtonKernel:
         lib.inputs[0][:] = x
         lib.inputs[1][:] = p
         lib()
-        return {name: out.reshape(shape, order="F").copy()
-                for name, shape, out in zip(lib.output_names, lib.output_shapes, lib.outputs)}
+        return dict(zip(lib.output_names, lib.copy_outputs(shaped=True)))
 
     def raw(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
         """Run the kernel; its outputs in order, as views of this kernel's buffers
@@ -240,14 +242,14 @@ class NewtonKernel:
 
     def solve(self, x0: np.ndarray, p: np.ndarray, tol: float) -> dict:
         """Run the kernel; the outputs as numpy arrays (copies) keyed by name."""
-        names = self.function.name_out()
+        names = _OUTPUTS
         if self._lib is not None:
             lib = self._lib
             lib.inputs[0][:] = x0
             lib.inputs[1][:] = p
             lib.inputs[2][0] = tol
             lib()
-            values = [o.copy() for o in lib.outputs]
+            values = lib.copy_outputs()
         else:
             values = [np.asarray(v, dtype=float).ravel()
                       for v in self.function(x0, p, tol)]

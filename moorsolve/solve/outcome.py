@@ -17,6 +17,7 @@ from ..model import Case
 from ..physics.catenary import (LegKind, leg_profile, segment_profile, sloped_leg_profile)
 from ..physics.wall_tension import wall_tension
 from .lines import SEGMENT_COLUMNS
+from .prepared import per_case
 from .problem import LINE_COLUMNS, ROTATIONS
 from .result import LazyProfile, LegList, LegResult, Result
 
@@ -35,13 +36,12 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     x = np.where(np.isfinite(x), x, 0.0)
     if post is None:
         post = problem.post(x, p)
-    table = np.atleast_2d(post["lines"])
     poses, point_pos, load_vec = post["poses"], post["points"], post["loads"]
     xp = x * problem.x_scale
-    seg_table = np.atleast_2d(post["segments"])
-    node_table = np.atleast_2d(post["nodes"])
+    tables = post["lines"], post["segments"], post["nodes"]
 
     def make_legs():
+        table, seg_table, node_table = (np.atleast_2d(t) for t in tables)
         for i, (line, kind) in enumerate(zip(case.lines, problem.kinds)):
             row = dict(zip(LINE_COLUMNS, table[i].tolist()))
             u = float(xp[problem.line_offsets[i]])
@@ -56,19 +56,19 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                 yield _single_result(case, line, kind, row, u)
 
     legs = LegList(make_legs)
-    poses = np.asarray(poses, dtype=float).ravel(order="F")
+    poses = np.ravel(poses).tolist()
     bodies = []
     for bi, body in enumerate(case.bodies):
         q = poses[6 * bi: 6 * bi + 6]
-        q0 = np.array(list(body.position) + [math.radians(a) for a in body.orientation_deg])
-        entry = {"name": body.name, "x_m": float(q[0]), "y_m": float(q[1]),
-                 "z_m": float(q[2]), "roll_deg": math.degrees(q[3]),
-                 "pitch_deg": math.degrees(q[4]), "yaw_deg": math.degrees(q[5])}
-        d = q - q0
-        entry["offset"] = {"x_m": float(d[0]), "y_m": float(d[1]), "z_m": float(d[2]),
-                           "roll_deg": math.degrees(d[3]), "pitch_deg": math.degrees(d[4]),
-                           "yaw_deg": math.degrees(d[5])}
-        bodies.append(entry)
+        q0 = [*body.position, *(math.radians(a) for a in body.orientation_deg)]
+        d = [a - b for a, b in zip(q, q0)]
+        bodies.append({"name": body.name, "x_m": q[0], "y_m": q[1], "z_m": q[2],
+                       "roll_deg": math.degrees(q[3]), "pitch_deg": math.degrees(q[4]),
+                       "yaw_deg": math.degrees(q[5]),
+                       "offset": {"x_m": d[0], "y_m": d[1], "z_m": d[2],
+                                  "roll_deg": math.degrees(d[3]),
+                                  "pitch_deg": math.degrees(d[4]),
+                                  "yaw_deg": math.degrees(d[5])}})
     body = None
     if case.body is not None:
         off = bodies[0]["offset"]
@@ -77,7 +77,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
             body = dict(body, z_m=off["z_m"], roll_deg=off["roll_deg"],
                         pitch_deg=off["pitch_deg"])
     points = []
-    point_pos = np.asarray(point_pos, dtype=float).ravel(order="F")
+    point_pos = np.ravel(point_pos)
     for pi, point in enumerate(case.free_points):
         xyz = point_pos[3 * pi: 3 * pi + 3]
         j = problem.nodes.index(("point", pi, "zeta"))
@@ -85,17 +85,13 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
         points.append({"name": point.name, "x_m": float(xyz[0]), "y_m": float(xyz[1]),
                        "z_m": float(xyz[2]), "seabed_reaction_N": reaction})
     loads = {}
-    lv = np.asarray(load_vec, dtype=float).ravel(order="F")
+    lv = np.ravel(load_vec).tolist()
     legacy = case.form == "legs"
     for k, name in enumerate(problem.load_names):
         f = lv[6 * k: 6 * k + 6]
-        loads[name] = ([float(f[0]), float(f[1]), float(f[5])] if legacy
-                       else [float(v) for v in f])
+        loads[name] = [f[0], f[1], f[5]] if legacy else f
     notes = list(notes) + _line_notes(case, problem, legs)
-    effects = list(problem.effects)
-    clumps = [c.weight for line in case.lines for c in line.joint_clumps if c is not None]
-    effects += (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
-        ["buoy"] if any(w < 0 for w in clumps) else [])
+    effects = list(problem.effects) + _clump_effects(case)
     return Result(converged=certified, solver=solver, certificate=cert, effects=effects,
                   body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
@@ -123,10 +119,22 @@ def hull_out_of_range(problem, x, p, post=None) -> list:
     return out
 
 
+@per_case
+def _clump_effects(case) -> list:
+    """``clump_weight`` and ``buoy`` where the case's lines carry them."""
+    clumps = [c.weight for line in case.lines for c in line.joint_clumps if c is not None]
+    return (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
+        ["buoy"] if any(w < 0 for w in clumps) else [])
+
+
 def _line_notes(case, problem, legs) -> list:
     env = case.environment
     notes = []
-    if all(kind.single and kind.contact for kind in problem.kinds):
+    quiet = problem.derived.get("anchored_one_segment_lines")
+    if quiet is None:
+        quiet = problem.derived["anchored_one_segment_lines"] = all(
+            kind.single and kind.contact for kind in problem.kinds)
+    if quiet:
         return notes             # nothing to say of anchored one-segment lines
     for lr, kind in zip(legs, problem.kinds):
         if kind.single and not kind.contact and lr.profile["z_m"].size and np.any(

@@ -56,9 +56,10 @@ LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X
                 "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz")
 ROTATIONS = ("roll", "pitch", "yaw")
 #: Outputs of :meth:`EquilibriumProblem.post_function`: the certificate, the condensed
-#: stiffness, the seven outputs of ``report``, and the segment and node tables.
-POST_OUTPUTS = ("certificate", "stiffness", "lines", "unbalanced", "loads", "poses",
-                "points", "wrenches", "hull_in_range", "segments", "nodes")
+#: stiffness and its stability test, the seven outputs of ``report``, and the segment and
+#: node tables.
+POST_OUTPUTS = ("certificate", "stiffness", "clearly_stable", "lines", "unbalanced",
+                "loads", "poses", "points", "wrenches", "hull_in_range", "segments", "nodes")
 POINT_DOFS = ("x", "y", "zeta")
 
 
@@ -136,6 +137,9 @@ class EquilibriumProblem:
         self.start_cache: dict = {}
         self._kernel_pool = None
         self._post = None
+        #: What other modules work out once from this problem (index arrays, names), by
+        #: key; a value is written whole, so readers need no lock.
+        self.derived: dict = {}
         with SYMBOLIC_LOCK:
             self._build()
 
@@ -470,25 +474,27 @@ class EquilibriumProblem:
         scale = t_max if t_max > 0 else self.force_scale
         relative = force / scale
         moment_ok = moment <= tol * scale * self.moment_scale / self.force_scale
-        ok = bool(np.isfinite(relative) and np.isfinite(moment) and relative <= tol
+        ok = bool(math.isfinite(relative) and math.isfinite(moment) and relative <= tol
                   and moment_ok)
         return ok, force, moment, relative
 
     # -- everything a Result needs, in one evaluation -------------------------------------
     def post_function(self) -> ca.Function:
         """``post(x, p)``: the certificate ``[force, moment, t_max]``, the condensed
-        stiffness of the free body DOFs (:func:`.stability.stiffness_graph`) and the outputs
-        of :attr:`report`, :attr:`segment_report` and :attr:`node_report` (see
+        stiffness of the free body DOFs (:func:`.stability.stiffness_graph`) with its
+        stability test (:func:`.stability.clearly_stable_graph`) and the outputs of
+        :attr:`report`, :attr:`segment_report` and :attr:`node_report` (see
         :data:`POST_OUTPUTS`), all dense: what certifying, the stability check and the
         Result need from a solved point, in one call. Compiled with the Newton kernel."""
         with self._lock:
             if self._post is None:
-                from .stability import stiffness_graph
+                from .stability import clearly_stable_graph, stiffness_graph
                 with SYMBOLIC_LOCK:
                     x = ca.MX.sym("x", self.n_x)
                     p = ca.MX.sym("p", self.n_p)
-                    outs = [ca.vertcat(*self.certificate(x, p)),
-                            stiffness_graph(self, self.jacobian(x, p)),
+                    K = stiffness_graph(self, self.jacobian(x, p))
+                    outs = [ca.vertcat(*self.certificate(x, p)), K,
+                            clearly_stable_graph(self, K),
                             *self.report(x, p), self.segment_report(x, p),
                             self.node_report(x, p)]
                     self._post = ca.Function("moorsolve_post", [x, p],
@@ -508,7 +514,7 @@ class EquilibriumProblem:
             # A singular condensed block stops the interpreted QR solve: report the
             # stiffness as unknown (the stability check then condenses it itself).
             n_b = sum(owner == "body" for owner, _, _ in self.nodes)
-            values = [ca.vertcat(*self.certificate(x, p)), np.full((n_b, n_b), np.nan),
+            values = [ca.vertcat(*self.certificate(x, p)), np.full((n_b, n_b), np.nan), 0.0,
                       *self.report(x, p), self.segment_report(x, p), self.node_report(x, p)]
         return {name: np.asarray(v, dtype=float)
                 for name, v in zip(POST_OUTPUTS, values)}

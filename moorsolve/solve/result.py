@@ -222,6 +222,26 @@ class Stability:
                 "neutral_dofs": list(self.neutral_dofs)}
 
 
+class DeferredStability(Stability):
+    """A :class:`Stability` decided stable by the compiled kernel's test, whose
+    eigenvalues (of the homogenised stiffness ``Kh``) are computed when first read."""
+
+    def __init__(self, Kh, dofs):
+        for name, value in (("stable", True), ("unstable_dofs", ()), ("neutral_dofs", ()),
+                            ("dofs", tuple(dofs))):
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "_values", _Deferred(
+            lambda: np.linalg.eigvals(Kh).astype(complex)))
+
+    @property
+    def eigenvalues(self) -> tuple:
+        return tuple(self._values.value().tolist())
+
+    @property
+    def min_eigenvalue(self) -> float:
+        return float(self._values.value().real.min())
+
+
 @dataclass(frozen=True)
 class Result:
     """A certified equilibrium.

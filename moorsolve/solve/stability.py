@@ -26,11 +26,10 @@ and then from turned starts (a weathervaning ship may need to turn half round).
 from __future__ import annotations
 
 import math
-import weakref
 
 import numpy as np
 
-from .result import Stability
+from .result import DeferredStability, Stability
 
 #: A mode whose eigenvalue is below this fraction of the largest is examined as zero.
 _ZERO = 1e-7
@@ -38,20 +37,18 @@ _ZERO = 1e-7
 _PROBES = (1e-3, 1e-2)
 
 
-#: Per problem: its kept and condensed unknowns, homogenising factors and DOF names.
-_LAYOUTS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
-
-
 def _layout(problem) -> tuple:
-    """``(keep, rest, h, names)`` of ``problem``, worked out once."""
-    found = _LAYOUTS.get(problem)
+    """``(keep, rest, h, names, hh)`` of ``problem`` (``hh`` the homogenising factors'
+    outer product, inverted), worked out once and kept in ``problem.derived``."""
+    found = problem.derived.get("stability")
     if found is None:
         keep = [j for j, (owner, _, _) in enumerate(problem.nodes) if owner == "body"]
         kept = set(keep)
         rest = [j for j in range(problem.n_x) if j not in kept]
         keep, rest = np.array(keep, dtype=int), np.array(rest, dtype=int)
-        found = (keep, rest, homogenising(problem, keep), _dof_names(problem, keep))
-        _LAYOUTS[problem] = found
+        h = homogenising(problem, keep)
+        found = (keep, rest, h, tuple(_dof_names(problem, keep)), 1.0 / np.outer(h, h))
+        problem.derived["stability"] = found
     return found
 
 
@@ -118,6 +115,47 @@ def stiffness_graph(problem, J):
         1.0 / problem.x_scale[keep])))
 
 
+#: Most kept DOFs for which the compiled kernel decides "clearly stable" itself.
+_GRAPH_TEST_DOFS = 24
+
+
+def clearly_stable_graph(problem, K):
+    """1 where the condensed stiffness ``K`` (MX, SI) is clearly stable, else 0: a test
+    the compiled kernel runs with the equilibrium, so that :func:`assess` computes no
+    eigenvalues for the usual point.
+
+    With ``Kh`` the homogenised stiffness and ``S`` its symmetric part, every eigenvalue
+    ``lambda`` of ``Kh`` has ``Re lambda >= lambda_min(S)`` (the field of values), and
+    ``|lambda| <= ||Kh||_F``. So when ``S - c I`` has a Cholesky factor for
+    ``c = _ZERO ||Kh||_F``, every eigenvalue has a positive real part and a size above
+    ``_ZERO`` times the largest: exactly the case :func:`assess` calls stable without
+    further examination. The test is one-sided (a strongly non-symmetric stiffness may be
+    stable and fail it; :func:`assess` then decides), and 0 for a non-finite ``K``.
+    """
+    import casadi as ca
+
+    keep, _, _, _, hh = _layout(problem)
+    n = keep.size
+    if n == 0 or n > _GRAPH_TEST_DOFS:
+        return ca.MX(0)
+    k = ca.SX.sym("K", n, n)
+    kh = k * ca.DM(hh)
+    c = _ZERO * ca.sqrt(ca.sumsqr(kh))
+    S = (kh + kh.T) / 2 - c * ca.SX.eye(n)
+    L = [[None] * n for _ in range(n)]
+    pivots = []
+    for i in range(n):
+        for j in range(i + 1):
+            acc = S[i, j] - sum((L[i][m] * L[j][m] for m in range(j)), ca.SX(0))
+            if i == j:
+                pivots.append(acc)
+                L[i][i] = ca.sqrt(ca.fmax(acc, 1e-300))
+            else:
+                L[i][j] = acc / L[j][j]
+    flag = ca.mmin(ca.vertcat(*pivots)) > 0
+    return ca.Function("clearly_stable", [k], [flag])(K)
+
+
 def _dof_names(problem, keep) -> list:
     names = []
     for j in keep:
@@ -181,28 +219,37 @@ def _restoring(problem, x, p, keep, mode) -> list:
     return out
 
 
-def assess(problem, x, p, stiffness=None) -> Stability:
+def assess(problem, x, p, stiffness=None, clearly_stable=False) -> Stability:
     """The :class:`Stability` of the scaled point ``x`` (an equilibrium of ``problem``).
 
     ``stiffness``, the condensed stiffness at ``x`` if the caller has it (the compiled
-    kernel returns it, :func:`stiffness_graph`), saves recomputing it. Where every
-    eigenvalue is clearly away from zero with a positive real part the point is stable
-    and nothing more is done; a zero or negative one is examined as described in the
-    module notes.
+    kernel returns it, :func:`stiffness_graph`), saves recomputing it, and
+    ``clearly_stable``, the kernel's test of it (:func:`clearly_stable_graph`), saves its
+    eigenvalues until they are read. Where every eigenvalue is clearly away from zero with
+    a positive real part the point is stable and nothing more is done; a zero or negative
+    one is examined as described in the module notes.
     """
-    keep, _, h, names = _layout(problem)
+    keep, _, h, names, hh = _layout(problem)
     if keep.size == 0:
         return Stability(stable=True, min_eigenvalue=math.inf)
-    if stiffness is not None and np.isfinite(stiffness).all():
-        K = np.asarray(stiffness, dtype=float).reshape(keep.size, keep.size)
-    else:
+    if clearly_stable and stiffness is not None:
+        return DeferredStability(
+            np.reshape(stiffness, (keep.size, keep.size)).astype(float) * hh, names)
+    Kh = None
+    if stiffness is not None:
+        try:
+            Kh = np.asarray(stiffness, dtype=float).reshape(keep.size, keep.size) * hh
+            values = np.linalg.eigvals(Kh)
+        except np.linalg.LinAlgError:      # not finite: condense it here
+            Kh = None
+    if Kh is None:
         K, keep = condensed_stiffness(problem, x, p)
-    Kh = K / h[None, :] / h[:, None]
-    values = np.linalg.eigvals(Kh)
-    scale = max(float(np.max(np.abs(values))), 1e-300)
-    if (np.abs(values) > _ZERO * scale).all() and (values.real >= 0).all():
-        return Stability(stable=True, min_eigenvalue=float(np.min(values.real)),
-                         eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
+        Kh = K * hh
+        values = np.linalg.eigvals(Kh)
+    size = np.abs(values)
+    if size.min() > _ZERO * max(size.max(), 1e-300) and values.real.min() >= 0:
+        return Stability(stable=True, min_eigenvalue=float(values.real.min()),
+                         eigenvalues=tuple(values.astype(complex).tolist()), dofs=names)
     values, vectors = np.linalg.eig(Kh)
     scale = max(float(np.max(np.abs(values))), 1e-300)
     unstable, neutral = [], []
@@ -230,7 +277,7 @@ def assess(problem, x, p, stiffness=None) -> Stability:
     return Stability(stable=stable, min_eigenvalue=float(np.min(values.real)),
                      unstable_dofs=tuple(dict.fromkeys(unstable)),
                      neutral_dofs=tuple(dict.fromkeys(neutral)),
-                     eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
+                     eigenvalues=tuple(complex(v) for v in values), dofs=names)
 
 
 def _transient(problem, x, p, tol, steps: int = 400):
