@@ -1,4 +1,5 @@
-"""``import-moordyn`` and ``export-moordyn``: MoorDyn input files in and out."""
+"""``import-moordyn`` / ``export-moordyn`` and ``import-moorpy`` / ``export-moorpy``: MoorDyn
+input files and MoorPy's mooring YAML in and out."""
 
 from __future__ import annotations
 
@@ -21,13 +22,23 @@ def add_commands(sub) -> None:
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
     p.set_defaults(run=run_export)
+    p = sub.add_parser("import-moorpy", help="MoorPy (or windIO) mooring YAML to a case file")
+    p.add_argument("moorpy", help="MoorPy mooring YAML (water_depth, line_types, points, lines)")
+    p.add_argument("-o", "--output", required=True, help="case file to write (YAML)")
+    p.set_defaults(run=run_import_moorpy)
+    p = sub.add_parser("export-moorpy", help="case file to MoorPy's mooring YAML")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("-o", "--output", required=True, help="MoorPy YAML to write")
+    p.set_defaults(run=run_export_moorpy)
 
 
 def run_import(args) -> int:
-    from ..io import import_moordyn
+    from ..io import read_import
     check_output(args.output, "--output", YAML_EXTENSIONS)
-    import_moordyn(args.moordyn, args.output)
-    print(f"wrote {args.output}")
+    imported = read_import(args.moordyn)
+    imported.write(args.output)
+    print(imported.report.text(), end="")
+    print(f"wrote {args.output} ({imported.form} form; the report above heads it as a comment)")
     return EXIT_OK
 
 
@@ -35,5 +46,23 @@ def run_export(args) -> int:
     from ..io import export_moordyn
     export_moordyn(args.case, args.output, version=args.version, equilibrium=args.equilibrium,
                    tol=args.tol, solver=args.solver)
+    print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def run_import_moorpy(args) -> int:
+    from ..io import read_moorpy
+    check_output(args.output, "--output", YAML_EXTENSIONS)
+    imported = read_moorpy(args.moorpy)
+    imported.write(args.output)
+    print(imported.report.text(), end="")
+    print(f"wrote {args.output} ({imported.form} form; the report above heads it as a comment)")
+    return EXIT_OK
+
+
+def run_export_moorpy(args) -> int:
+    from ..io import export_moorpy
+    check_output(args.output, "--output", YAML_EXTENSIONS)
+    export_moorpy(args.case, args.output)
     print(f"wrote {args.output}")
     return EXIT_OK
