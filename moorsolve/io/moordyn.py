@@ -244,7 +244,8 @@ def _legs_case(graph: Graph, chains, report: ImportReport) -> tuple:
                                   "own weight and hydrodynamics do not change the line "
                                   "tensions; kept for export")
         else:
-            report.converted.append(f"{carrier.name} points: fairleads of the case's body, "
+            ids = ", ".join(n.label for n in graph.nodes.values() if n.carrier is carrier)
+            report.converted.append(f"{carrier.name} ({ids}): fairleads of the case's body, "
                                     "held where the file puts them (free: []); give the body "
                                     "free degrees of freedom and loads to solve its offset")
     data["legs"] = legs
@@ -323,6 +324,11 @@ def scene_case(scene: MDScene, report: ImportReport) -> tuple:
     """(form, why, the case's body/legs or bodies/points/lines, the ``moordyn`` block's part)
     of a scene; the report gets what was converted and ignored."""
     graph = build_graph(scene)
+    turbines = sorted(c.name for c in graph.carriers.values() if c.key[0] == "turbine")
+    if turbines:
+        report.converted.append(f"{', '.join(turbines)}: FAST.Farm gives each turbine's "
+                                "reference position (not in this file); the Turbine<N> points "
+                                "are placed about the origin: set each body's position")
     for p in graph.unused:
         report.ignored.append(f"point {p.id} (line {p.line}, {p.word}): no line uses it")
     chains = _chains(graph)
@@ -373,8 +379,9 @@ def _report_sections(md: MoorDynFile, scene: MDScene, report: ImportReport) -> N
     if points_cols:
         report.ignored.append("POINTS CdA, Ca: drag and added mass, dynamic only (kept for "
                               "export)")
-    if md.outputs:
-        report.ignored.append(f"OUTPUTS (line {lines['outputs']}): {len(md.outputs)} output "
+    channels = sum(len(row.split()) for row in md.outputs)
+    if channels:
+        report.ignored.append(f"OUTPUTS (line {lines['outputs']}): {channels} output "
                               "channel(s); the solve's result has every tension (kept for "
                               "export)")
     for title, what in (("FAILURE", "line failure is an event in time; a damaged case is a "

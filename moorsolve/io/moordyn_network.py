@@ -269,7 +269,7 @@ def network_case(graph: Graph, report: ImportReport) -> tuple:
     for node in graph.nodes.values():
         if node.key[0] == "point":
             p = scene.points[node.key[1]]
-            block_points[graph.point_name(node)] = {"id": p.id, "attachment": p.word,
+            block_points[node.name] = {"id": p.id, "attachment": p.word,
                                        "columns": dict(p.columns)}
     block_bodies = {f"body{b.id}": {"id": b.id, "attachment": b.word,
                                     "columns": dict(b.columns)}

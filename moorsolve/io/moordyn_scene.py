@@ -201,6 +201,15 @@ def _width(md: MoorDynFile, row: Row, least: int, title: str, columns: str) -> N
                                  f"{least} or more ({columns})")
 
 
+def _entries(md: MoorDynFile, kind: str, least: int, columns: str, title: str,
+             id_column: str) -> list:
+    """``(ID, row)`` of every row of a table, each at least ``least`` words wide."""
+    rows = md.tables.get(kind, [])
+    for row in rows:
+        _width(md, row, least, kind.upper(), columns)
+    return list(zip(_ids(md, rows, title, id_column), rows))
+
+
 def _ids(md: MoorDynFile, rows: list, title: str, column: str) -> list:
     """The rows' IDs, checked: v2 needs 1, 2, 3, ... in order; v1 distinct numbers."""
     seen, ids = {}, []
@@ -305,12 +314,9 @@ def _rod_types(md: MoorDynFile) -> dict:
 
 
 def _bodies(md: MoorDynFile, notes: list) -> dict:
-    rows = md.tables.get("bodies", [])
-    for row in rows:
-        _width(md, row, 14, "BODIES", "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume "
-                                      "CdA* Ca*")
     bodies = {}
-    for ident, row in zip(_ids(md, rows, "body", "ID"), rows):
+    for ident, row in _entries(md, "bodies", 14, "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* "
+                                                 "Volume CdA* Ca*", "body", "ID"):
         word = row.values[1]
         let, num, rest, _ = decompose(word)
         if let in _FIXED:
@@ -345,12 +351,9 @@ def _bodies(md: MoorDynFile, notes: list) -> dict:
 
 
 def _rods(md: MoorDynFile, rod_types: dict, bodies: dict) -> dict:
-    rows = md.tables.get("rods", [])
-    for row in rows:
-        _width(md, row, 11, "RODS", "ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs "
-                                    "RodOutputs")
     rods = {}
-    for ident, row in zip(_ids(md, rows, "rod", "ID"), rows):
+    for ident, row in _entries(md, "rods", 11, "ID RodType Attachment Xa Ya Za Xb Yb Zb "
+                                               "NumSegs RodOutputs", "rod", "ID"):
         tname = row.values[1]
         if tname not in rod_types:
             raise md.error(row.line, f"column 'RodType': unknown rod type {tname!r}; known: "
@@ -395,14 +398,12 @@ def _rods(md: MoorDynFile, rod_types: dict, bodies: dict) -> dict:
 
 
 def _points(md: MoorDynFile, bodies: dict) -> dict:
-    rows = md.tables.get("points", [])
     v1 = md.version == 1
     names = ("Node Type X Y Z M V FX FY FZ CdA CA" if v1
              else "ID Attachment X Y Z Mass Volume CdA Ca")
-    for row in rows:
-        _width(md, row, 12 if v1 else 9, "POINTS", names)
     points = {}
-    for ident, row in zip(_ids(md, rows, "point", "Node" if v1 else "ID"), rows):
+    for ident, row in _entries(md, "points", 12 if v1 else 9, names, "point",
+                               "Node" if v1 else "ID"):
         word = row.values[1]
         let, num, _, _ = decompose(word)
         body = None
@@ -452,14 +453,11 @@ _END = re.compile(r"^(?:(R|ROD)(\d+)([AB])|(C|CON|P|POINT)?(\d+))$")
 
 
 def _lines(md: MoorDynFile, types: dict, points: dict, rods: dict) -> dict:
-    rows = md.tables.get("lines", [])
     v1 = md.version == 1
     names = ("Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags/Outputs" if v1
              else "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs")
-    for row in rows:
-        _width(md, row, 7, "LINES", names)
     lines = {}
-    for ident, row in zip(_ids(md, rows, "line", "Line" if v1 else "ID"), rows):
+    for ident, row in _entries(md, "lines", 7, names, "line", "Line" if v1 else "ID"):
         tname = row.values[1]
         if tname not in types:
             raise md.error(row.line, f"column 'LineType': unknown line type {tname!r}; known: "

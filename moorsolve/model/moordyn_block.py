@@ -28,8 +28,8 @@ types and legs), not interpreted. Schema (strings are MoorDyn tokens exactly as 
                                              RODS, FAILURE, CONTROL, EXTERNAL LOADS
       network:                           a case in the network form (bodies, points, lines):
         lines:  {NAME: {id: int, num_segs: str, outputs: str}}     per case line
-        points: {NAME: {id: int, attachment: str, columns: {...}}} per case point from POINTS
-        bodies: {NAME: {id: int, attachment: str, columns: {...}}} per BODIES row
+        points: {point<N>: {id: int, attachment: str, columns: {...}}}  per POINTS row used
+        bodies: {body<N>: {id: int, attachment: str, columns: {...}}}   per BODIES row
 """
 
 from __future__ import annotations
@@ -140,7 +140,7 @@ def _network(raw, path: str, names: Mapping | None) -> None:
     columns = {"lines": (), "points": POINT_COLUMNS, "bodies": BODY_COLUMNS}
     for kind, entries in m.items():
         kpath = f"{path}.{kind}"
-        known = tuple(names.get(kind, ())) if names is not None else None
+        known = tuple(names.get(kind, ())) if names is not None and kind == "lines" else None
         if not isinstance(entries, Mapping):
             raise CaseError(kpath, f"{entries!r} is not a mapping of names to MoorDyn rows")
         for name, entry in entries.items():
@@ -165,9 +165,8 @@ def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple,
                            network: Mapping | None = None) -> dict:
     """Check the ``moordyn`` block of a case file; returns it as a plain dict.
 
-    ``network`` maps ``lines``, ``points`` and ``bodies`` to the names a network-form case
-    has; the block's ``network`` entry may name only those (without it, names are not
-    cross-checked).
+    ``network`` maps ``lines`` to the line names a network-form case has; the block's
+    ``network.lines`` may name only those (without it, names are not cross-checked).
 
     Raises
     ------
