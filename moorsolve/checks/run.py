@@ -213,7 +213,7 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     scene = case
     if removed is not None:
         scene = dataclasses.replace(
-            case, legs=tuple(leg for leg in case.legs if leg.name != removed))
+            case, lines=tuple(leg for leg in case.legs if leg.name != removed))
         if "source" in {f.name for f in dataclasses.fields(case)}:
             # The case-file data still lists the removed leg: drop it, not mislead.
             scene = dataclasses.replace(scene, source=None)

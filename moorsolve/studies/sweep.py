@@ -35,7 +35,6 @@ import math
 import os
 import sys
 import threading
-import weakref
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 
@@ -43,8 +42,12 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
-from ..solve.equilibrium import get_problem, initial_point, solve
-from ..solve.problem import parameter_vector, structure_key
+from ..solve.cache import get_problem
+from ..solve.equilibrium import solve
+from ..solve.stability import assess
+from ..solve.start import initial_point
+from ..solve.layout import parameter_vector
+from ..solve.problem import structure_key
 
 _PARALLEL_MIN_POINTS = 64
 _MIN_CHUNK = 64
@@ -52,7 +55,6 @@ _MAX_CHUNKS = 64
 
 # Full solves and the problem cache are not for concurrent threads of one process.
 _SOLVE_LOCK = threading.RLock()
-_KERNEL_POOLS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | None = None,
@@ -474,37 +476,25 @@ class _Table:
         return out
 
 
-class _KernelPool:
-    """Newton kernels of one problem, one per concurrently running chunk."""
-
-    def __init__(self, kernel):
-        self._base, self._free, self._lock = kernel, [kernel], threading.Lock()
-
-    def acquire(self):
-        with self._lock:
-            return self._free.pop() if self._free else self._base.clone()
-
-    def release(self, kernel) -> None:
-        with self._lock:
-            self._free.append(kernel)
-
-
-def _kernel_pool(problem) -> _KernelPool:
-    with _SOLVE_LOCK:
-        pool = _KERNEL_POOLS.get(problem)
-        if pool is None:
-            pool = _KERNEL_POOLS[problem] = _KernelPool(problem.newton())
-        return pool
+def _kernel_pool(problem):
+    return problem.kernel_pool()
 
 
 def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
     n_p = problem.n_p
+    # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
+    check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
         x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
         ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
         if not ok:
             continue            # left for the IPOPT pass
+        if check_stability:
+            with problem.lock:
+                stable = assess(problem, x, vectors[i, :n_p]).stable
+            if not stable:
+                continue        # the full solve looks for the stable equilibrium
         x_prev[:] = x
         mbl = vectors[i, n_p:]
         over = np.maximum(tf, ta) > mbl
@@ -527,20 +517,19 @@ def _solve_each(rows, points, table, point_case, tol):
     """Full solves (IPOPT strategy), warm-started while the structure stays the same."""
     previous = {}
     for row in rows:
-        with _SOLVE_LOCK:
-            pc = point_case(int(points[row]))
-            key = id(get_problem(pc))        # a state is only meaningful to its own problem
-            try:
-                result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
-            except ConvergenceError as err:
-                if err.result is not None and err.result.converged:
-                    table.from_result(row, err.result, reason=err.reason)   # e.g. overload
-                else:
-                    table.done[row] = True
-                    table.reason[row], table.solver[row] = err.reason, "ipopt"
-                    table.iterations[row] = err.iterations
-                    table.residual[row, :2] = (err.residual_N, err.residual_Nm)
-                continue
+        pc = point_case(int(points[row]))
+        key = id(get_problem(pc))        # a state is only meaningful to its own problem
+        try:
+            result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
+        except ConvergenceError as err:
+            if err.result is not None and err.result.converged:
+                table.from_result(row, err.result, reason=err.reason)   # e.g. overload
+            else:
+                table.done[row] = True
+                table.reason[row], table.solver[row] = err.reason, "ipopt"
+                table.iterations[row] = err.iterations
+                table.residual[row, :2] = (err.residual_N, err.residual_Nm)
+            continue
         previous[key] = result.state
         table.from_result(row, result)
 
