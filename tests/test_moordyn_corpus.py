@@ -18,6 +18,7 @@ from moorsolve.io.moordyn import MoorDynError
 from moorsolve.io.moordyn_parse import parse_moordyn_text
 
 DATA = pathlib.Path(__file__).resolve().parent / "data" / "moordyn"
+CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
 G, RHO = 9.80665, 1025.0
 
 #: The case form each corpus file takes, and why (a fragment of the reason).
@@ -52,11 +53,16 @@ def test_every_file_imports_in_its_form(name):
     form, reason = FORMS[name]
     assert imp.form == form and reason in imp.form_reason
     assert imp.report.read[0].startswith(f"MoorDyn v{imp.file.version} file (")
-    if form == "legs":
-        result = moorsolve.solve(moorsolve.load_case(imp.data))
-        assert result.certificate.certified
-        # Every leg's tension balances its own weight at least (no empty answer).
-        assert all(leg.fairlead_tension_N > 0 for leg in result.legs)
+    data = imp.data
+    if name == "farm_turbines_v2.dat":
+        # FAST.Farm's turbine positions are not in the file: put turbine 2 where the file's
+        # anchors and shared line say it is, as a user would.
+        next(b for b in data["bodies"] if b["name"] == "turbine2")["position"] = [1000.0, 0, 0]
+    result = moorsolve.solve(moorsolve.load_case(data))
+    assert result.certificate.certified
+    # Every line carries tension (no empty answer) and no body was lost far away.
+    assert all(leg.fairlead_tension_N > 0 for leg in result.legs)
+    assert not [w for w in result.warnings if "unstable" in str(w)]
 
 
 @pytest.mark.parametrize("name", sorted(n for n, (f, _) in FORMS.items() if f == "network"))
@@ -68,7 +74,7 @@ def test_network_cases_have_the_contract_shape(name):
     bodies = {b["name"]: b for b in data.get("bodies", [])}
     points = {p["name"]: p for p in data.get("points", [])}
     body_keys = {"name", "position", "orientation_deg", "free", "mass", "centre_of_gravity",
-                 "hydrostatics"}
+                 "hydrostatics", "hull"}
     dofs = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     for b in bodies.values():
         assert set(b) <= body_keys and len(b["position"]) == 3
@@ -78,6 +84,7 @@ def test_network_cases_have_the_contract_shape(name):
         if "hydrostatics" in b:
             assert set(b["hydrostatics"]) == {"displaced_volume", "metacentre",
                                               "waterplane_area"}
+            assert "hull" not in b
     for p in points.values():
         assert set(p) <= {"name", "position", "free", "mass", "volume"}
         assert ("mass" in p) == ("volume" in p) == bool(p.get("free"))
@@ -235,11 +242,41 @@ def test_no_depth_and_the_modelling_warnings():
     case = moorsolve.load_case(imp.data)
     assert case.environment.depth == 85.0
     assert "no WtrDpth: water depth 85 m, that of the deepest point" in imp.report.text()
+    result = moorsolve.solve(case)
+    warnings = modelling_warnings(case, result)
+    assert [(w.code, w.subject) for w in warnings] == [("anchor_above_seabed", "L2")]
+    assert warnings[0].value == pytest.approx(7.0)
+    assert "line L2: its fixed end is 7 m above the seabed" in str(warnings[0])
+    # Read against a seabed 10 m shallower, the chains run through it: flagged with the
+    # depth they reach (the lines rest on the solved seabed at z = -85 m).
+    shallow = dict(imp.data, environment=dict(imp.data["environment"], depth=75.0))
+    shallow["legs"] = [dict(leg, anchor=leg["anchor"][:2]) for leg in shallow["legs"]]
+    below = [w for w in modelling_warnings(moorsolve.load_case(shallow), result)
+             if w.code == "below_seabed"]
+    assert [w.subject for w in below] == ["L1", "L2", "L3"]
+    assert all(w.value == pytest.approx(10.0) for w in below)
+
+
+def test_slack_and_drift_warnings():
+    from moorsolve.checks.modelling import modelling_warnings
+    data = read_import(DATA / "semi_openfast_v1.dat").data
+    # Lines far longer than their span lie slack on the seabed.
+    data["legs"] = [dict(leg, segments=[{"type": "main", "length": 1500.0}])
+                    for leg in data["legs"]]
+    case = moorsolve.load_case(data)
     warnings = modelling_warnings(case, moorsolve.solve(case))
-    codes = {(w.code, w.subject) for w in warnings}
-    assert ("anchor_above_seabed", "L2") in codes and ("below_seabed", "L2") in codes
-    above = next(w for w in warnings if w.code == "anchor_above_seabed")
-    assert above.value == pytest.approx(7.0) and "7 m above the seabed" in above.message
+    assert [w.code for w in warnings] == ["all_slack"]
+    assert "all 3 lines are slack" in str(warnings[0])
+    # The floating dock (20.85 m of water) with its chain stiffness slipped to 2e6 N (kN
+    # read as N would be 5.6e5): the typhoon stretches the chains and it drifts 50 m.
+    data = yaml.safe_load((CASES / "floating_dock.yaml").read_text())
+    data["line_types"]["chain81"]["ea"] = 2.0e6
+    case = moorsolve.load_case(data)
+    result = moorsolve.solve(case)
+    drift = [w for w in modelling_warnings(case, result) if w.code == "drift"]
+    offset = math.hypot(result.body["x_m"], result.body["y_m"])
+    assert offset > 40.0 and drift[0].value == pytest.approx(offset)
+    assert "more than the water depth 20.85 m" in str(drift[0])
 
 
 # ---- network cases: the mapping ------------------------------------------------------------
@@ -306,29 +343,55 @@ def test_turbines_are_held_and_their_reference_is_reported():
 
 def test_rods():
     imp, bodies, points, lines = _network("rods_v2.dat")
-    spar, tower, hull = bodies["rod1"], bodies["rod2"], bodies["body1"]
-    # The free spar: origin where it crosses the water line, z along it, no spin.
-    assert spar["position"] == [0.0, 0.0, 0.0]
-    assert spar["free"] == ["surge", "sway", "heave", "roll", "pitch"]
-    assert spar["mass"] == pytest.approx(70 * 4.2e4)
-    area = math.pi * 8.0 ** 2 / 4
-    assert spar["hydrostatics"]["displaced_volume"] == pytest.approx(60 * area)
-    assert spar["hydrostatics"]["waterplane_area"] == pytest.approx(area)
-    # Metacentre: centre of buoyancy (-30) plus I/V of the circular waterplane.
-    assert spar["hydrostatics"]["metacentre"][2] == pytest.approx(
-        -30 + math.pi * 8.0 ** 4 / 64 / (60 * area))
-    assert lines["line3"]["to"] == {"body": "rod1", "at": [0.0, 0.0, -60.0]}
-    # The tower pinned at the seabed: origin at the pin, free to tilt only.
+    float_, tower, hull = bodies["rod1"], bodies["rod2"], bodies["body1"]
+    # The free horizontal float: x along it from end A, free but for its spin (roll).
+    assert float_["position"] == [-30.0, 0.0, -40.0] and "orientation_deg" not in float_
+    assert float_["free"] == ["surge", "sway", "heave", "pitch", "yaw"]
+    assert float_["mass"] == pytest.approx(60 * 800.0)
+    assert float_["centre_of_gravity"] == [30.0, 0.0, 0.0]
+    # Submerged, so its buoyancy is constant at its middle: V = pi d^2/4 L.
+    assert float_["hydrostatics"] == {"displaced_volume": pytest.approx(60 * math.pi),
+                                      "metacentre": [30.0, 0.0, 0.0], "waterplane_area": 0.0}
+    assert lines["line2"]["to"] == {"body": "rod1", "at": [0.0, 0.0, 0.0]}
+    assert lines["line3"]["to"] == {"body": "rod1", "at": [60.0, 0.0, 0.0]}
+    # The tower pinned at the seabed: origin at the pin, z up along it, free to tilt only;
+    # an upright cylinder, so its buoyancy is integrated exactly.
     assert tower["position"] == [300.0, 0.0, -150.0] and tower["free"] == ["roll", "pitch"]
+    assert tower["hull"] == [{"shape": "cylinder", "radius": 1.0, "bottom": 0.0, "top": 40.0,
+                              "centre": [0.0, 0.0]}]
     assert lines["line1"]["from"] == {"body": "rod2", "at": [0.0, 0.0, 40.0]}
     # The fixed frame's end B is a fixed point, the coupled rod's end A a vessel point.
-    assert points["rod3B"] == {"name": "rod3B", "position": [-200.0, 350.0, -146.0]}
+    assert points["rod3B"] == {"name": "rod3B", "position": [-750.0, 259.8, -146.0]}
     assert lines["line4"]["to"] == {"body": "vessel", "at": [-20.0, -300.0, -10.0]}
-    # The free hull: its own mass plus the column rod's weight and buoyancy.
+    # The free hull: its own mass plus the column rod's weight; the column as its hull.
     assert hull["mass"] == pytest.approx(1.0e5 + 26 * 2.0e4)
     assert hull["centre_of_gravity"][2] == pytest.approx((1.0e5 * -15 + 5.2e5 * -7) / 6.2e5)
-    assert hull["hydrostatics"]["displaced_volume"] == pytest.approx(20 * math.pi * 9)
-    assert hull["free"] == ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    assert hull["hull"] == [{"shape": "cylinder", "radius": 3.0, "bottom": -20.0, "top": 6.0,
+                             "centre": [0.0, 0.0]}]
+    # Every chain meets the column's foot, on the body's axis: yaw is left out.
+    assert hull["free"] == ["surge", "sway", "heave", "roll", "pitch"]
+    assert "point 6 (line 37, Body1): no line uses it" in imp.report.text()
+
+
+def test_a_steep_rod_gets_z_along_it_and_a_flat_one_x(tmp_path):
+    """Both frames put the rod's ends where the file has them, with |pitch| <= 45 deg."""
+    from moorsolve.model.build_network import rotation
+    text = (DATA / "rods_v2.dat").read_text()
+    for a, b in (("-30     0      -40    30     0      -40", "flat"),
+                 ("-30     0      -40    -10    8      -10", "steep")):
+        path = _text(tmp_path, text.replace("-30     0      -40    30     0      -40", a))
+        data = read_import(path).data
+        rod = next(x for x in data["bodies"] if x["name"] == "rod1")
+        ends = [ln["to"]["at"] for ln in data["lines"] if ln["name"] in ("line2", "line3")]
+        R = rotation(*(math.radians(v) for v in rod.get("orientation_deg", [0, 0, 0])))
+        world = [np.asarray(rod["position"]) + R @ np.asarray(e) for e in ends]
+        coords = [float(v) for v in a.split()]
+        assert world[0] == pytest.approx(coords[:3], abs=1e-9)
+        assert world[1] == pytest.approx(coords[3:], abs=1e-9)
+        assert abs(rod.get("orientation_deg", [0, 0, 0])[1]) <= 45.0
+        if b == "steep":
+            assert rod["free"] == ["surge", "sway", "heave", "roll", "pitch"]
+            assert ends[0][:2] == [0.0, 0.0] and ends[1][:2] == pytest.approx([0.0, 0.0])
 
 
 def test_yaw_is_left_out_when_every_line_meets_a_free_body_on_its_axis(tmp_path):
@@ -484,10 +547,10 @@ def test_import_command_prints_the_report_and_keeps_it(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "  read:" in captured.out and "  converted:" in captured.out
     assert "  ignored:" in captured.out and "solved at rest: largest tension" in captured.out
-    assert "warning: leg L2: its anchor is 7 m above the seabed" in captured.err
+    assert "warning: line L2: its fixed end is 7 m above the seabed" in captured.err
     text = out.read_text()
     assert text.startswith("# Imported from the MoorDyn v2 file no_depth_v2.dat")
     assert "#     - no WtrDpth: water depth 85 m" in text
     assert moorsolve.load_case(out).environment.depth == 85.0
     assert main(["solve", str(out)]) == 0
-    assert "anchor is 7 m above the seabed" in capsys.readouterr().err
+    assert "fixed end is 7 m above the seabed" in capsys.readouterr().err

@@ -3,9 +3,10 @@ a model that is probably not the one meant.
 
 What is looked for (each warning carries its figure and the limit it broke):
 
-- ``anchor_above_seabed``: an anchor (a leg's end A) hovering above the seabed by more than
-  1 % of the depth (and 0.5 m). A MoorDyn file without WtrDpth takes the depth from its
-  deepest point, so an anchor a few metres up is usually a wrong depth, not a rock.
+- ``anchor_above_seabed``: a fixed line end (an anchor) hovering above the seabed by more
+  than 5 % of the depth (and 0.5 m) while its own line rests on the seabed below it. A
+  MoorDyn file without WtrDpth takes the depth from its deepest point, so anchors metres
+  above the chain lying under them usually mean a wrong depth, not a rock.
 - ``below_seabed``: a line passing below the seabed by more than 0.1 % of the depth
   (and 1 cm). Lines whose anchor is above the seabed, and buoyant lines, are suspended
   catenaries without seabed contact; sagging into the ground means the line is too long
@@ -28,7 +29,7 @@ import numpy as np
 __all__ = ["ModellingWarning", "modelling_warnings"]
 
 #: An anchor higher than this fraction of the depth above the seabed is flagged ...
-ANCHOR_HEIGHT_FRACTION = 0.01
+ANCHOR_HEIGHT_FRACTION = 0.05
 #: ... and higher than this [m].
 ANCHOR_HEIGHT_MIN = 0.5
 #: A line lower than this fraction of the depth below the seabed is flagged ...
@@ -59,15 +60,19 @@ def _anchors(case, result, depth: float) -> list:
     out = []
     env = case.environment
     limit = max(ANCHOR_HEIGHT_MIN, ANCHOR_HEIGHT_FRACTION * depth)
-    for leg in result.legs:
-        x, y, z = leg.anchor
-        height = z - env.seabed_z(x, y)
-        if height > limit:
-            out.append(ModellingWarning(
-                "anchor_above_seabed", leg.name, height, limit,
-                f"leg {leg.name}: its anchor is {height:.3g} m above the seabed (depth "
-                f"{depth:.6g} m; flagged above {limit:.3g} m): is the water depth right? A "
-                "MoorDyn file without WtrDpth takes the depth of its deepest point"))
+    for line, leg in zip(case.lines, result.legs):
+        if not leg.grounded_length_m > 0:
+            continue
+        for end, (x, y, z) in ((line.a, leg.anchor), (line.b, leg.fairlead)):
+            height = z - env.seabed_z(x, y)
+            if end.fixed and height > limit:
+                where = f" ({end.label})" if end.label else ""
+                out.append(ModellingWarning(
+                    "anchor_above_seabed", leg.name, height, limit,
+                    f"line {leg.name}: its fixed end{where} is {height:.3g} m above the seabed "
+                    f"(depth {depth:.6g} m; flagged above {limit:.3g} m) while the line rests "
+                    f"on the seabed below it: is the water depth right? A MoorDyn file "
+                    "without WtrDpth takes the depth of its deepest point"))
     return out
 
 
@@ -106,17 +111,17 @@ def _slack(result) -> list:
 
 def _drift(case, result, depth: float) -> list:
     limit = DRIFT_DEPTHS * depth
-    poses = []
-    if getattr(result, "body", None):
+    # Network results give each body's absolute pose and, under "offset", its displacement;
+    # a legs-form result its body's displacement.
+    poses = [(b.get("name", "body"), b.get("offset", b))
+             for b in getattr(result, "bodies", None) or ()]
+    if not poses and getattr(result, "body", None):
         poses.append(("body", result.body))
-    for body in getattr(result, "bodies", None) or ():
-        poses.append((body.get("name", "body"), body))
-    out, seen = [], set()
+    out = []
     for name, pose in poses:
         offset = math.hypot(pose.get("x_m", 0.0), pose.get("y_m", 0.0))
-        if name in seen or offset <= limit:
+        if offset <= limit:
             continue
-        seen.add(name)
         out.append(ModellingWarning(
             "drift", name, offset, limit,
             f"{name}: displaced {offset:.6g} m horizontally, more than the water depth "

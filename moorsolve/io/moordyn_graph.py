@@ -38,6 +38,7 @@ class Carrier:
     origin: tuple
     matrix: tuple
     line: int | None                 # the file line defining it (None for the vessel)
+    axis: str = ""                   # a rod's own frame: "z" or "x" along the rod
 
     @property
     def name(self) -> str:
@@ -116,22 +117,34 @@ def _body_carrier(scene: MDScene, ident: int) -> Carrier:
 
 
 def rod_carrier(scene: MDScene, rod: MDRod) -> Carrier:
-    """The frame of a pinned or free rod: z along the rod from end A to end B (so roll and
-    pitch tilt it whatever its direction, and yaw would only turn it about itself); origin
-    at end A for a pinned rod (the pin), and for a free rod where it crosses the water line
-    if it does (the origin of the linear hydrostatic model), else at end A."""
+    """The frame of a pinned or free rod, chosen so that its two tilts are two of the case's
+    angles and its spin about itself is the third, held, away from the z-y-x angles'
+    singular pitch of 90 deg: a rod steeper than 45 deg gets its z axis along the rod
+    (pointing up; tilts: roll, pitch), a flatter one its x axis (from end A to end B;
+    tilts: pitch, yaw). The origin is end A for a pinned rod (the pin); for a free rod it is
+    where it crosses the water line (the origin of the linear hydrostatic model) if it
+    does, else end A."""
     a, b = rod_ends_global(scene, rod)
     length = math.dist(a, b)
     k = tuple((q - p) / length for p, q in zip(a, b))
-    pitch = math.acos(max(-1.0, min(1.0, k[2])))
-    yaw = math.atan2(k[1], k[0]) if math.hypot(k[0], k[1]) > 1e-12 else 0.0
+    if abs(k[2]) >= math.sqrt(0.5):
+        axis = "z"
+        u = k if k[2] > 0 else tuple(-c for c in k)
+        horizontal = math.hypot(u[0], u[1])
+        yaw = math.atan2(u[1], u[0]) if horizontal > 1e-12 else 0.0
+        pitch = math.atan2(horizontal, u[2])
+    else:
+        axis = "x"
+        yaw = math.atan2(k[1], k[0])
+        pitch = -math.asin(max(-1.0, min(1.0, k[2])))
     cy, sy, cp, sp = math.cos(yaw), math.sin(yaw), math.cos(pitch), math.sin(pitch)
     matrix = ((cy * cp, -sy, cy * sp), (sy * cp, cy, sy * sp), (-sp, 0.0, cp))
     origin = a
     if rod.kind == "free" and a[2] * b[2] < 0:
         t = a[2] / (a[2] - b[2])
         origin = tuple(p + t * (q - p) for p, q in zip(a, b))
-    return Carrier(key=("rod", rod.id), held=False, origin=origin, matrix=matrix, line=rod.line)
+    return Carrier(key=("rod", rod.id), held=False, origin=origin, matrix=matrix,
+                   line=rod.line, axis=axis)
 
 
 def carrier_angles(carrier: Carrier) -> tuple:

@@ -31,20 +31,24 @@ buoyancy at the body origin), plus its rigid rods.
 Rods: a rod rigid on a body (``Body<N>``) adds its weight (Mass/m times length, at its
 middle) and its buoyancy (the submerged part of its cylinder, at that part's middle) to the
 body. A pinned rod (``Pinned``, ``CoupledPinned``, ``Body<N>Pinned`` on a held body) becomes a
-body ``rod<N>`` whose origin is end A (the pin) and whose z axis runs along the rod, free in
-roll and pitch (the two tilts, whatever the rod's direction; held in translation; the yaw
-about its own axis is no degree of freedom); a Free rod is also free in surge, sway and
-heave, its origin where it crosses the water line (else end A). Fixed and Coupled rods
-are held: their ends are fixed points or vessel points, their weight and buoyancy taken by
-what holds them.
+body ``rod<N>`` whose origin is end A (the pin), held in translation and free in its two
+tilts; a Free rod is also free in surge, sway and heave, its origin where it crosses the
+water line (else end A). A rod steeper than 45 deg gets its z axis along the rod (tilts:
+roll, pitch), a flatter one its x axis (tilts: pitch, yaw), so that the spin about its own
+axis (no degree of freedom) is the held angle and the z-y-x angles stay far from their
+singular pitch. Fixed and Coupled rods are held: their ends are fixed points or vessel
+points, their weight and buoyancy taken by what holds them.
 
-Hydrostatics of a moving body, in the case's linear model (buoyancy ``rho g V`` at the
-metacentre, heave restoring ``-rho g A_wp z``): ``V`` and the centre of buoyancy are exact at
-the file's pose; a rod crossing the water line adds its waterplane (area ``pi d^2 / 4 /
-|cos tilt|``) and, to the metacentre's height above the centre of buoyancy, ``I / V`` with
-``I`` the mean of the waterplane's second moments about x and y through the body origin
-(the report notes when they differ). ``V`` is shifted by ``A_wp z0`` so that the buoyancy at
-the file's pose is exact when the origin is off the water line; a body held in translation
+Buoyancy of a moving body or rod: when it is all rods upright in the body's frame (a rod's
+own frame, or vertical columns of a body without a Volume of its own), they become ``hull``
+cylinders, whose submerged volume the solve integrates exactly at every pose, as MoorDyn
+does along a rod. Otherwise the case's linear model (buoyancy ``rho g V`` at the
+metacentre, heave restoring ``-rho g A_wp z``): ``V`` and the centre of buoyancy exact at the
+file's pose; a rod crossing the water line adds its waterplane (area ``pi d^2 / 4 / |cos
+tilt|``) and, to the metacentre's height above the centre of buoyancy, ``I / V`` with ``I``
+the mean of the waterplane's second moments about x and y through the body origin (the
+report notes when they differ). ``V`` is shifted by ``A_wp z0`` so that the buoyancy at the
+file's pose is exact when the origin is off the water line; a body held in translation
 (pinned) gets no waterplane (its heave restoring would only load the pin). Exact for
 submerged bodies; the usual small-angle model for surface-piercing ones.
 """
@@ -115,9 +119,9 @@ def _rod_buoyancy(a, b, diameter: float) -> tuple:
 
 
 def _mass_properties(graph: Graph, carrier: Carrier, report: ImportReport) -> dict:
-    """Mass, CG and hydrostatics of a moving carrier (see the module notes)."""
+    """Mass, CG and buoyancy of a moving carrier (see the module notes): ``hull`` members
+    when its buoyancy is all rods upright in its frame (exact), else ``hydrostatics``."""
     scene = graph.scene
-    rho = scene.water_density
     masses, buoy = [], []               # (mass, global point), (V, centre, A_wp, I, at)
     if carrier.key[0] == "body":
         body = scene.bodies[carrier.key[1]]
@@ -127,7 +131,9 @@ def _mass_properties(graph: Graph, carrier: Carrier, report: ImportReport) -> di
             buoy.append((body.volume, cg, 0.0, 0.0, cg))
         rods = [r for r in scene.rods.values() if r.kind == "body" and r.body == body.id]
     else:
+        body = None
         rods = [scene.rods[carrier.key[1]]]
+    hull = []
     for rod in rods:
         a, b = rod_ends_global(scene, rod)
         mid = tuple(0.5 * (p + q) for p, q in zip(a, b))
@@ -135,6 +141,11 @@ def _mass_properties(graph: Graph, carrier: Carrier, report: ImportReport) -> di
         v, c, awp, inertia = _rod_buoyancy(a, b, rod.type.diameter)
         if v:
             buoy.append((v, c, awp, inertia, c))
+        la, lb = carrier.to_local(a), carrier.to_local(b)
+        if abs(la[0] - lb[0]) < 1e-9 and abs(la[1] - lb[1]) < 1e-9 and rod.type.diameter > 0:
+            hull.append({"shape": "cylinder", "radius": rod.type.diameter / 2.0,
+                         "bottom": min(la[2], lb[2]), "top": max(la[2], lb[2]),
+                         "centre": [la[0], la[1]]})
         if carrier.key[0] == "body":
             report.converted.append(f"rod {rod.id} (line {rod.line}): rigid on body "
                                     f"{carrier.key[1]}: {rod.type.mass * rod.length:.6g} kg "
@@ -146,36 +157,48 @@ def _mass_properties(graph: Graph, carrier: Carrier, report: ImportReport) -> di
         out["mass"] = total
         out["centre_of_gravity"] = _local(carrier, g_cg)
     volume = sum(v for v, *_ in buoy)
+    if len(hull) == len(rods) and rods and not (body is not None and body.volume):
+        out["hull"] = hull
+        report.converted.append(f"{carrier.name}: buoyancy of its {len(hull)} upright "
+                                f"cylinder(s) integrated exactly (hull); {volume:.6g} m^3 "
+                                "submerged at the file's pose")
+        return out
     if volume > 0:
-        centre = tuple(sum(v * c[i] for v, c, *_ in buoy) / volume for i in range(3))
-        area = sum(a for _, _, a, _, _ in buoy)
-        ox, oy, oz = carrier.origin
-        ix = sum(i + a * (c[1] - oy) ** 2 for _, _, a, i, c in buoy)
-        iy = sum(i + a * (c[0] - ox) ** 2 for _, _, a, i, c in buoy)
-        inertia = 0.5 * (ix + iy)
-        if area and abs(ix - iy) > 1e-3 * inertia:
-            report.converted.append(f"{carrier.name}: waterplane second moments {ix:.6g} (x) "
-                                    f"and {iy:.6g} (y) m^4 differ; the metacentre uses their "
-                                    "mean")
-        metacentre = (centre[0], centre[1], centre[2] + inertia / volume)
-        pinned = (scene.rods[carrier.key[1]].kind != "free" if carrier.key[0] == "rod"
-                  else scene.bodies[carrier.key[1]].kind == "pinned")
-        if pinned:
-            # Held in translation: the heave restoring force would only load the pin.
-            area = 0.0
-        displaced = volume + area * oz
-        if displaced <= 0:
-            raise scene.file.error(carrier.line, f"{carrier.name}: its origin is {oz:g} m from "
-                                                 "the water line; the linear hydrostatic model "
-                                                 "cannot hold its surface-piercing rods (move "
-                                                 "the body origin to the water line)")
-        out["hydrostatics"] = {"displaced_volume": displaced,
-                               "metacentre": _local(carrier, metacentre),
-                               "waterplane_area": area}
-        report.converted.append(f"{carrier.name}: displaced volume {volume:.6g} m^3 (buoyancy "
-                                f"{rho * scene.gravity * volume:.6g} N), waterplane "
-                                f"{area:.6g} m^2")
+        out["hydrostatics"] = _linear_hydrostatics(scene, carrier, buoy, volume, report)
+    else:
+        out["hydrostatics"] = {"displaced_volume": 0.0, "metacentre": [0.0, 0.0, 0.0],
+                               "waterplane_area": 0.0}
     return out
+
+
+def _linear_hydrostatics(scene, carrier: Carrier, buoy: list, volume: float,
+                         report: ImportReport) -> dict:
+    centre = tuple(sum(v * c[i] for v, c, *_ in buoy) / volume for i in range(3))
+    area = sum(a for _, _, a, _, _ in buoy)
+    ox, oy, oz = carrier.origin
+    ix = sum(i + a * (c[1] - oy) ** 2 for _, _, a, i, c in buoy)
+    iy = sum(i + a * (c[0] - ox) ** 2 for _, _, a, i, c in buoy)
+    inertia = 0.5 * (ix + iy)
+    if area and abs(ix - iy) > 1e-3 * inertia:
+        report.converted.append(f"{carrier.name}: waterplane second moments {ix:.6g} (x) "
+                                f"and {iy:.6g} (y) m^4 differ; the metacentre uses their mean")
+    metacentre = (centre[0], centre[1], centre[2] + inertia / volume)
+    pinned = (scene.rods[carrier.key[1]].kind != "free" if carrier.key[0] == "rod"
+              else scene.bodies[carrier.key[1]].kind == "pinned")
+    if pinned:
+        # Held in translation: the heave restoring force would only load the pin.
+        area = 0.0
+    displaced = volume + area * oz
+    if displaced <= 0:
+        raise scene.file.error(carrier.line, f"{carrier.name}: its origin is {oz:g} m from the "
+                                             "water line; the linear hydrostatic model cannot "
+                                             "hold its surface-piercing rods (move the body "
+                                             "origin to the water line)")
+    report.converted.append(f"{carrier.name}: displaced volume {volume:.6g} m^3 (buoyancy "
+                            f"{scene.water_density * scene.gravity * volume:.6g} N), waterplane "
+                            f"{area:.6g} m^2 (linear hydrostatics)")
+    return {"displaced_volume": displaced, "metacentre": _local(carrier, metacentre),
+            "waterplane_area": area}
 
 
 def _local(carrier: Carrier, point) -> list:
@@ -190,14 +213,14 @@ def _free_dofs(graph: Graph, carrier: Carrier, report: ImportReport) -> list:
             raise scene.file.error(rod.line, f"rod {rod.id} is pinned to body {rod.body}, "
                                              "which moves: a case has no joint between two "
                                              "moving bodies")
-        free = (["surge", "sway", "heave", "roll", "pitch"] if rod.kind == "free"
-                else ["roll", "pitch"])
+        tilts = ["roll", "pitch"] if carrier.axis == "z" else ["pitch", "yaw"]
+        free = (["surge", "sway", "heave"] + tilts if rod.kind == "free" else tilts)
         where = ("end A (the pin)" if rod.kind != "free" else
                  "its water-line crossing" if carrier.origin != rod_ends_global(scene, rod)[0]
                  else "end A")
         report.converted.append(f"rod {rod.id} (line {rod.line}, {rod.word}): body "
-                                f"{carrier.name}, origin at {where}, z along the rod, free "
-                                f"{', '.join(free)}")
+                                f"{carrier.name}, origin at {where}, {carrier.axis} along the "
+                                f"rod, free {', '.join(free)}")
         return free
     body = scene.bodies[carrier.key[1]]
     free = list(SIX) if body.kind == "free" else ["roll", "pitch", "yaw"]

@@ -165,8 +165,8 @@ def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple,
                            network: Mapping | None = None) -> dict:
     """Check the ``moordyn`` block of a case file; returns it as a plain dict.
 
-    ``network`` maps ``lines`` to the line names a network-form case has; the block's
-    ``network.lines`` may name only those (without it, names are not cross-checked).
+    ``legs`` are the case's lines (the legs of the legs form); the block's ``network.lines``
+    may name only those (``network`` may give other names to check against).
 
     Raises
     ------
@@ -177,6 +177,8 @@ def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple,
     m = _mapping(raw, path, ("version", "header", "notes", "line_types", "body", "legs",
                              "options", "outputs", "sections", "network"))
     if "network" in m:
+        if network is None:             # the case's lines (legs are the lines of that form)
+            network = {"lines": [line.name for line in legs]}
         _network(m["network"], f"{path}.network", network)
     if "version" in m and (isinstance(m["version"], bool) or m["version"] not in (1, 2)):
         raise CaseError(f"{path}.version", f"{m['version']!r} must be 1 or 2")
