@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import moorsolve
+import moorsolve.checks
 from moorsolve import CaseError, load_case, solve
 from moorsolve.model import BodyLoads
 from moorsolve.model.build_network import rotation
@@ -433,3 +434,79 @@ def test_eight_threads_give_the_serial_answers(solver):
         assert a.state.tolist() == b.state.tolist()
         assert [leg.fairlead_tension_N for leg in a.legs] == \
             [leg.fairlead_tension_N for leg in b.legs]
+
+
+# ---- studies and checks on the network -----------------------------------------------------
+
+
+def test_damaged_conditions_remove_every_line_of_a_network():
+    data = copy.deepcopy(BRIDLE)
+    data["checks"] = {"offset_limit": 40.0}
+    for lt in data["line_types"].values():
+        lt["mbl"] = 2e6
+    report = moorsolve.checks.run_checks(load_case(data))
+    removed = [c.removed for c in report.conditions]
+    assert removed == [None] + [line["name"] for line in BRIDLE["lines"]]
+    assert all(c.solved for c in report.conditions)
+    # Uplift is checked at anchors only (end A on the seabed), not on the bridle legs.
+    intact = report.conditions[0]
+    uplift = {i.leg for i in intact.items if i.check.startswith("anchor uplift")}
+    assert uplift == {"M1", "M2", "M3"}
+
+
+def test_removing_a_line_drops_the_free_points_it_alone_held():
+    from moorsolve.model.edit import without_line
+    data = copy.deepcopy(BRIDLE)
+    data["points"].append({"name": "float", "position": [-100.0, 0.0, -10.0], "free": True,
+                           "volume": 1.0})
+    data["lines"].append({"name": "F", "from": "apex", "to": "float",
+                          "segments": [{"type": "rope", "length": 75.0}]})
+    case = load_case(data)
+    damaged = without_line(case, "F")
+    assert [p.name for p in damaged.points if p.free] == ["apex"]
+    assert "F" not in [line.name for line in damaged.lines]
+
+
+def test_sweep_reports_every_body_and_envelope_names_its_body():
+    data = copy.deepcopy(TWO_PONTOONS)
+    data["environment"]["wind"] = {"speed": 20.0, "toward_deg": 0.0}
+    for body in data["bodies"]:
+        body["loads"]["wind"] = {"model": "drag", "area_x": 100.0, "area_y": 300.0}
+    case = load_case(data)
+    table = moorsolve.sweep(case, {"environment.wind.toward_deg": [0.0, 90.0]})
+    for name in ("west", "east"):
+        for field in ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg"):
+            assert f"{name}.{field}" in table.columns
+    for k, toward in enumerate((0.0, 90.0)):
+        single = solve(load_case({**copy.deepcopy(data), "environment": {
+            **data["environment"], "wind": {"speed": 20.0, "toward_deg": toward}}}))
+        east = single.body_named("east")
+        assert table["east.x_m"].iloc[k] == pytest.approx(east["x_m"], abs=1e-6)
+        assert table["east.yaw_deg"].iloc[k] == pytest.approx(east["yaw_deg"], abs=1e-6)
+    with pytest.raises(CaseError, match="name the one"):
+        moorsolve.offset_envelope(case, step_deg=90)
+    env = moorsolve.offset_envelope(case, step_deg=90, body="east")
+    assert np.all(np.isfinite(env.offset_m)) and len(env.offset_m) == 4
+
+
+def test_box_hull_heave_and_a_hull_pushed_out_of_its_exact_range():
+    """A floating box: its exact buoyancy balances the weight at the draft m / (rho L W);
+    pushed down and heeled until its deck edge goes under, the solve refuses with the
+    reason."""
+    data = {
+        "environment": {"depth": 100.0},
+        "line_types": {"rope": {"weight_in_water": 0.0, "ea": 1e8}},
+        "bodies": [{"name": "barge", "mass": 1.0e6, "free": ["heave", "roll", "pitch"],
+                    "centre_of_gravity": [0, 0, -1.0],
+                    "hull": [{"shape": "box", "length": 40.0, "width": 10.0,
+                              "bottom": -5.0, "top": 3.0}]}],
+        "lines": [{"name": "L", "from": [0, 0, -100], "to": {"body": "barge",
+                                                              "at": [0, 0, -5]},
+                   "segments": [{"type": "rope", "length": 200.0}]}]}
+    result = solve(load_case(data), tol=1e-12)
+    draft = 1.0e6 / (1025.0 * 400.0)
+    # The bottom (body z = -5) sits at the draft below the water: origin at 5 - draft.
+    assert result.bodies[0]["z_m"] == pytest.approx(5.0 - draft, rel=1e-9)
+    data["bodies"][0]["loads"] = {"force": [0, 0, -2.0e7, 4.0e7, 0, 0]}
+    with pytest.raises(moorsolve.ConvergenceError, match="hull member 0"):
+        solve(load_case(data))

@@ -31,7 +31,7 @@ from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
 from .newton import STATUS_TEXT
-from .outcome import build_result
+from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
 from .stability import assess, find_stable
 from .start import initial_point
@@ -149,6 +149,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats)
             notes += extra
             certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
+        outside = hull_out_of_range(problem, x, p_full) if certified else []
         elapsed = time.perf_counter() - t0
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
@@ -157,6 +158,10 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                               assessment)
     if not certified:
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
+                               residual_Nm=moment_res, status=stats["status"],
+                               iterations=stats["iterations"], result=result)
+    if outside:
+        raise ConvergenceError("; ".join(outside), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
     broken = over_mbl(result)

@@ -27,8 +27,8 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                  stability=None) -> Result:
     """The :class:`Result` of the scaled point ``x`` of ``problem`` at parameters ``p``."""
     x = np.where(np.isfinite(x), x, 0.0)
-    table, unbalanced, load_vec, poses, point_pos, _ = (np.asarray(v) for v in
-                                                         problem.report(x, p))
+    table, unbalanced, load_vec, poses, point_pos, _, _ = (
+        np.asarray(v) for v in problem.report(x, p))
     table = np.atleast_2d(table)
     xp = x * problem.x_scale
     seg_table = np.atleast_2d(np.asarray(problem.segment_report(x, p)))
@@ -90,6 +90,24 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                   body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
                   points=tuple(points), stability=stability, form=case.form)
+
+
+def hull_out_of_range(problem, x, p) -> list:
+    """``"body B: hull member j ..."`` for every exact hull member whose formula does not
+    hold at the scaled point ``x`` (the waterplane crosses its bottom or top face)."""
+    case = problem.case
+    if not any(body.hull for body in case.bodies):
+        return []
+    flags = np.asarray(problem.report(x, p)[6], dtype=float).ravel()
+    out, k = [], 0
+    for body in case.bodies:
+        for j, _ in enumerate(body.hull):
+            if flags[k] < 0.5:
+                out.append(f"body {body.name}: hull member {j} has the waterplane across its "
+                           "bottom or top face at this pose, where its exact buoyancy does "
+                           "not hold (extend the member or give the linear hydrostatics)")
+            k += 1
+    return out
 
 
 def _line_notes(case, problem, legs) -> list:

@@ -86,8 +86,9 @@ class EquilibriumProblem:
         Of ``(x, p)`` with ``x`` scaled by ``x_scale``. ``report`` gives the lines table
         (:data:`LINE_COLUMNS`), the unbalanced generalized forces of every body (6 each)
         and free point (3 each), every load (force and moment, 6 each), every body's pose
-        (6 each: m and rad), every free point's position, and every body's resultant
-        wrench (force and moment about its origin, global axes, 6 each).
+        (6 each: m and rad), every free point's position, every body's resultant
+        wrench (force and moment about its origin, global axes, 6 each), and per exact hull
+        member 1 where its buoyancy formula is exact at the pose, else 0.
     effects : list of str
         The physical effects this problem simulates.
     """
@@ -286,7 +287,7 @@ class EquilibriumProblem:
         load_vectors, self.load_names = [], []
         rho, g = env.water_density, env.gravity
         body_scale = []
-        generalized, wrenches = [], []
+        generalized, wrenches, hull_range = [], [], []
         for bi, body in enumerate(case.bodies):
             q = poses[bi]
             R = rotations[bi]
@@ -316,6 +317,7 @@ class EquilibriumProblem:
                                       water_density=rho, gravity=g)
                 F, M = F + out["force"], M + out["moment"]
                 body_scale.append(out["force"][2])
+                hull_range.append(out["in_range"])
             loads = body_load_models.body_loads_3d(
                 body.loads, env, R, q[5], E["wind_speed"], E["wind_toward"],
                 E["current_speed"], E["current_toward"], E["wave_hs"], E["wave_toward"])
@@ -380,10 +382,11 @@ class EquilibriumProblem:
         point_vec = ca.vertcat(*[pt["position"] for pt in points]) if points else ca.SX(0, 1)
         load_vec = ca.vertcat(*load_vectors) if load_vectors else ca.SX(0, 1)
         wrench_vec = ca.vertcat(*wrenches) if wrenches else ca.SX(0, 1)
+        range_vec = ca.vertcat(*hull_range) if hull_range else ca.SX(0, 1)
         self.report = ca.Function(
             "report", [xs, p],
             [ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS)),
-             unbalanced, load_vec, pose_vec, point_vec, wrench_vec])
+             unbalanced, load_vec, pose_vec, point_vec, wrench_vec, range_vec])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.node_report = ca.Function(
@@ -397,6 +400,11 @@ class EquilibriumProblem:
         t_max = ca.mmax(all_t) if tensions else ca.SX(0)
         if line_weights:
             t_max = ca.fmax(t_max, 1e-3 * ca.mmax(ca.vertcat(*line_weights)))
+        # The largest force in any body's balance (weight, buoyancy, applied loads) also
+        # sets the scale: a floating body's residual is judged against what it carries.
+        carried = [ca.fabs(v) for v in body_scale] + [ca.norm_2(v[:3]) for v in load_vectors]
+        if carried:
+            t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*carried)))
         self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
                                        ["x", "p"], ["force", "moment", "t_max"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
@@ -407,12 +415,16 @@ class EquilibriumProblem:
         self._xs, self._p, self._g = xs, p, g_all
 
     def _first_body_summary(self, poses, p):
-        """``[x, y, yaw]`` of the first body: displacement from its case pose."""
+        """``[x, y, yaw]`` of the first body (displacement from its case pose), then, in a
+        network case, every body's absolute pose (6 each, m and rad)."""
         if not poses:
             return ca.SX.zeros(3)
         q = poses[0]
         q0 = p[self.layout.slice(f"body[{self.case.bodies[0].name}].pose")]
-        return ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        first = ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        if self.case.form != "network":
+            return first
+        return ca.vertcat(first, *[ca.vertcat(*pose) for pose in poses])
 
     def _segment_values(self, p) -> dict:
         """Each multi-segment or lumped line's segment parameters (line order)."""
@@ -445,8 +457,9 @@ class EquilibriumProblem:
     def judge(self, force: float, moment: float, t_max: float, tol: float):
         """``(certified, force, moment, relative)`` from the certificate's three numbers.
 
-        The force must be within ``tol`` of the largest tension, and the moment within
-        ``tol`` of that tension times the scene's moment arm.
+        The force must be within ``tol`` of the largest force in the balance (the largest
+        line tension, or a body's weight, buoyancy or applied load where larger), and the
+        moment within ``tol`` of that force times the scene's moment arm.
         """
         scale = t_max if t_max > 0 else self.force_scale
         relative = force / scale

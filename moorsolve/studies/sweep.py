@@ -145,7 +145,7 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
     if sink is not None:
         return sink.finish()
     if not frames:
-        return plan.frame(np.zeros(0, int), _Table(0, plan.names).columns())
+        return plan.frame(np.zeros(0, int), _Table(0, plan.names, plan.body_names).columns())
     points = np.concatenate([p for p, _ in frames])
     order = np.argsort(points, kind="stable")
     columns = {}
@@ -184,6 +184,7 @@ class SweepPlan:
         self.shape = tuple(len(values) for _, values in self.axes)
         self.n_points = math.prod(self.shape)
         self.names = [leg.name for leg in case.legs]
+        self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
         self._with_values, self._load_case = with_values, load_case
 
         # Each axis value validated once, as a case of its own.
@@ -252,7 +253,7 @@ class SweepPlan:
         return [p for paths, _ in self.axes for p in paths]
 
     def result_columns(self) -> list[str]:
-        return list(_Table(0, self.names).columns())
+        return list(_Table(0, self.names, self.body_names).columns())
 
     def grid_record(self) -> dict:
         """The grid as plain data, for the record beside an output file."""
@@ -291,7 +292,7 @@ class SweepPlan:
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
         """Solve ``points`` (snake order) and return them with their result columns."""
         points = np.asarray(points, dtype=int)
-        table = _Table(len(points), self.names)
+        table = _Table(len(points), self.names, self.body_names)
         if self.fast:
             self.prepare()
             problem = self._problem
@@ -438,11 +439,17 @@ def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
 # ---- solving a chunk ------------------------------------------------------------------------
 
 
+#: Per body of a network case: its absolute pose columns ``<body>.<field>``.
+_POSE_FIELDS = ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg")
+
+
 class _Table:
     """Results of ``n`` points, one array per column, filled by row."""
 
-    def __init__(self, n: int, names: list[str]):
+    def __init__(self, n: int, names: list[str], bodies: tuple = ()):
         self.names = names
+        self.bodies = tuple(bodies)
+        self.poses = np.full((n, 6 * len(self.bodies)), np.nan)
         self.done = np.zeros(n, bool)
         self.converged = np.zeros(n, bool)
         self.reason = [""] * n
@@ -462,6 +469,8 @@ class _Table:
         self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
         if result.body is not None:
             self.body[i] = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
+        for k, b in enumerate(result.bodies[:len(self.bodies)]):
+            self.poses[i, 6 * k: 6 * k + 6] = [b[f] for f in _POSE_FIELDS]
         self.t_fair[i] = [leg.fairlead_tension_N for leg in result.legs]
         self.t_anchor[i] = [leg.anchor_tension_N for leg in result.legs]
 
@@ -470,6 +479,9 @@ class _Table:
                "iterations": self.iterations, "residual_N": self.residual[:, 0],
                "residual_Nm": self.residual[:, 1], "residual_relative": self.residual[:, 2],
                "x_m": self.body[:, 0], "y_m": self.body[:, 1], "yaw_deg": self.body[:, 2]}
+        for k, name in enumerate(self.bodies):
+            for j, field in enumerate(_POSE_FIELDS):
+                out[f"{name}.{field}"] = self.poses[:, 6 * k + j]
         for k, name in enumerate(self.names):
             out[f"{name}.fairlead_tension_N"] = self.t_fair[:, k]
             out[f"{name}.anchor_tension_N"] = self.t_anchor[:, k]
@@ -505,6 +517,10 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
         table.residual[row] = (force, moment, relative)
         if has_body:
             table.body[row] = (body[0], body[1], math.degrees(body[2]))
+        if table.bodies:
+            pose = np.asarray(body[3:], dtype=float).reshape(-1, 6).copy()
+            pose[:, 3:] = np.degrees(pose[:, 3:])
+            table.poses[row] = pose.ravel()
         table.t_fair[row], table.t_anchor[row] = tf, ta
         if over.any():
             table.reason[row] = "overload: " + "; ".join(
