@@ -119,3 +119,27 @@ def test_commands(tmp_path, capsys):
     assert main(["import-moorpy", str(bad), "-o", str(tmp_path / "x.yaml")]) == 2
     assert "bad.yaml: line_types: no line types" in capsys.readouterr().err
     assert not (tmp_path / "x.yaml").exists()
+
+
+def test_network_case_out_to_moorpy_yaml_and_back(tmp_path):
+    """The bridle (a free apex joining three lines, a held body) through MoorPy's YAML:
+    the same lines by name, the same tensions; MoorDyn export refuses the network form."""
+    case = moorsolve.load_case(read_import(MOORDYN / "bridle_v2.dat").data)
+    out = tmp_path / "bridle.yaml"
+    moorsolve.export_moorpy(case, out)
+    written = yaml.safe_load(out.read_text())
+    types = {p["name"]: p["type"] for p in written["points"]}
+    assert types["point3"] == "free" and types["point4"] == "fixed"
+    assert types["line1_B"] == "vessel"
+    back = read_moorpy(out)
+    assert back.form == "network"
+    r0, r1 = moorsolve.solve(case), moorsolve.solve(moorsolve.load_case(back.data))
+    for leg in r0.legs:
+        other = r1.leg(leg.name)
+        assert other.fairlead_tension_N == pytest.approx(leg.fairlead_tension_N, rel=1e-9)
+        assert other.anchor_tension_N == pytest.approx(leg.anchor_tension_N, rel=1e-9)
+    with pytest.raises(moorsolve.CaseError, match="network form"):
+        moorsolve.case_to_moordyn(case)
+    two = moorsolve.load_case(read_import(MOORDYN / "shared_line_two_bodies_v2.dat").data)
+    with pytest.raises(moorsolve.CaseError, match="2 bodies .*one vessel"):
+        moorsolve.export_moorpy(two, tmp_path / "two.yaml")

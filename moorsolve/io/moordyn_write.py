@@ -252,6 +252,9 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
         Something MoorDyn cannot hold: an inextensible line, a buoyant line without a
         diameter, a sloped seabed, line drag in a current.
     """
+    if getattr(case, "form", "legs") == "network":
+        raise CaseError("", f"case {case.name!r} is in the network form (bodies, points, "
+                            "lines); export-moordyn writes the body + legs form only so far")
     block = dict(case.moordyn or {})
     version = version or block.get("version", 2)
     if version not in (1, 2):

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from os import PathLike
 from pathlib import Path
 
+import numpy as np
 import yaml
 
 from ..errors import CaseError
@@ -315,20 +316,25 @@ def import_moorpy(source, out=None) -> dict:
 
 
 def case_to_moorpy(case) -> dict:
-    """A case (legs form) as MoorPy's YAML mapping.
+    """A case (either form) as MoorPy's YAML mapping.
 
-    Each leg becomes an anchor point (``fixed``), a fairlead point (``vessel``, body frame),
-    one free point per joint (with its clump's mass and volume) and one line per segment,
-    named ``<leg>_anchor``, ``<leg>_joint<k>``, ``<leg>_fairlead`` and ``<leg>_<k>``. Line
-    types get MoorPy's volume-equivalent diameter and the mass per metre that gives the
-    case's weight in water with the case's gravity (written as ``gravity:``, which MoorPy
-    does not read: create its System with that ``g``).
+    Every line becomes one MoorPy line per segment, joined by a ``free`` point per joint
+    (with its clump's mass and volume; ``<line>_joint<k>``). Its ends: a case point keeps
+    its name and type (``fixed``, or ``free`` with mass and volume); a fixed end given as
+    coordinates becomes a ``fixed`` point, a body end a ``vessel`` point at its place in the
+    scene at the case pose (``<line>_A``, ``<line>_B``; MoorPy's YAML holds one vessel, so
+    at most one body may carry lines). Line types get MoorPy's volume-equivalent diameter
+    and the mass per metre that gives the case's weight in water with the case's gravity
+    (written as ``gravity:``, which MoorPy does not read: create its System with that
+    ``g``).
 
     Raises
     ------
     CaseError
-        An inextensible line (MoorPy needs EA), a buoyant line without a diameter.
+        An inextensible line (MoorPy needs EA), a buoyant line without a diameter, lines on
+        more than one body.
     """
+    from ..model.build_network import end_position
     env = case.environment
     g, rho = env.gravity, env.water_density
     types = []
@@ -343,14 +349,39 @@ def case_to_moorpy(case) -> dict:
         if lt.mbl is not None:
             entry["breaking_load"] = lt.mbl
         types.append(entry)
-    points, lines = [], []
-    for leg in case.legs:
-        names = [f"{leg.name}_anchor"]
-        points.append({"name": names[0], "type": "fixed", "location": list(leg.anchor)})
-        for k, clump in enumerate(leg.joint_clumps, start=1):
-            t = sum(s.length for s in leg.segments[:k]) / leg.length
-            where = [a + t * (f - a) for a, f in zip(leg.anchor, leg.fairlead)]
-            entry = {"name": f"{leg.name}_joint{k}", "type": "free", "location": where}
+    bodies = {b.name: b for b in case.bodies}
+    carriers = sorted({end.body for line in case.lines for end in (line.a, line.b)
+                       if end.body is not None})
+    if len(carriers) > 1:
+        raise CaseError("bodies", f"lines end on {len(carriers)} bodies ({', '.join(carriers)}); "
+                                  "MoorPy's YAML holds one vessel")
+    points, lines, written = [], [], {}
+    for p in case.points:
+        entry = {"name": p.name, "type": "free" if p.free else "fixed",
+                 "location": list(p.position)}
+        if p.free:
+            entry.update(mass=p.mass, volume=p.volume)
+        points.append(entry)
+        written[p.name] = entry
+
+    def end_name(line, end, tag: str) -> str:
+        if end.point is not None:
+            return end.point
+        name = end.label if end.fixed and end.label else f"{line.name}_{tag}"
+        if name not in written:
+            kind = "fixed" if end.fixed else "vessel"
+            where = [float(v) for v in end_position(end, bodies)]
+            written[name] = {"name": name, "type": kind, "location": where}
+            points.append(written[name])
+        return name
+
+    for line in case.lines:
+        names = [end_name(line, line.a, "A")]
+        a, b = (np.asarray(end_position(e, bodies), dtype=float) for e in (line.a, line.b))
+        for k, clump in enumerate(line.joint_clumps, start=1):
+            t = sum(s.length for s in line.segments[:k]) / line.length
+            entry = {"name": f"{line.name}_joint{k}", "type": "free",
+                     "location": [float(v) for v in a + t * (b - a)]}
             if clump is not None:
                 mass = clump.mass if clump.mass is not None else max(clump.weight, 0.0) / g
                 volume = (clump.volume or 0.0) if clump.mass is not None else \
@@ -358,13 +389,9 @@ def case_to_moorpy(case) -> dict:
                 entry.update(mass=mass, volume=volume)
             points.append(entry)
             names.append(entry["name"])
-        fair = {"name": f"{leg.name}_fairlead",
-                "type": "vessel" if case.body is not None else "fixed",
-                "location": list(leg.fairlead)}
-        points.append(fair)
-        names.append(fair["name"])
-        for k, seg in enumerate(leg.segments):
-            lines.append({"name": f"{leg.name}_{k + 1}" if len(leg.segments) > 1 else leg.name,
+        names.append(end_name(line, line.b, "B"))
+        for k, seg in enumerate(line.segments):
+            lines.append({"name": f"{line.name}_{k + 1}" if len(line.segments) > 1 else line.name,
                           "endA": names[k], "endB": names[k + 1], "type": seg.line_type.name,
                           "length": seg.length})
     return {"name": case.name, "water_depth": env.depth, "rho": rho, "gravity": g,
@@ -377,19 +404,17 @@ def export_moorpy(case, out) -> dict:
     from .case_file import load_case
     if isinstance(case, (str, PathLike)):
         case = load_case(case)
-    if getattr(case, "legs", None) is None:
-        raise CaseError("", "only a case in the legs form can be exported to MoorPy's YAML")
     if case.environment.seabed.sloped:
         raise CaseError("environment.seabed.gradient", "MoorPy's YAML has a flat water_depth; "
                                                        "use a flat seabed")
     data = case_to_moorpy(case)
-    free = ", ".join(case.body.free) if case.body is not None else ""
     header = (f"# MoorPy mooring YAML of the moorsolve case {case.name!r}.\n"
               f"# gravity {case.environment.gravity:g} m/s^2: MoorPy does not read the "
               f"'gravity' key; create the System with g={case.environment.gravity:g}.\n")
-    if case.body is not None:
-        header += (f"# The vessel points ride the case's body (free: [{free}]); MoorPy makes "
-                   "one body of them.\n")
+    for body in case.bodies:
+        header += (f"# The vessel points ride the case's body {body.name!r} (free: "
+                   f"[{', '.join(body.free)}]), at its case pose; MoorPy makes one free body "
+                   "of them, without mass: hold it (type 1) to compare at this pose.\n")
     text = header + yaml.safe_dump(data, sort_keys=False, default_flow_style=None)
     write_text(out, text)
     return data
