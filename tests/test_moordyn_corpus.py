@@ -38,8 +38,12 @@ FORMS = {
     "shared_line_two_bodies_v2.dat": ("network", "several carriers"),
     "rods_v2.dat": ("network", "rod 2 is Pinned"),
     "hub_v2.dat": ("network", "free point 4 joins 4 lines"),
-    "dangling_buoys_v2.dat": ("network", "line 1 ends at free point 2"),
+    "dangling_buoys_v2.dat": ("network", "no body carries the lines"),
     "farm_turbines_v2.dat": ("network", "several carriers"),
+    "stale_names_v2.dat": ("network", "no body carries the lines"),
+    "connectors_v2.dat": ("network", "line(s) attach to rod 1 (zero length)"),
+    "weightless_dry_v2.dat": ("network", "body 1 is free"),
+    "tilted_body_v2.dat": ("network", "body 1 is Free"),
 }
 
 
@@ -515,9 +519,16 @@ def test_count_rows_must_match_and_versions_must_not_mix(tmp_path):
     with pytest.raises(MoorDynError, match=r"f\.dat:\d+: NLines is 4 but the LINES section has "
                                            r"3 row\(s\).*read as MoorDyn v1"):
         read_import(_text(tmp_path, text))
+    # Column names of one version over rows of the other: MoorDyn reads by position, so do
+    # we (MoorPy's own test files carry v1 names over v2 rows).
     mixed = _V2.replace("1 chain 1 2 420 20 -", "1 chain 420.5 20 1 2 -")
-    with pytest.raises(MoorDynError, match="the LINES table mixes the format versions"):
-        read_moordyn(_text(tmp_path, mixed))
+    md = read_moordyn(_text(tmp_path, mixed))
+    assert md.version == 1 and "MoorDyn reads the columns by position" in md.version_reason
+    rows = _V2.replace("1 chain 1 R1A", "1 chain 1 2").replace(
+        "ID LineType AttachA AttachB UnstrLen NumSegs Outputs",
+        "Line LineType NodeAnch NodeFair UnstrLen NumSegs Outputs").replace(
+        "1 chain 1 2 420 20 -", "1 chain 1 2 420.0 20 -")
+    assert read_moordyn(_text(tmp_path, rows)).version == 2
     twice = _V2.replace("---------------------- OPTIONS", "---- POINTS ----\na\nb\n"
                                                           "---------------------- OPTIONS")
     with pytest.raises(MoorDynError, match="a second POINTS section"):
@@ -554,3 +565,69 @@ def test_import_command_prints_the_report_and_keeps_it(tmp_path, capsys):
     assert moorsolve.load_case(out).environment.depth == 85.0
     assert main(["solve", str(out)]) == 0
     assert "fixed end is 7 m above the seabed" in capsys.readouterr().err
+
+
+def test_stale_column_names_give_way_to_the_rows():
+    imp = read_import(DATA / "stale_names_v2.dat")
+    assert imp.file.version == 2
+    assert "its column names (line 15) are v1's" in imp.file.version_reason
+    assert "MoorDyn reads the columns by position" in imp.file.version_reason
+    lines = {ln["name"]: ln for ln in imp.data["lines"]}
+    assert lines["line2"] == {"name": "line2", "from": "point2", "to": "point3",
+                              "segments": [{"type": "chain", "length": 330.0}]}
+
+
+def test_zero_length_rods_are_connectors():
+    imp, bodies, points, lines = _network("connectors_v2.dat")
+    assert points["rod1"] == {"name": "rod1", "position": [120.0, 0.0, -260.0], "free": True,
+                              "mass": 0.0, "volume": 0.0}
+    assert lines["line1"]["to"] == "rod1" and lines["line2"]["from"] == "rod1"
+    assert lines["line2"]["to"] == "rod2" and lines["line3"]["from"] == "rod2"
+    result = moorsolve.solve(moorsolve.load_case(imp.data))
+    # A massless connector passes the tension on: both sides carry the same force there.
+    t = {leg.name: leg for leg in result.legs}
+    assert t["line1"].fairlead_tension_N == pytest.approx(t["line2"].anchor_tension_N,
+                                                          rel=1e-8)
+
+
+def test_weightless_and_dry():
+    """g 0 and WtrDnsty 0 (a MoorDyn test file): nothing weighs or floats; the body sits
+    where the lines' elastic forces balance, which this test finds on its own."""
+    from scipy.optimize import brentq
+    imp, bodies, points, lines = _network("weightless_dry_v2.dat")
+    data = imp.data
+    assert data["line_types"]["nylon"]["weight_in_water"] == 0.0
+    assert bodies["body1"]["hydrostatics"]["displaced_volume"] == 0.0
+    assert bodies["body1"]["mass"] == 1e-9
+    text = imp.report.text()
+    assert "gravity 0 (weightless" in text and "water density 0 (dry" in text
+    result = moorsolve.solve(moorsolve.load_case(data))
+    ea = 25152.0
+
+    def force(d):            # along x on the body at x = d; lines 1-6 of 0.9 m, line 7 1.4 m
+        f = ea * ((1 - d) / 0.9 - 1) - ea * ((1 + d) / 0.9 - 1)
+        f += ea * ((1.5 - d) / 1.4 - 1)
+        for dz in (1.0, 1.0, 1.0, 1.0):                 # lines 3-6, across x
+            r = math.hypot(d, dz)
+            f -= ea * (r / 0.9 - 1) * d / r
+        return f
+
+    d = brentq(force, 0.0, 0.2)
+    body = result.bodies[0]
+    assert body["x_m"] == pytest.approx(d, rel=1e-6)
+    assert abs(body["y_m"]) < 1e-9 and body["z_m"] == pytest.approx(-5.0, abs=1e-9)
+
+
+def test_a_body_given_on_its_side_is_the_same_body():
+    """MoorDyn's p0 = -90 deg (the z-y-x angles' singular pitch): the body's frame is taken
+    parallel to the scene's axes with its points turned into it; given so, the buoy of
+    free_buoy_six_dof_v2.dat finds the same equilibrium."""
+    imp, bodies, points, lines = _network("tilted_body_v2.dat")
+    assert "orientation_deg" not in bodies["body1"]
+    assert lines["line1"]["to"]["at"] == pytest.approx([3.0, 0.0, -2.0], abs=1e-6)
+    tilted = moorsolve.solve(moorsolve.load_case(imp.data))
+    plain = moorsolve.solve(moorsolve.load_case(read_import(
+        DATA / "free_buoy_six_dof_v2.dat").data))
+    for a, b in zip(tilted.legs, plain.legs):
+        assert a.fairlead_tension_N == pytest.approx(b.fairlead_tension_N, rel=1e-6)
+    assert tilted.bodies[0]["z_m"] == pytest.approx(plain.bodies[0]["z_m"], abs=1e-6)

@@ -161,10 +161,12 @@ def test_exported_moorpy_yaml_is_what_moorpy_reads(tmp_path):
 
 
 #: Network files MoorPy 1.3.0 reads and solves the same way: bridle, hub, dangling buoys,
-#: two held bodies with a shared line, and a free six-DOF body (MoorPy, unlike MoorDyn,
-#: holds a CoupledPinned body and knows no FAST.Farm turbine or rod).
+#: two held bodies with a shared line, a free six-DOF body, a chain between two fixed points
+#: under stale column names (MoorPy, unlike MoorDyn, holds a CoupledPinned body and knows
+#: no FAST.Farm turbine, rod, g = 0 or tilted body frame).
 MOORPY_NETWORK = ["bridle_v2.dat", "hub_v2.dat", "dangling_buoys_v2.dat",
-                  "shared_line_two_bodies_v2.dat", "free_buoy_six_dof_v2.dat"]
+                  "shared_line_two_bodies_v2.dat", "free_buoy_six_dof_v2.dat",
+                  "stale_names_v2.dat"]
 
 
 @pytest.mark.parametrize("name", MOORPY_NETWORK)

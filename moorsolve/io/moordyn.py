@@ -10,13 +10,13 @@ The mapping chooses one of two case forms:
 - **legs** (``body:`` + ``legs:``): the file is one carrier of fairleads (a Coupled, Fixed or
   Turbine body, or the Coupled/Vessel points, all *held* where the file puts them, as MoorDyn
   and MoorPy hold a coupled body in a static solve) on lines that run, alone or joined end
-  to end through free points, from a fixed point up to the carrier (or between fixed points
-  when there is no carrier). Each such chain is one leg named ``L<id>`` after the MoorDyn
-  line at its anchor; a joint's mass and volume become a clump. The ``moordyn`` block maps
+  to end through free points, from a fixed point up to the carrier. Each such chain is one
+  leg named ``L<id>`` after the MoorDyn line at its anchor; a joint's mass and volume become
+  a clump. The ``moordyn`` block maps
   every leg back to its MoorDyn lines and points.
 - **network** (``bodies``, ``points``, ``lines``; CONTRACT.md, "The scene as a network"):
-  everything else (bridles and hubs, lines ending at free points, several carriers, Free
-  and CoupledPinned bodies, rods with lines): every MoorDyn line becomes ``line<N>`` with
+  everything else (bridles and hubs, lines ending at free points, several carriers or none,
+  Free and CoupledPinned bodies, rods with lines): every MoorDyn line becomes ``line<N>`` with
   end A at its AttachA. See :mod:`.moordyn_network`.
 
 Line types keep their names; the submerged weight is ``g (Mass/m - rho pi Diam^2 / 4)``
@@ -34,11 +34,13 @@ from dataclasses import dataclass
 from os import PathLike
 
 from ..errors import CaseError
+from ..model.fields import MIN_WEIGHT
 from .import_report import ImportReport
 from .moordyn_graph import Graph, build_graph
 from .moordyn_network import body_held, network_case
 from .moordyn_parse import MoorDynError, MoorDynFile, Row, read_moordyn
-from .moordyn_scene import MDScene, read_scene
+from .moordyn_scene import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, MDScene, read_scene,
+                            vertical_force)
 from .output_files import write_case_yaml
 
 __all__ = ["MoorDynError", "MoorDynFile", "MoorDynImport", "Row", "read_moordyn",
@@ -56,6 +58,11 @@ def line_type_data(scene: MDScene, report: ImportReport,
     types, passthrough = {}, {}
     for lt in scene.line_types.values():
         weight = g * (lt.mass - rho * math.pi * lt.diameter ** 2 / 4.0)
+        if weight and abs(weight) < MIN_WEIGHT:
+            report.converted.append(f"line type {lt.name}: weight in water {weight:.3g} N/m, "
+                                    f"below the case's {MIN_WEIGHT:g} N/m: a neutrally buoyant "
+                                    "line, taken as 0")
+            weight = 0.0
         entry = {"weight_in_water": weight, "ea": lt.ea}
         if lt.diameter > 0:
             entry["diameter"] = lt.diameter
@@ -124,6 +131,10 @@ def _network_reason(graph: Graph, chains) -> str | None:
     if len(graph.carriers) > 1:
         return "several carriers of fairleads (" + ", ".join(
             c.name for c in graph.carriers.values()) + ")"
+    if not graph.carriers:
+        # No body: lines between fixed points, whose free points may hang out of any one
+        # vertical plane; the network form solves them in three dimensions.
+        return "no body carries the lines"
     if chains is None:
         for key, node in graph.nodes.items():
             n = len(graph.at[key])
@@ -133,13 +144,12 @@ def _network_reason(graph: Graph, chains) -> str | None:
                 return (f"free {node.label} joins {n} lines (" + ", ".join(
                     graph.line_label(i) for i in sorted(graph.at[key])) + "): a bridle or hub")
         return "lines close a loop through free points"
-    carrier = bool(graph.carriers)
     for first, chain, last in chains:
         ids = ", ".join(graph.line_label(i) for i, _ in chain)
         kinds = {first.kind, last.kind}
         if kinds == {"carrier"}:
             return f"line(s) {ids} join two fairleads ({first.label}, {last.label})"
-        if kinds == {"fixed"} and carrier:
+        if kinds == {"fixed"}:
             return f"line(s) {ids} join two fixed points ({first.label}, {last.label})"
         if kinds == {"fixed", "carrier"}:
             ground, top = (first, last) if first.kind == "fixed" else (last, first)
@@ -151,23 +161,30 @@ def _network_reason(graph: Graph, chains) -> str | None:
 
 def _clump(node, scene: MDScene) -> dict | None:
     point = scene.points[node.key[1]]
-    volume = point.volume + _vertical_force_volume(point, scene)
+    fz = vertical_force(point, scene)
+    if scene.gravity == 0 or scene.water_density == 0:
+        # Weightless or dry (a MoorDyn test): the clump's net weight, given as such.
+        weight = scene.gravity * (point.mass - scene.water_density * point.volume) - fz
+        return {"weight": weight} if point.mass or point.volume or fz else None
+    volume = point.volume + fz / (scene.water_density * scene.gravity)
     if point.mass or volume:
         return {"mass": point.mass, "volume": volume}
     return None
 
 
-def _vertical_force_volume(point, scene: MDScene) -> float:
-    """A steady vertical force on a free point as the buoyancy volume that gives it [m^3];
-    a horizontal one has no place in a case."""
-    fx, fy, fz = point.force
-    if point.kind != "free":
-        return 0.0
-    if fx or fy:
-        raise scene.file.error(point.line, f"free point {point.id}: a steady horizontal force "
-                                           f"(FX {fx:g}, FY {fy:g} N) has no counterpart in a "
-                                           "case; give 0")
-    return fz / (scene.water_density * scene.gravity)
+def case_environment(scene: MDScene, report: ImportReport) -> dict:
+    """The case's environment: MoorDyn's g = 0 (weightless) or rho = 0 (dry) tests keep the
+    case's defaults, their weights and buoyancies being given as zero where they arise."""
+    env = {"depth": scene.depth, "water_density": scene.water_density,
+           "gravity": scene.gravity}
+    for key, default, what in (("gravity", DEFAULT_GRAVITY, "weightless: every weight is 0"),
+                               ("water_density", DEFAULT_WATER_DENSITY,
+                                "dry: every buoyancy is 0")):
+        if env[key] == 0:
+            env[key] = default
+            report.converted.append(f"{key.replace('_', ' ')} 0 ({what}; the case keeps "
+                                    f"{default:g}, which then weighs nothing)")
+    return env
 
 
 def _legs_data(graph: Graph, chains, report: ImportReport) -> tuple:
@@ -175,8 +192,7 @@ def _legs_data(graph: Graph, chains, report: ImportReport) -> tuple:
     scene = graph.scene
     oriented = []
     for first, chain, last in chains:
-        if first.kind == "carrier" or (first.kind == last.kind == "fixed"
-                                      and first.position[2] > last.position[2]):
+        if first.kind == "carrier":
             first, last = last, first
             chain = [(i, not r) for i, r in reversed(chain)]
         oriented.append((first, chain, last))
@@ -301,8 +317,7 @@ def convert_moordyn(md: MoorDynFile) -> MoorDynImport:
     types, type_columns = line_type_data(scene, report)
     form, why, body_data, block = scene_case(scene, report)
     _report_sections(md, scene, report)
-    env = {"depth": scene.depth, "water_density": scene.water_density,
-           "gravity": scene.gravity}
+    env = case_environment(scene, report)
 
     block_all = {"version": md.version, "header": list(md.header),
                  "notes": list(report.converted[:1]) + [e for e in report.ignored

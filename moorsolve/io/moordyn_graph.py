@@ -39,6 +39,7 @@ class Carrier:
     matrix: tuple
     line: int | None                 # the file line defining it (None for the vessel)
     axis: str = ""                   # a rod's own frame: "z" or "x" along the rod
+    turn: tuple = _IDENTITY          # file-frame coordinates to this frame's
 
     @property
     def name(self) -> str:
@@ -46,6 +47,10 @@ class Carrier:
 
     def to_global(self, local) -> tuple:
         return tuple(o + v for o, v in zip(self.origin, apply(self.matrix, local)))
+
+    def from_file(self, file_local) -> tuple:
+        """Coordinates the file gives in the body's own frame, in this carrier's frame."""
+        return tuple(0.0 if abs(c) < 1e-12 else c for c in apply(self.turn, file_local))
 
     def to_local(self, point) -> tuple:
         v = apply_transpose(self.matrix, tuple(p - o for p, o in zip(point, self.origin)))
@@ -67,7 +72,7 @@ class Node:
         """The case's name for a node that becomes a point: point3, rod2A."""
         if self.key[0] == "point":
             return f"point{self.key[1]}"
-        return f"rod{self.key[1]}{self.key[2]}"
+        return f"rod{self.key[1]}" + ("" if self.key[2] == "AB" else self.key[2])
 
 
 @dataclass
@@ -94,26 +99,37 @@ class Graph:
 
     def ends(self, line_id: int) -> tuple:
         line = self.scene.lines[line_id]
-        return tuple(self.nodes[_key(e)] for e in line.ends)
+        return tuple(self.nodes[_key(self.scene, e)] for e in line.ends)
 
 
-def _key(end) -> tuple:
+def _key(scene: MDScene, end) -> tuple:
     kind, ident, rod_end = end
-    return ("point", ident) if kind == "point" else ("rod", ident, rod_end)
+    if kind == "point":
+        return ("point", ident)
+    # Both ends of a zero-length rod (MoorDyn's point-like connector) are one node.
+    return ("rod", ident, "AB" if scene.rods[ident].length == 0.0 else rod_end)
 
 
 def rod_ends_global(scene: MDScene, rod: MDRod) -> tuple:
     """Global end positions of a rod at the file's pose (body rods placed by their body)."""
     if rod.kind in ("body", "body_pinned"):
         body = _body_carrier(scene, rod.body)
-        return body.to_global(rod.end_a), body.to_global(rod.end_b)
+        return (body.to_global(body.from_file(rod.end_a)),
+                body.to_global(body.from_file(rod.end_b)))
     return rod.end_a, rod.end_b
 
 
 def _body_carrier(scene: MDScene, ident: int) -> Carrier:
+    """A body's frame: MoorDyn's when it is only yawed (the same rotation in both
+    conventions); a body with roll or pitch gets a frame parallel to the scene's axes, its
+    points turned into it, so its pose needs no angle conversion and never meets the z-y-x
+    angles' singular pitch."""
     body = scene.bodies[ident]
+    turn = moordyn_matrix(*body.pose[3:])
+    tilted = bool(body.pose[3] or body.pose[4])
     return Carrier(key=("body", ident), held=body.kind in ("fixed", "coupled", "turbine"),
-                   origin=body.pose[:3], matrix=moordyn_matrix(*body.pose[3:]), line=body.line)
+                   origin=body.pose[:3], matrix=_IDENTITY if tilted else turn, line=body.line,
+                   turn=turn if tilted else _IDENTITY)
 
 
 def rod_carrier(scene: MDScene, rod: MDRod) -> Carrier:
@@ -174,7 +190,7 @@ def build_graph(scene: MDScene) -> Graph:
     nodes, at = {}, {}
     for line in scene.lines.values():
         for end in line.ends:
-            key = _key(end)
+            key = _key(scene, end)
             at.setdefault(key, []).append(line.id)
             if key in nodes:
                 continue
@@ -189,24 +205,29 @@ def build_graph(scene: MDScene) -> Graph:
                     ck = (("vessel",) if p.kind == "coupled" else ("turbine", p.body)
                           if p.kind == "turbine" else ("body", p.body))
                     c = carrier_of(ck)
-                    node = Node(key, label, "carrier", c, p.position,
-                                c.to_global(p.position), p.line)
+                    local = c.from_file(p.position)
+                    node = Node(key, label, "carrier", c, local, c.to_global(local), p.line)
             else:
                 rod = scene.rods[key[1]]
-                label = f"rod {rod.id} end {key[2]}"
+                point_like = key[2] == "AB"
+                label = (f"rod {rod.id} (zero length)" if point_like
+                         else f"rod {rod.id} end {key[2]}")
                 a, b = rod_ends_global(scene, rod)
-                where = a if key[2] == "A" else b
-                if rod.kind == "fixed":
+                where = b if key[2] == "B" else a
+                # A zero-length rod is a point: pinned ones are held where they are.
+                kind = rod.kind
+                if point_like:
+                    kind = {"pinned": "fixed", "coupled_pinned": "coupled",
+                            "body_pinned": "body"}.get(kind, kind)
+                if kind == "fixed":
                     node = Node(key, label, "fixed", None, None, where, rod.line)
-                elif rod.kind in ("coupled", "body"):
-                    c = carrier_of(("vessel",) if rod.kind == "coupled" else ("body", rod.body))
-                    local = rod.end_a if key[2] == "A" else rod.end_b
+                elif kind == "free" and point_like:
+                    node = Node(key, label, "free", None, None, where, rod.line)
+                elif kind in ("coupled", "body"):
+                    c = carrier_of(("vessel",) if kind == "coupled" else ("body", rod.body))
+                    local = c.from_file(rod.end_b if key[2] == "B" else rod.end_a)
                     node = Node(key, label, "carrier", c, local, where, rod.line)
                 else:
-                    if rod.length == 0.0:
-                        raise scene.file.error(rod.line, f"rod {rod.id} has zero length and is "
-                                                         f"{rod.word}: a pinned or free rod "
-                                                         "needs two distinct ends")
                     c = carrier_of(("rod", rod.id))
                     node = Node(key, label, "carrier", c, c.to_local(where), where, rod.line)
             nodes[key] = node

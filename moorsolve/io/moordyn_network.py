@@ -59,10 +59,14 @@ import math
 
 from .import_report import ImportReport
 from .moordyn_graph import Carrier, Graph, carrier_angles, rod_ends_global
+from .moordyn_scene import DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, vertical_force
 
 __all__ = ["network_case", "body_held"]
 
 SIX = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+#: The mass [kg] of a body in a weightless (g = 0) MoorDyn file: the case needs a mass for
+#: a body free in heave, roll or pitch; this one weighs 1e-8 N, below any line tension.
+WEIGHTLESS_MASS = 1e-9
 
 
 def _end(graph: Graph, node) -> object:
@@ -77,19 +81,29 @@ def _points(graph: Graph, report: ImportReport) -> list:
     for node in sorted(graph.nodes.values(), key=lambda n: (n.key[0] != "point", n.key[1:])):
         if node.kind == "fixed":
             out.append({"name": graph.point_name(node), "position": list(node.position)})
+        elif node.kind == "free" and node.key[0] == "rod":
+            # A zero-length free rod: MoorDyn's massless point-like connector.
+            out.append({"name": node.name, "position": list(node.position), "free": True,
+                        "mass": 0.0, "volume": 0.0})
+            report.converted.append(f"{node.label} (line {node.line}): a free connector, point "
+                                    f"{node.name}")
         elif node.kind == "free":
             p = scene.points[node.key[1]]
-            fx, fy, fz = p.force
-            if fx or fy:
-                raise scene.file.error(p.line, f"free point {p.id}: a steady horizontal force "
-                                               f"(FX {fx:g}, FY {fy:g} N) has no counterpart "
-                                               "in a case; give 0")
-            volume = p.volume + fz / (scene.water_density * scene.gravity)
-            if fz:
-                report.converted.append(f"point {p.id}: FZ {fz:g} N as {volume - p.volume:.6g} "
-                                        "m^3 of extra buoyancy volume")
+            fz = vertical_force(p, scene)
+            g, rho = scene.gravity, scene.water_density
+            if g == 0 or rho == 0:
+                # A weightless or dry MoorDyn test: the net weight as mass or volume.
+                net = g * (p.mass - rho * p.volume) - fz
+                mass, volume = max(net, 0.0) / DEFAULT_GRAVITY, \
+                    max(-net, 0.0) / (DEFAULT_GRAVITY * DEFAULT_WATER_DENSITY)
+            else:
+                mass, volume = p.mass, p.volume + fz / (rho * g)
+                if fz:
+                    report.converted.append(f"point {p.id}: FZ {fz:g} N as "
+                                            f"{volume - p.volume:.6g} m^3 of extra buoyancy "
+                                            "volume")
             out.append({"name": graph.point_name(node), "position": list(node.position),
-                        "free": True, "mass": p.mass, "volume": volume})
+                        "free": True, "mass": mass, "volume": volume})
             report.converted.append(f"point {p.id} (line {p.line}, {p.word}): free point "
                                     f"{graph.point_name(node)} joining line(s) "
                                     + ", ".join(map(str, sorted(graph.at[node.key]))))
@@ -125,7 +139,7 @@ def _mass_properties(graph: Graph, carrier: Carrier, report: ImportReport) -> di
     masses, buoy = [], []               # (mass, global point), (V, centre, A_wp, I, at)
     if carrier.key[0] == "body":
         body = scene.bodies[carrier.key[1]]
-        cg = carrier.to_global(body.cg)
+        cg = carrier.to_global(carrier.from_file(body.cg))
         masses.append((body.mass, cg))
         if body.volume:
             buoy.append((body.volume, cg, 0.0, 0.0, cg))
@@ -156,6 +170,18 @@ def _mass_properties(graph: Graph, carrier: Carrier, report: ImportReport) -> di
         g_cg = tuple(sum(m * p[i] for m, p in masses) / total for i in range(3))
         out["mass"] = total
         out["centre_of_gravity"] = _local(carrier, g_cg)
+    if scene.gravity == 0 or scene.water_density == 0:
+        # A weightless or dry MoorDyn test: no buoyancy; and without gravity no weight,
+        # which the case can only say with a negligible mass (it needs one for a body free
+        # in heave, roll or pitch).
+        if scene.gravity == 0:
+            out["mass"] = WEIGHTLESS_MASS
+            out.pop("centre_of_gravity", None)
+            report.converted.append(f"{carrier.name}: weightless (g 0): mass "
+                                    f"{WEIGHTLESS_MASS:g} kg")
+        out["hydrostatics"] = {"displaced_volume": 0.0, "metacentre": [0.0, 0.0, 0.0],
+                               "waterplane_area": 0.0}
+        return out
     volume = sum(v for v, *_ in buoy)
     if len(hull) == len(rods) and rods and not (body is not None and body.volume):
         out["hull"] = hull

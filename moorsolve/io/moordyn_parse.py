@@ -235,7 +235,9 @@ def parse_moordyn_text(text: str, path: str = "moordyn.dat") -> MoorDynFile:
                      "the rows after it, up to the next '---' line, are skipped, as MoorDyn "
                      "skips them")
 
-    missing = [k for k in ("line_types", "points", "lines") if k not in blocks]
+    # MoorDyn requires no section (a file of rods alone runs); a static case needs lines,
+    # and lines need their types.
+    missing = [k for k in ("lines", "line_types") if k not in blocks]
     if missing:
         title = TITLES[missing[0]]
         if unknown:
@@ -243,8 +245,10 @@ def parse_moordyn_text(text: str, path: str = "moordyn.dat") -> MoorDynFile:
             raise MoorDynError(name, number, f"unknown section {word!r}, and no {title} "
                                              f"section: MoorDyn skips sections it does not "
                                              f"know; name it '---------- {title} ----------'")
+        why = (" (MoorDyn runs a file without lines, rods alone for instance, but a static "
+               "case is held by its lines)" if missing[0] == "lines" else "")
         raise MoorDynError(name, None, f"missing section {title} (a header line such as "
-                                       f"'---------- {title} ----------')")
+                                       f"'---------- {title} ----------'){why}")
 
     tables, counts, sections = {}, {}, {}
     for kind in TABLE_SECTIONS:
@@ -391,12 +395,13 @@ def _version(name: str, blocks: dict, tables: dict, counts: dict) -> tuple:
         r2 = next(r for v, r in row_votes if v == 2)
         raise MoorDynError(name, blocks["lines"]["line"], f"the LINES rows disagree on the "
                                                           f"format version: {r1}, but {r2}")
-    if names_votes and rows and names_votes[0][0] not in rows:
-        raise MoorDynError(name, blocks["lines"]["line"],
-                           f"the LINES table mixes the format versions: {names_votes[0][1]}, "
-                           f"but {row_votes[0][1]}; MoorDyn reads the columns by position")
     if row_votes:
-        return row_votes[0][0], row_votes[0][1]
+        version, reason = row_votes[0]
+        if names_votes and names_votes[0][0] != version:
+            # MoorDyn never reads the column names: the rows decide.
+            names = names_votes[0][1].replace("the LINES column names", "its column names")
+            reason += f" ({names}, but MoorDyn reads the columns by position)"
+        return version, reason
     if names_votes:
         return names_votes[0]
     count_rows = [c for c in counts.values() if c is not None]

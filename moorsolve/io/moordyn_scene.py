@@ -38,7 +38,8 @@ from pathlib import Path
 from .moordyn_parse import MoorDynFile, Row, number_token
 
 __all__ = ["MDLineType", "MDRodType", "MDBody", "MDRod", "MDPoint", "MDLine", "MDScene",
-           "read_scene", "DEFAULT_GRAVITY", "DEFAULT_WATER_DENSITY", "KNOWN_OPTIONS"]
+           "read_scene", "vertical_force", "DEFAULT_GRAVITY", "DEFAULT_WATER_DENSITY",
+           "KNOWN_OPTIONS"]
 
 #: MoorDyn's defaults where a file leaves an option out: MoorDyn-C v2 and OpenFAST (the glue
 #: code's g and water density for MoorDyn-F, v1 and v2).
@@ -188,10 +189,11 @@ def _number(md: MoorDynFile, row: Row, index: int, column: str) -> float:
     return value
 
 
-def _ident(md: MoorDynFile, row: Row, index: int, column: str) -> int:
+def _ident(md: MoorDynFile, row: Row, index: int, column: str, least: int = 1) -> int:
     token = row.values[index]
-    if not re.fullmatch(r"\+?\d+", token) or int(token) < 1:
-        raise md.error(row.line, f"column {column!r}: {token!r} is not a positive whole number")
+    if not re.fullmatch(r"\+?\d+", token) or int(token) < least:
+        what = "a positive" if least == 1 else "a non-negative"
+        raise md.error(row.line, f"column {column!r}: {token!r} is not {what} whole number")
     return int(token)
 
 
@@ -389,7 +391,7 @@ def _rods(md: MoorDynFile, rod_types: dict, bodies: dict) -> dict:
                                      "CoupledPinned, Free")
         coords = [_number(md, row, 3 + i, c)
                   for i, c in enumerate(("Xa", "Ya", "Za", "Xb", "Yb", "Zb"))]
-        _ident(md, row, 9, "NumSegs")
+        _ident(md, row, 9, "NumSegs", least=0)     # 0: a zero-length, point-like rod
         rods[ident] = MDRod(id=ident, line=row.line, type=rod_types[tname], kind=kind,
                             word=word, body=body, end_a=tuple(coords[:3]),
                             end_b=tuple(coords[3:]), num_segs=row.values[9],
@@ -536,8 +538,9 @@ def _environment(md: MoorDynFile, points: dict, read: list, converted: list,
             continue
         if value is None or not math.isfinite(value):
             raise md.error(number, f"option {opt!r}: {token!r} is not a number")
-        if not value > 0:
-            raise md.error(number, f"option {opt!r}: {token!r} must be > 0")
+        if value < 0 or (key == "depth" and value == 0):
+            raise md.error(number, f"option {opt!r}: {token!r} must be "
+                                   f"{'> 0' if key == 'depth' else '>= 0'}")
         if key in where:
             converted.append(f"line {number}: {opt} {token} replaces the {key.replace('_', ' ')} "
                              f"given at line {where[key]} (MoorDyn keeps the last)")
@@ -583,6 +586,19 @@ def _source(md: MoorDynFile, key: str) -> str:
     found = [(n, line) for n, _, line in md.options if n.lower() in names]
     name, line = found[-1]
     return f"option {name} (line {line})"
+
+
+def vertical_force(point, scene) -> float:
+    """The steady vertical force FZ [N] on a free point (its horizontal FX, FY have no
+    place in a case)."""
+    fx, fy, fz = point.force
+    if point.kind != "free":
+        return 0.0
+    if fx or fy:
+        raise scene.file.error(point.line, f"free point {point.id}: a steady horizontal force "
+                                           f"(FX {fx:g}, FY {fy:g} N) has no counterpart in a "
+                                           "case; give 0")
+    return fz
 
 
 def read_scene(md: MoorDynFile) -> MDScene:
