@@ -63,7 +63,8 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
     if not (problem.n_q and problem.load_names):
         return x0
     p_rest = problem.parameters(case, 0.0)
-    key = b"rest:" + p_rest.tobytes()
+    # The loads do not act at rest (load factor 0): one rest state serves every load.
+    key = b"rest:" + np.where(problem.load_mask, 0.0, p_rest).tobytes()
     with problem.lock:
         cached = problem.start_cache.get(key)
         if cached is not None:

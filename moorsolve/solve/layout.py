@@ -165,6 +165,16 @@ class ParameterLayout:
         except KeyError:
             raise KeyError(f"no parameter {name!r} in this problem") from None
 
+    def load_mask(self) -> np.ndarray:
+        """True for every entry that only scales with the load factor (flow speeds and
+        headings, wave height, constant forces): the rest state does not depend on them."""
+        mask = np.zeros(self.size, dtype=bool)
+        for name, s in self.names.items():
+            if name.startswith("env.") and name != "env.load_factor" or \
+                    name.startswith("body[") and name.endswith("].force"):
+                mask[s] = True
+        return mask
+
     def index(self, name: str) -> int:
         s = self.slice(name)
         if s.stop - s.start != 1:

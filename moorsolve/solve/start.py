@@ -17,6 +17,7 @@ from ..model.build_network import end_position as case_end_position
 from ..physics.catenary import LegKind, initial_state, leg_profile
 from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
+from .lines import line_kinds as line_kind_list
 from .concurrency import LockedLRU
 
 #: Closed-form line states by scene (structure and parameters).
@@ -63,8 +64,13 @@ def scales(case: Case) -> tuple:
 
 
 def _state_key(case: Case) -> bytes:
+    from .layout import build_layout
     from .problem import structure_key
-    return repr(structure_key(case)).encode() + parameter_vector(case, 1.0).tobytes()
+    kinds = line_kind_list(case)
+    p = parameter_vector(case, 1.0, kinds)
+    # The closed forms do not depend on the loads.
+    mask = build_layout(case, kinds).load_mask()
+    return repr(structure_key(case)).encode() + np.where(mask, 0.0, p).tobytes()
 
 
 def rest_line_states(case: Case) -> list:
@@ -228,7 +234,8 @@ def initial_point(problem, case: Case) -> np.ndarray:
 
     Remembered per problem and parameters (in the problem's own cache, under its lock).
     """
-    key = b"start:" + parameter_vector(case, 1.0, problem.kinds).tobytes()
+    p = parameter_vector(case, 1.0, problem.kinds)
+    key = b"start:" + np.where(problem.load_mask, 0.0, p).tobytes()
     with problem.lock:
         cached = problem.start_cache.get(key)
     if cached is not None:
