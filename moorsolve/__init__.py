@@ -22,6 +22,7 @@ _NAMES = {
     "read_moordyn": ".io.moordyn", "moordyn_to_case_data": ".io.moordyn",
     "import_moordyn": ".io.moordyn", "MoorDynError": ".io.moordyn",
     "case_to_moordyn": ".io.moordyn_write", "export_moordyn": ".io.moordyn_write",
+    "import_moorpy": ".io.moorpy_yaml", "export_moorpy": ".io.moorpy_yaml",
     "Case": ".model.scene",
     "Certificate": ".solve.result", "LegResult": ".solve.result", "Result": ".solve.result",
     "sweep": ".studies.sweep",
@@ -61,5 +62,5 @@ __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certif
            "offset_envelope", "stiffness", "coupled_stiffness", "body_natural_periods",
            "restoring_curve", "natural_periods", "sensitivity", "optimise",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
-           "export_moordyn", "MoorDynError",
+           "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
            "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

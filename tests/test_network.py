@@ -510,3 +510,11 @@ def test_box_hull_heave_and_a_hull_pushed_out_of_its_exact_range():
     data["bodies"][0]["loads"] = {"force": [0, 0, -2.0e7, 4.0e7, 0, 0]}
     with pytest.raises(moorsolve.ConvergenceError, match="hull member 0"):
         solve(load_case(data))
+
+
+def test_three_platforms_with_bridles_and_shared_lines_agree_with_moorpy():
+    """The shipped multi-body case (15 lines, three bridles, six-DOF bodies on linear
+    hydrostatics) against MoorPy."""
+    result = _compare_with_moorpy(load_case(CASES / "three_platforms.yaml"))
+    assert len(result.bodies) == 3 and len(result.points) == 3
+    assert result.stability.stable

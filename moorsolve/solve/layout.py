@@ -150,18 +150,6 @@ def parameter_vector(case: Case, load_factor: float = 1.0, kinds=None) -> np.nda
 LOAD_FACTOR_INDEX = ENV_PARAMS.index("load_factor")
 
 
-def load_entries(layout: "ParameterLayout") -> np.ndarray:
-    """Mask of the entries that act on the problem only through the load factor: the flow
-    speeds, headings and wave height, the constant forces, the current profile and the
-    load factor itself (at load factor 0 the problem does not depend on them)."""
-    mask = np.zeros(layout.size, dtype=bool)
-    for name, where in layout.names.items():
-        if (name.startswith("env.") or name == "current.profile"
-                or (name.startswith("body[") and name.endswith("].force"))):
-            mask[where] = True
-    return mask
-
-
 @dataclass(frozen=True)
 class ParameterLayout:
     """Names of the entries of a problem's parameter vector, each with its slice.
@@ -180,6 +168,16 @@ class ParameterLayout:
             return self.names[name]
         except KeyError:
             raise KeyError(f"no parameter {name!r} in this problem") from None
+
+    def load_mask(self) -> np.ndarray:
+        """True for every entry that only scales with the load factor (flow speeds and
+        headings, wave height, constant forces): the rest state does not depend on them."""
+        mask = np.zeros(self.size, dtype=bool)
+        for name, s in self.names.items():
+            if name.startswith("env.") and name != "env.load_factor" or \
+                    name.startswith("body[") and name.endswith("].force"):
+                mask[s] = True
+        return mask
 
     def index(self, name: str) -> int:
         s = self.slice(name)

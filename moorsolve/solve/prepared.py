@@ -173,7 +173,7 @@ def load_mask(case) -> np.ndarray:
     hit = _MASKS.get(key)
     if hit is not None and hit[0] is kinds:
         return hit[1]
-    mask = layout.load_entries(layout.build_layout(case, kinds))
+    mask = layout.build_layout(case, kinds).load_mask()
     mask.setflags(write=False)
     _MASKS.put(key, (kinds, mask))
     return mask

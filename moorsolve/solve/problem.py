@@ -128,6 +128,8 @@ class EquilibriumProblem:
         self.n_x = len(scale)
         self.x_scale = np.array(scale, dtype=float)
         self.n_p = self.layout.size
+        #: Parameter entries that only scale with the load factor (not in the rest state).
+        self.load_mask = self.layout.load_mask()
         self.effects = self._effects()
         self._lock = threading.RLock()
         self._nlp_solvers = {}
