@@ -251,3 +251,40 @@ def test_rest_state_is_shared_by_loads_and_not_by_geometries():
     fresh = with_force(moorsolve.load_case(data), (1e6, 0.0, 0.0))
     assert_same_answer(moorsolve.solve(fresh, solver="newton"),
                        moorsolve.solve(longer, solver="newton"), 1e-12)
+
+
+# ---- the Newton path over the whole yaw range ---------------------------------------------
+
+
+@pytest.mark.parametrize("moment", [5e6, 1e7])
+def test_newton_follows_a_large_turn_without_ipopt(moment):
+    """The spar without its yaw spring turns 25 and 52 deg under these couples: the kernel
+    follows the load up in steps (no IPOPT fallback) to IPOPT's load-stepped answer."""
+    spar = moorsolve.load_case(SPAR)
+    body = dataclasses.replace(spar.bodies[0], stiffness=None,
+                               loads=BodyLoads(force=(3e5, 0.0, 0.0, 0.0, 0.0, moment)))
+    case = dataclasses.replace(spar, bodies=(body,))
+    ref = moorsolve.solve(case)
+    fast = moorsolve.solve(case, solver="newton")
+    assert fast.solver == "newton" and not fast.notes
+    assert abs(fast.bodies[0]["yaw_deg"]) > 20
+    assert_same_answer(ref, fast, 1e-8)
+
+
+def test_issue7_couple_is_followed_by_the_kernel():
+    """The layout of tests/test_hard_cases.py where a direct solve lands on a second
+    equilibrium (36.5 deg): the kernel's continuation ends on the quasi-static one."""
+    legs = [("L0", [144.888874, 38.822857], [4.829629, 1.294095, 0]),
+            ("L1", [-75, 129.903811], [-2.5, 4.330127, 0]),
+            ("L2", [-75, -129.903811], [-2.5, -4.330127, 0])]
+    data = {"environment": {"depth": 42, "current": {"speed": 1.0, "toward_deg": 248}},
+            "line_types": {"c": {"weight_in_water": 312, "ea": 1e8}},
+            "body": {"free": ["surge", "sway", "yaw"],
+                     "loads": {"force": [0, 0, 655200],
+                               "current": {"model": "drag", "area_x": 300, "area_y": 900,
+                                           "cx": 0.8, "cy": 1.0, "centre": [0, 0]}}},
+            "legs": [{"name": n, "anchor": a, "fairlead": f,
+                      "segments": [{"type": "c", "length": 166}]} for n, a, f in legs]}
+    result = moorsolve.solve(moorsolve.load_case(data), solver="newton")
+    assert result.solver == "newton"
+    assert result.body["yaw_deg"] == pytest.approx(20.83, abs=0.01)

@@ -33,6 +33,7 @@ from .cache import get_problem
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .prepared import geometry_key, per_case
+from .layout import LOAD_FACTOR_INDEX
 from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
@@ -208,14 +209,55 @@ def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
     stats["status"] = STATUS_TEXT[out["status"]]
     if certified and not (start is None and _turn_jump(problem, x0, out["x"])):
         return out["x"], notes
+    if start is None:
+        # A large turn (or no certified point) from rest: follow the load up from rest
+        # with the kernel, the quasi-static branch the IPOPT strategy's load steps follow.
+        x = _newton_continuation(problem, case, kernel, p_full, tol, stats)
+        if x is not None:
+            return x, notes
     if certified:
         notes.append("the Newton fast path turned a body more than "
-                     f"{math.degrees(YAW_JUMP):.0f} deg from rest; solved with IPOPT "
-                     "and load stepping to stay on the quasi-static branch")
+                     f"{math.degrees(YAW_JUMP):.0f} deg from rest and could not follow the "
+                     "load up in steps; solved with IPOPT and load stepping to stay on the "
+                     "quasi-static branch")
     else:
         notes.append(f"the Newton fast path did not certify ({stats['status']}); "
                      f"solved with IPOPT")
     return None, notes
+
+
+#: Load-factor steps of the kernel's continuation: the first and largest step, and the
+#: smallest before it gives up.
+_CONTINUATION_STEP = (0.25, 1.0 / 256)
+
+
+def _newton_continuation(problem, case, kernel, p_full, tol, stats):
+    """The load factor raised from 0 (the rest state) to 1 with the compiled kernel, each
+    step warm-started from the last, so the solve follows the quasi-static branch.
+
+    A step is accepted when it certifies and turns no body more than :data:`YAW_JUMP`
+    from the step before; otherwise it is halved (down to :data:`_CONTINUATION_STEP`'s
+    smallest). So a body that turns round under its load, by any angle, is followed in
+    turns of at most ``YAW_JUMP`` each. Returns the point at load factor 1, or None.
+    """
+    largest, smallest = _CONTINUATION_STEP
+    x = rest_point(problem, case, tol)
+    p = p_full.copy()
+    factor, step = 0.0, largest
+    while factor < 1.0:
+        target = min(1.0, factor + step)
+        p[LOAD_FACTOR_INDEX] = target
+        out = kernel.solve(x, p, tol)
+        stats["iterations"] += out["iterations"]
+        if _kernel_certified(problem, out, tol) and not _turn_jump(problem, x, out["x"]):
+            x, factor = out["x"], target
+            step = min(2.0 * step, largest)
+        else:
+            step /= 2.0
+            if step < smallest:
+                return None
+    stats["status"] = STATUS_TEXT[out["status"]]
+    return x
 
 
 def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
