@@ -14,10 +14,15 @@ from .common import (EXIT_INTERRUPTED, EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTEN
 
 def add_commands(sub) -> None:
     from ..model.paths import SET_SYNTAX
-    p = sub.add_parser("sweep", help="solve a grid of case edits; results to CSV or parquet")
+    p = sub.add_parser("sweep", help="solve a grid of case edits or a table of load cases; "
+                                     "results to CSV or parquet")
     p.add_argument("case", help="case file (YAML)")
-    p.add_argument("--set", action="append", required=True, dest="sets", metavar="PATH=VALUES",
+    p.add_argument("--set", action="append", dest="sets", metavar="PATH=VALUES",
                    help=f"one axis of the grid (repeat for more): {SET_SYNTAX}")
+    p.add_argument("--table", metavar="FILE", default=None,
+                   help="a load table (.csv or .parquet) instead of --set: one load case per "
+                        "row, columns named by case paths with an optional unit in brackets "
+                        "('environment.wind.speed [kn]')")
     p.add_argument("-o", "--output", required=True, help="results file (.csv or .parquet)")
     solver_option(p, default="newton")
     p.add_argument("--tol", type=tolerance, default=None)
@@ -64,19 +69,26 @@ def run_sweep(args) -> int:
     from ..io.sweep_output import check_output_path
     if args.resume and args.overwrite:
         return bad_input("--resume and --overwrite exclude each other")
+    if bool(args.sets) == bool(args.table):
+        return bad_input("sweep: give --set PATH=VALUES (a grid) or --table FILE (load cases)")
     try:
         check_output_path(args.output, "--output")
-        grid = {}
-        for text in args.sets:
-            path, values = parse_assignment(text)
-            if path in grid:
-                raise CaseError(f"--set {path}", "given twice; one --set per path")
-            grid[path] = values
+        grid, loads = None, None
+        if args.table:
+            from ..studies.load_table import read_table
+            loads = read_table(args.table)
+        else:
+            grid = {}
+            for text in args.sets:
+                path, values = parse_assignment(text)
+                if path in grid:
+                    raise CaseError(f"--set {path}", "given twice; one --set per path")
+                grid[path] = values
         case = load_case(args.case)
         progress = sys.stderr if (not args.quiet and sys.stderr.isatty()) else False
-        table = sweep(case, grid, solver=args.solver, tol=args.tol, workers=args.workers,
-                      output=args.output, resume=args.resume, overwrite=args.overwrite,
-                      scheduler=args.scheduler, progress=progress)
+        table = sweep(case, grid, table=loads, solver=args.solver, tol=args.tol,
+                      workers=args.workers, output=args.output, resume=args.resume,
+                      overwrite=args.overwrite, scheduler=args.scheduler, progress=progress)
     except CaseError as exc:
         return bad_input(_set_field(exc))
     except KeyboardInterrupt:
@@ -99,6 +111,8 @@ def _set_field(exc: CaseError) -> str:
     text = str(exc)
     if exc.field.startswith("grid['") and exc.field.endswith("']"):
         return f"--set {exc.field[6:-2]}" + text[len(exc.field):]
+    if exc.field.startswith("table"):
+        return "--table " + text
     if exc.field in ("output", "resume", "scheduler"):
         return f"--{exc.field}" + text[len(exc.field):]
     return text

@@ -207,7 +207,7 @@ def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
         stats["iterations"] += out["iterations"]
         certified = _kernel_certified(problem, out, tol)
     stats["status"] = STATUS_TEXT[out["status"]]
-    if certified and not (start is None and _turn_jump(problem, x0, out["x"])):
+    if certified and not (start is None and turn_jump(problem, x0, out["x"])):
         return out["x"], notes
     if start is None:
         # A large turn (or no certified point) from rest: follow the load up from rest
@@ -249,7 +249,7 @@ def _newton_continuation(problem, case, kernel, p_full, tol, stats):
         p[LOAD_FACTOR_INDEX] = target
         out = kernel.solve(x, p, tol)
         stats["iterations"] += out["iterations"]
-        if _kernel_certified(problem, out, tol) and not _turn_jump(problem, x, out["x"]):
+        if _kernel_certified(problem, out, tol) and not turn_jump(problem, x, out["x"]):
             x, factor = out["x"], target
             step = min(2.0 * step, largest)
         else:
@@ -290,14 +290,14 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
             return x
     x_rest = rest_point(problem, case, tol)
     x, ok = run(x_rest, p_full)
-    if ok and not _turn_jump(problem, x_rest, x):
+    if ok and not turn_jump(problem, x_rest, x):
         return x
     x_closed = initial_point(problem, case)
     if not ok and not np.array_equal(x_closed, x_rest):
         # A rest state can be a poor start (one line with nothing to pull against ends
         # slack at rest): try the closed-form state as well.
         x, ok = run(x_closed, p_full)
-        if ok and not _turn_jump(problem, x_closed, x):
+        if ok and not turn_jump(problem, x_closed, x):
             return x
     x_direct = x if ok else None
     # Load stepping from rest: each step starts from the last certified state.
@@ -336,7 +336,7 @@ def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback):
 YAW_JUMP = math.radians(10.0)
 
 
-def _turn_jump(problem, x_rest, x) -> bool:
+def turn_jump(problem, x_rest, x) -> bool:
     """Whether any free angle moved more than :data:`YAW_JUMP` from ``x_rest``."""
     for j, rotational in enumerate(problem.rotational):
         if rotational and abs(x[j] - x_rest[j]) * problem.x_scale[j] > YAW_JUMP:
@@ -498,5 +498,6 @@ def _diagnose(problem, case, result) -> str:
     return "; ".join(reasons)
 
 
-__all__ = ["solve", "rest_point", "polish", "over_mbl", "get_problem", "initial_point",
+__all__ = ["solve", "rest_point", "turn_jump", "polish", "over_mbl", "get_problem",
+           "initial_point",
            "SOLVERS", "YAW_JUMP"]

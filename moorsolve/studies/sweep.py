@@ -43,7 +43,7 @@ import numpy as np
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from ..solve.cache import get_problem
-from ..solve.equilibrium import solve
+from ..solve.equilibrium import rest_point, solve, turn_jump
 from ..solve.stability import assess
 from ..solve.start import initial_point
 from ..solve.layout import parameter_vector
@@ -57,11 +57,12 @@ _MAX_CHUNKS = 64
 _SOLVE_LOCK = threading.RLock()
 
 
-def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | None = None,
-          workers: int | None = None, output=None, resume: bool = False,
-          overwrite: bool = False, scheduler=None, progress=False,
+def sweep(case: Case, grid: Mapping | None = None, *, table=None, solver: str = "newton",
+          tol: float | None = None, workers: int | None = None, output=None,
+          resume: bool = False, overwrite: bool = False, scheduler=None, progress=False,
           chunk_size: int | None = None):
-    """Solve ``case`` at every point of the cartesian product of ``grid``.
+    """Solve ``case`` at every point of the cartesian product of ``grid``, or at every row
+    of a load ``table``.
 
     Parameters
     ----------
@@ -73,6 +74,10 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         case file would hold at that path (a number, a list, or a string with a unit).
         A tuple of paths maps to a list of tuples (a zipped axis: the paths change
         together).
+    table : pandas.DataFrame or mapping, optional
+        A load table instead of a grid (:mod:`moorsolve.studies.load_table`): each row a
+        load case, each column a case path with an optional unit in brackets
+        (``environment.wind.speed [kn]``). Validated by column, not by row.
     solver : {"newton", "ipopt"}
         ``"newton"`` (default): the compiled fast path, IPOPT for points it cannot
         certify. ``"ipopt"``: every point by :func:`moorsolve.solve` with IPOPT.
@@ -102,15 +107,16 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
     Returns
     -------
     pandas.DataFrame
-        One row per point in the product order of ``grid``, indexed by ``point`` (the
-        position in that order): the grid values, then ``converged``, ``reason``,
+        One row per point in the product order of ``grid`` (or per table row), indexed by
+        ``point`` (the position in that order): the grid values (the table's columns as
+        given), then ``converged``, ``reason``,
         ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
         ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
         ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. With ``output``
         it is the finished file read back (grid values that are not plain numbers are
         text there, lists as JSON).
     """
-    plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size)
+    plan = SweepPlan(case, grid, table=table, solver=solver, tol=tol, chunk_size=chunk_size)
     sink = None
     if output is not None:
         from ..io.sweep_output import open_sink
@@ -167,8 +173,9 @@ class SweepPlan:
     rebuilds it from :meth:`spec`).
     """
 
-    def __init__(self, case: Case, grid: Mapping, *, solver: str = "newton",
-                 tol: float | None = None, chunk_size: int | None = None):
+    def __init__(self, case: Case, grid: Mapping | None = None, *, table=None,
+                 solver: str = "newton", tol: float | None = None,
+                 chunk_size: int | None = None):
         from ..io import load_case
         from ..model.paths import with_values
 
@@ -177,9 +184,19 @@ class SweepPlan:
         if case.source is None:
             raise CaseError("case", "a sweep edits the case-file data; load the case with "
                                     "moorsolve.load_case (from a file or a dict)")
+        if (grid is None) == (table is None):
+            raise CaseError("grid", "give a grid of case paths or a load table (not both)")
         self.case, self.solver = case, solver
         self.grid = grid
-        self.axes = _axes(grid)
+        self.table = None
+        if table is not None:
+            from .load_table import TableAxis
+            self.table = TableAxis(table)
+            self.axes = [(tuple(self.table.paths), self.table.rows)]
+            self.labels = [tuple(self.table.headers)]
+        else:
+            self.axes = _axes(grid)
+            self.labels = [paths for paths, _ in self.axes]
         self.tol = case.solver.tol if tol is None else float(tol)
         self.shape = tuple(len(values) for _, values in self.axes)
         self.n_points = math.prod(self.shape)
@@ -187,37 +204,47 @@ class SweepPlan:
         self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
         self._with_values, self._load_case = with_values, load_case
 
-        # Each axis value validated once, as a case of its own.
-        axis_cases = []
-        for paths, values in self.axes:
-            cases = []
-            for value in values:
-                try:
-                    cases.append(load_case(with_values(case.source, _edits(paths, value)),
-                                           keep_source=False))
-                except CaseError as err:
-                    raise CaseError(f"grid[{_label(paths)!r}]",
-                                    f"value {value!r}: {err}") from None
-            axis_cases.append(cases)
-
         base_key = structure_key(case)
         base_vec = _point_vector(case)
-        fast = solver == "newton" and all(
-            structure_key(c) == base_key for cases in axis_cases for c in cases)
+        if self.table is not None:
+            # Validated by column (load_table), not row by row.
+            loads = np.concatenate([get_problem(case).load_mask,
+                                    np.zeros(len(case.legs), dtype=bool)])
+            vecs, same = self.table.vectors(case, _point_vector, structure_key, loads)
+            axis_vectors, same = [vecs], [same]
+        else:
+            # Each axis value validated once, as a case of its own.
+            axis_vectors, same = [], []
+            for paths, values in self.axes:
+                vecs, keys = [], []
+                for value in values:
+                    try:
+                        c = load_case(with_values(case.source, _edits(paths, value)),
+                                      keep_source=False)
+                    except CaseError as err:
+                        raise CaseError(f"grid[{_label(paths)!r}]",
+                                        f"value {value!r}: {err}") from None
+                    vecs.append(_point_vector(c))
+                    keys.append(structure_key(c) == base_key)
+                axis_vectors.append(np.array(vecs))
+                same.append(all(keys))
+
+        fast = solver == "newton" and all(same)
         masks = []
         if fast:
-            for cases in axis_cases:
-                vecs = np.array([_point_vector(c) for c in cases])
+            for vecs in axis_vectors:
                 masks.append(np.any(vecs != base_vec, axis=0))
             used = np.zeros_like(base_vec, dtype=bool)
             for m in masks:
                 fast &= not np.any(used & m)
                 used |= m
         self.fast = bool(fast)
-        self._axis_cases, self._masks, self._base_vec = axis_cases, masks, base_vec
+        self._axis_vectors, self._masks, self._base_vec = axis_vectors, masks, base_vec
 
         self.indices = list(itertools.product(*[range(n) for n in self.shape]))
-        order = [int(np.ravel_multi_index(idx, self.shape)) for idx in snake_order(self.shape)]
+        # A table's rows are solved in their order; a grid is walked in a snake.
+        order = list(range(self.n_points)) if self.table is not None else [
+            int(np.ravel_multi_index(idx, self.shape)) for idx in snake_order(self.shape)]
         if chunk_size is None:
             chunk_size = max(_MIN_CHUNK, -(-self.n_points // _MAX_CHUNKS))
         if int(chunk_size) < 1:
@@ -232,39 +259,55 @@ class SweepPlan:
 
     def spec(self) -> dict:
         """Plain data from which a worker rebuilds this plan."""
-        return {"source": self.case.source, "grid": _plain_grid(self.grid),
-                "solver": self.solver, "tol": self.tol, "chunks": self.chunks}
+        return {"source": self.case.source, "grid": self._plain_points(),
+                "table": self.table is not None, "solver": self.solver, "tol": self.tol,
+                "chunks": self.chunks}
 
     @classmethod
     def from_spec(cls, spec: dict) -> "SweepPlan":
         from ..io import load_case
-        grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
-        plan = cls(load_case(spec["source"]), grid, solver=spec["solver"], tol=spec["tol"])
+        if spec.get("table"):
+            table = dict(zip(spec["grid"]["columns"], zip(*spec["grid"]["rows"])))
+            plan = cls(load_case(spec["source"]), table=table, solver=spec["solver"],
+                       tol=spec["tol"])
+        else:
+            grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
+            plan = cls(load_case(spec["source"]), grid, solver=spec["solver"],
+                       tol=spec["tol"])
         plan.chunks = spec["chunks"]
         return plan
+
+    def _plain_points(self):
+        return self.table.plain() if self.table is not None else _plain_grid(self.grid)
 
     def fingerprint(self) -> dict:
         """What a resumed sweep must share with the one that wrote the file."""
         return {"case_sha256": _sha(self.case.source),
-                "grid_sha256": _sha(_plain_grid(self.grid)),
+                "grid_sha256": _sha(self._plain_points()),
                 "solver": self.solver, "tol": self.tol, "n_points": self.n_points}
 
     def grid_columns(self) -> list[str]:
-        return [p for paths, _ in self.axes for p in paths]
+        return [label for labels in self.labels for label in labels]
 
     def result_columns(self) -> list[str]:
         return list(_Table(0, self.names, self.body_names).columns())
 
     def grid_record(self) -> dict:
-        """The grid as plain data, for the record beside an output file."""
+        """The grid (or the load table) as plain data, for the record beside an output
+        file."""
+        if self.table is not None:
+            return {"table": self.table.plain()}
         return {_label(paths): _plain(values) for paths, values in self.axes}
 
     # -- solving ------------------------------------------------------------------------------
 
     def point_case(self, i: int) -> Case:
-        edits = {}
-        for (paths, values), k in zip(self.axes, self.indices[i]):
-            edits.update(_edits(paths, values[k]))
+        if self.table is not None:
+            edits = self.table.edits(i)
+        else:
+            edits = {}
+            for (paths, values), k in zip(self.axes, self.indices[i]):
+                edits.update(_edits(paths, values[k]))
         return self._load_case(self._with_values(self.case.source, edits), keep_source=False)
 
     def vectors(self) -> np.ndarray:
@@ -273,8 +316,7 @@ class SweepPlan:
             vectors[:] = self._base_vec
             index_array = np.array(self.indices, dtype=int).reshape(self.n_points,
                                                                     len(self.axes))
-            for k, (cases, mask) in enumerate(zip(self._axis_cases, self._masks)):
-                vecs = np.array([_point_vector(c) for c in cases])
+            for k, (vecs, mask) in enumerate(zip(self._axis_vectors, self._masks)):
                 vectors[:, mask] = vecs[index_array[:, k]][:, mask]
             self._vectors = vectors
         return self._vectors
@@ -286,7 +328,10 @@ class SweepPlan:
                 if self._x_rest is None:
                     self._problem = problem = get_problem(self.case)
                     _kernel_pool(problem)
-                    self._x_rest = initial_point(problem, self.case)
+                    # A table's rows start as single solves do: from the rest state.
+                    self._x_rest = (rest_point(problem, self.case, self.tol)
+                                    if self.table is not None
+                                    else initial_point(problem, self.case))
             self.vectors()
 
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
@@ -300,13 +345,14 @@ class SweepPlan:
             kernel = pool.acquire()
             try:
                 _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
-                            self.tol, self.case.body is not None)
+                            self.tol, self.case.body is not None, self.table is not None)
             finally:
                 pool.release(kernel)
             retry = np.flatnonzero(~table.done).tolist()
         else:
             retry = list(range(len(points)))
-        _solve_each(retry, points, table, self.point_case, self.tol)
+        _solve_each(retry, points, table, self.point_case, self.tol,
+                    self.table is not None and self.solver == "newton")
         return points, table.columns()
 
     # -- rows ---------------------------------------------------------------------------------
@@ -318,9 +364,9 @@ class SweepPlan:
 
         data = {}
         for k, (paths, values) in enumerate(self.axes):
-            for j, path in enumerate(paths):
+            for j, label in enumerate(self.labels[k]):
                 col = [_component(paths, values[self.indices[i][k]], j) for i in points]
-                data[path] = _file_values(path, self.axes[k], j, col) if for_file else col
+                data[label] = _file_values(label, self.axes[k], j, col) if for_file else col
         data.update(columns)
         if for_file:
             data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
@@ -492,22 +538,26 @@ def _kernel_pool(problem):
     return problem.kernel_pool()
 
 
-def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
+def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                from_rest=False):
+    """The kernel at every point: from the previous point's solution (a grid's snake), or
+    with ``from_rest`` from the rest state as a single solve starts (a load table's rows,
+    which need not be neighbours). A point that does not certify, is not clearly stable
+    or (from rest) turns a body far is left for a full solve."""
     n_p = problem.n_p
     # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
     check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
-        x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
+        p = vectors[i, :n_p]
+        x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, p, tol)
         ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
-        if not ok:
-            continue            # left for the IPOPT pass
-        if check_stability:
-            with problem.lock:
-                stable = assess(problem, x, vectors[i, :n_p]).stable
-            if not stable:
-                continue        # the full solve looks for the stable equilibrium
-        x_prev[:] = x
+        if not ok or (from_rest and turn_jump(problem, x_rest, x)):
+            continue            # left for the full solve
+        if check_stability and not _stable(problem, kernel, x, p):
+            continue            # the full solve looks for the stable equilibrium
+        if not from_rest:
+            x_prev[:] = x
         mbl = vectors[i, n_p:]
         over = np.maximum(tf, ta) > mbl
         table.done[row] = True
@@ -529,14 +579,27 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
                 for k in np.flatnonzero(over))
 
 
-def _solve_each(rows, points, table, point_case, tol):
-    """Full solves (IPOPT strategy), warm-started while the structure stays the same."""
+def _stable(problem, kernel, x, p) -> bool:
+    """Whether the kernel's point is a stable equilibrium: the kernel's own test, else the
+    full check (:func:`~moorsolve.solve.stability.assess`)."""
+    if kernel.compiled:
+        post = kernel.post(x, p)
+        if post["clearly_stable"].item() > 0.5:
+            return True
+    with problem.lock:
+        return assess(problem, x, p).stable
+
+
+def _solve_each(rows, points, table, point_case, tol, from_rest=False):
+    """Full solves (IPOPT strategy), warm-started while the structure stays the same; with
+    ``from_rest`` each point solved as on its own (Newton strategy, no warm start)."""
     previous = {}
     for row in rows:
         pc = point_case(int(points[row]))
         key = id(get_problem(pc))        # a state is only meaningful to its own problem
         try:
-            result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
+            result = solve(pc, tol=tol, solver="newton" if from_rest else "ipopt",
+                           start=None if from_rest else previous.get(key))
         except ConvergenceError as err:
             if err.result is not None and err.result.converged:
                 table.from_result(row, err.result, reason=err.reason)   # e.g. overload
