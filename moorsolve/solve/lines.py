@@ -53,6 +53,7 @@ constant (fully submerged); the seabed under a multi-segment line is flat.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Optional
 
 import casadi as ca
@@ -368,24 +369,37 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"], ea_inv=P["ea_inv"],
                 mu=P["friction"])
     if kind.lifted:
-        h = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
-        out = lifted_segment_function(block.elastic, False).call(dict(args, h=h))
+        args["h"] = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
+        fn = lifted_segment_function(block.elastic, False)
     elif block.sloped:
         # The seabed's rise per metre along the line, lower end toward upper end.
         args["t"] = seabed["gradient_x"] * ux + seabed["gradient_y"] * uy
-        out = sloped_leg_function(block.elastic, block.friction).call(args)
+        fn = sloped_leg_function(block.elastic, block.friction)
     else:
-        out = leg_function(block).call(args)
+        fn = leg_function(block)
+    out = fn.call(args)
     scale = 1.0 / P["length"]
     residuals = [out["rX"] * scale, out["rZ"] * scale]
-    J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
-                    ca.vertcat(xs[iu], xs[iu + 1])) / problem.force_scale
+    # The line's 2x2 block d(rX, rZ)/d(u, V), from the block's own derivative function
+    # (a Jacobian taken against the whole unknown vector costs O(lines) per line).
+    J = span_jacobian(fn).call(args)["J"]
     on_upper = ca.vertcat(-out["H"] * ux, -out["H"] * uy, -out["VF"])
     on_lower = ca.vertcat(out["HA"] * ux, out["HA"] * uy, out["VA"])
     row = dict(out, J=ca.reshape(J, 4, 1), X=X, Z=Z)
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(residuals, force_a, force_b, closing_force(J, out["rX"], out["rZ"]),
                      row, [], [])
+
+
+@lru_cache(maxsize=None)
+def span_jacobian(fn: ca.Function) -> ca.Function:
+    """``J = d(rX, rZ)/d(u, V)`` (2x2) of a catenary block function, same inputs."""
+    args = {name: ca.SX.sym(name, fn.size1_in(k), fn.size2_in(k))
+            for k, name in enumerate(fn.name_in())}
+    out = fn.call(args)
+    J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]), ca.vertcat(args["u"], args["V"]))
+    return ca.Function(fn.name() + "_span_jacobian", list(args.values()), [J],
+                       list(args), ["J"])
 
 
 def seabed_height(seabed, x, y):

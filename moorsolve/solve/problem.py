@@ -383,10 +383,16 @@ class EquilibriumProblem:
                 node_force.append(ca.fabs(value))
         g_all = ca.vertcat(*line_res, *node_res)
         self.residual = ca.Function("residual", [xs, p], [g_all])
-        self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g_all, xs)])
+        # In two parts: the lines' rows (each depends on its own unknowns and the nodes')
+        # and the nodes' rows (each depends on everything). CasADi colours each part
+        # with O(1) directions; the whole (dense rows and columns) would need O(lines).
+        jac = ca.vertcat(*[ca.jacobian(ca.vertcat(*rows), xs)
+                           for rows in (line_res, node_res) if rows])
+        if not (line_res or node_res):
+            jac = ca.SX(0, self.n_x)
+        self.jacobian = ca.Function("jacobian", [xs, p], [jac])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
-        self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
-                                             [g_all, ca.jacobian(g_all, xs)])
+        self.residual_jacobian = ca.Function("residual_jacobian", [xs, p], [g_all, jac])
 
         unbalanced = ca.vertcat(*generalized, *point_forces) if (generalized or point_forces) \
             else ca.SX(0, 1)
