@@ -12,6 +12,9 @@ from pathlib import Path
 import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
+# The suite compares compiled kernels with the reference: each first solve waits for its
+# compile (the default compiles in the background; tests/test_compile.py checks that).
+os.environ.setdefault("MOORSOLVE_COMPILE", "wait")
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "cases"

@@ -2,29 +2,42 @@
 
 Calling a CasADi ``Function`` from Python converts every argument to a ``DM`` and back,
 which costs tens of microseconds: more than a whole Newton solve of a 12-leg mooring. Here
-the function is generated to C (``Function.generate``), compiled with the system's C
-compiler into a shared library named by the hash of its source, and called through
-``ctypes`` with pointers into numpy buffers allocated once. ``ctypes`` releases the GIL
-during the call, so threads calling one library run on separate cores.
+the functions are generated to C (``CodeGenerator``), compiled with the system's C compiler
+into one shared library, and called through ``ctypes`` with pointers into numpy buffers
+allocated once. ``ctypes`` releases the GIL during the call, so threads calling one library
+run on separate cores.
 
-The cache lives in ``$MOORSOLVE_CACHE_DIR`` or ``~/.cache/moorsolve``. A library is written
-to a temporary name and renamed into place, so concurrent processes never load a partial
-file. When no compiler is available the caller falls back to the interpreted Function
-(the same arithmetic, slower); :func:`compile_function` returns ``None`` and logs why.
+The cache lives in ``$MOORSOLVE_CACHE_DIR`` or ``~/.cache/moorsolve``. A library is named
+by a *key*: the caller's structural key (:meth:`Library.__init__`: what decides the
+generated code, with moorsolve's own source and CasADi's version), so a cached library is
+found before any code is generated, or else the hash of the source. It is written to a
+temporary name and renamed into place, so concurrent processes never load a partial file.
+
+Compiling a problem of many lines takes seconds to minutes. By default it runs in the
+background (``MOORSOLVE_COMPILE=background``): the compiler is a separate process, the
+caller keeps using the interpreted Function (the same arithmetic, slower) and switches to
+the library when it is ready; a process that exits first leaves the compiler to finish
+into the cache for the next run. ``MOORSOLVE_COMPILE=wait`` waits instead, ``off`` (or the
+older ``MOORSOLVE_NO_COMPILE``) never compiles. Each compile is logged (INFO) when it
+starts and when it ends, with its duration. Without a compiler the Function runs
+interpreted and a warning says so.
 """
 
 from __future__ import annotations
 
 import ctypes
+import functools
 import hashlib
 import logging
 import os
+import queue
 import shlex
 import shutil
 import subprocess
 import sysconfig
 import tempfile
 import threading
+import time
 from pathlib import Path
 
 import casadi as ca
@@ -39,12 +52,21 @@ _FLAGS = ("-O2", "-fPIC", "-shared")
 _LARGE_SOURCE = 1_500_000
 _LOCK = threading.Lock()
 _LOADED: dict[str, ctypes.CDLL] = {}
+MODES = ("background", "wait", "off")
 
 
 def cache_dir() -> Path:
     """Where compiled libraries are kept."""
     root = os.environ.get("MOORSOLVE_CACHE_DIR")
     return Path(root) if root else Path.home() / ".cache" / "moorsolve"
+
+
+def compile_mode() -> str:
+    """``MOORSOLVE_COMPILE`` (background, wait or off; background by default)."""
+    if os.environ.get("MOORSOLVE_NO_COMPILE"):
+        return "off"
+    mode = os.environ.get("MOORSOLVE_COMPILE", "background").strip().lower()
+    return mode if mode in MODES else "background"
 
 
 def _compiler() -> list[str] | None:
@@ -58,54 +80,172 @@ def _compiler() -> list[str] | None:
     return None
 
 
+@functools.lru_cache(maxsize=None)
+def code_version() -> str:
+    """A hash of the code that builds the compiled graphs (moorsolve's solve/ and
+    physics/ sources) and of CasADi's version: part of every structural key."""
+    root = Path(__file__).resolve().parent.parent
+    digest = hashlib.sha256(ca.__version__.encode())
+    for folder in ("solve", "physics"):
+        for path in sorted((root / folder).glob("*.py")):
+            digest.update(path.name.encode() + path.read_bytes())
+    return digest.hexdigest()
+
+
 def compile_function(fn: ca.Function) -> "CompiledFunction | None":
-    """``fn`` as a compiled library, from the disk cache when it is there already."""
-    compiled = compile_functions([fn])
-    return None if compiled is None else compiled[0]
+    """``fn`` as a compiled library (waiting for it), from the disk cache when it is
+    there already."""
+    library = Library([fn], mode="wait" if compile_mode() != "off" else "off")
+    return library.instances()[0] if library.ready else None
 
 
 def compile_functions(fns: list) -> "list[CompiledFunction] | None":
-    """The functions ``fns`` compiled into one library (named after the first), from the
-    disk cache when it is there already; one :class:`CompiledFunction` each, or None."""
-    if os.environ.get("MOORSOLVE_NO_COMPILE"):
-        return None
-    name = fns[0].name()
-    cc = _compiler()
-    if cc is None:
-        log.warning("no C compiler found; %s runs interpreted", name)
-        return None
-    with tempfile.TemporaryDirectory() as tmp:
-        source = Path(tmp) / f"{name}.c"
+    """The functions ``fns`` compiled into one library (waiting for it); one
+    :class:`CompiledFunction` each, or None."""
+    library = Library(fns, mode="wait" if compile_mode() != "off" else "off")
+    return library.instances() if library.ready else None
+
+
+class Library:
+    """Functions compiled into one shared library, now or in the background.
+
+    Parameters
+    ----------
+    fns : list of casadi.Function
+        Dense inputs and outputs; the library is named after the first.
+    key : str, optional
+        What determines the generated code (a structural description, hashed with
+        :func:`code_version`): a cached library is then found without generating code.
+        Without it the library is named by the hash of its source.
+    mode : {"background", "wait", "off"}, optional
+        Defaults to :func:`compile_mode`.
+    label : str
+        How the log names what is compiled (``"the Newton kernel of 48 lines"``).
+
+    Attributes
+    ----------
+    ready : bool
+        The library is loaded; :meth:`instances` gives callable functions.
+    """
+
+    def __init__(self, fns: list, key: str | None = None, mode: str | None = None,
+                 label: str | None = None):
+        self.fns = list(fns)
+        self.name = self.fns[0].name()
+        self.label = label or self.name
+        self.ready = False
+        self.failed = False
+        self.path: Path | None = None
+        self._done = threading.Event()
+        mode = compile_mode() if mode is None else mode
+        cc = _compiler()
+        if mode == "off" or cc is None:
+            if cc is None and mode != "off":
+                log.warning("no C compiler found; %s runs interpreted", self.label)
+            self._finish(None)
+            return
+        if key is not None:
+            digest = hashlib.sha256((key + code_version()).encode()).hexdigest()[:20]
+            self.path = cache_dir() / f"{self.name}_s{digest}.so"
+            if self.path.exists():
+                self._finish(self.path)
+                return
+        tmp = tempfile.mkdtemp(prefix="moorsolve-")
+        source = Path(tmp) / f"{self.name}.c"
         gen = ca.CodeGenerator(source.name, {"with_header": False})
-        for fn in fns:
+        for fn in self.fns:
             gen.add(fn)
         gen.generate(tmp + os.sep)
         text = source.read_bytes()
         flags = _FLAGS if len(text) < _LARGE_SOURCE else ("-O1",) + _FLAGS[1:]
-        digest = hashlib.sha256(text + " ".join(cc + list(flags)).encode()
-                                + ca.__version__.encode()).hexdigest()[:20]
-        target = cache_dir() / f"{name}_{digest}.so"
-        with _LOCK:
-            if not target.exists():
-                try:
-                    _build(cc, flags, source, target)
-                except (OSError, subprocess.SubprocessError) as err:
-                    log.warning("compiling %s failed (%s); it runs interpreted", name, err)
-                    return None
-    return [CompiledFunction(fn, target) for fn in fns]
+        if self.path is None:
+            digest = hashlib.sha256(text + " ".join(cc + list(flags)).encode()
+                                    + ca.__version__.encode()).hexdigest()[:20]
+            self.path = cache_dir() / f"{self.name}_{digest}.so"
+        if self.path.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
+            self._finish(self.path)
+            return
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        fd, partial = tempfile.mkstemp(suffix=".so", dir=self.path.parent)
+        os.close(fd)
+        log.info("compiling %s with %s (%d kB of C; once per problem structure, cached in "
+                 "%s)%s", self.label, cc[0], len(text) // 1024, cache_dir(),
+                 "; solving interpreted meanwhile" if mode == "background" else "")
+        job = (self, [*cc, *flags, str(source), "-o", partial, "-lm"], partial, tmp)
+        if mode == "wait":
+            _compile(*job)
+        else:
+            _QUEUE.put(job)
+            _start_worker()
+
+    def _finish(self, path: Path | None) -> None:
+        if path is not None:
+            try:
+                with _LOCK:
+                    if str(path) not in _LOADED:
+                        _LOADED[str(path)] = ctypes.CDLL(str(path))
+                self.ready = True
+            except OSError as error:
+                log.warning("loading %s failed (%s); it runs interpreted", path, error)
+        self.failed = not self.ready
+        self._done.set()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Wait for a compile in progress; whether the library is ready."""
+        self._done.wait(timeout)
+        return self.ready
+
+    def instances(self) -> "list[CompiledFunction]":
+        """One :class:`CompiledFunction` per function (own buffers), once ready."""
+        if not self.ready:
+            raise RuntimeError(f"{self.name} is not compiled")
+        return [CompiledFunction(fn, self.path) for fn in self.fns]
 
 
-def _build(cc: list[str], flags: tuple, source: Path, target: Path) -> None:
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, partial = tempfile.mkstemp(suffix=".so", dir=target.parent)
-    os.close(fd)
+#: Background compiles, run one at a time by one worker thread (a checks run or a test
+#: suite meets many structures; compiling them all at once would swamp the machine).
+_QUEUE: "queue.Queue" = queue.Queue()
+_WORKER: list = []
+
+
+def _start_worker() -> None:
+    with _LOCK:
+        if not _WORKER or not _WORKER[0].is_alive():
+            worker = threading.Thread(target=_work, daemon=True, name="moorsolve-compile")
+            _WORKER[:] = [worker]
+            worker.start()
+
+
+def _work() -> None:
+    while True:
+        _compile(*_QUEUE.get())
+        _QUEUE.task_done()
+
+
+def _compile(library: Library, argv: list, partial: str, tmp: str) -> None:
+    """Run the compiler into ``partial``, rename it to the library's path and load it."""
+    started = time.perf_counter()
+    # One shell in its own session compiles, renames into place and tidies up: a compile
+    # still running when this process exits finishes into the cache for the next one.
+    script = (f"{shlex.join(argv)} && mv -f {shlex.quote(partial)} "
+              f"{shlex.quote(str(library.path))}; status=$?; rm -rf {shlex.quote(tmp)}; "
+              "exit $status")
     try:
-        subprocess.run([*cc, *flags, str(source), "-o", partial, "-lm"], check=True,
-                       capture_output=True, timeout=300)
-        os.replace(partial, target)
+        done = subprocess.run(["sh", "-c", script], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, start_new_session=True, timeout=3600)
+        if done.returncode != 0 or not library.path.exists():
+            raise OSError(done.stderr.decode(errors="replace").strip()[-500:]
+                          or f"exit status {done.returncode}")
+        log.info("compiled %s in %.1f s", library.label, time.perf_counter() - started)
+        library._finish(library.path)
+    except (OSError, subprocess.SubprocessError) as error:
+        log.warning("compiling %s failed (%s); it runs interpreted", library.label, error)
+        library._finish(None)
     finally:
         if os.path.exists(partial):
             os.unlink(partial)
+        shutil.rmtree(tmp, ignore_errors=True)
 
 
 class CompiledFunction:

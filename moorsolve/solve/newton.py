@@ -187,6 +187,15 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
                        ["x0", "p", "tol"], list(_OUTPUTS))
 
 
+def kernel_key(problem) -> str:
+    """What decides the kernel's generated code: the problem's structure, its scales and
+    sizes and the kernel's constants (:class:`.compiled.Library` adds the code version)."""
+    from .problem import structure_key
+    return repr((structure_key(problem.case), problem.force_scale, problem.length_scale,
+                 problem.moment_scale, problem.n_x, problem.n_p, MAX_ITERATIONS,
+                 _BACKTRACKS, _ARMIJO, STEP_LIMIT, _ARROW_NODES))
+
+
 #: Outputs of the kernel (:func:`newton_function`).
 _OUTPUTS = ("x", "status", "iterations", "certificate", "body", "fairlead_tension",
             "anchor_tension")
@@ -195,28 +204,42 @@ _OUTPUTS = ("x", "status", "iterations", "certificate", "body", "fairlead_tensio
 class NewtonKernel:
     """The Newton function of one problem, compiled when a C compiler is available.
 
-    ``compiled`` tells which: the compiled library is called through ctypes with no
-    per-call conversion; otherwise the same CasADi Function runs interpreted.
+    The compiled library is called through ctypes with no per-call conversion; until it
+    is ready (a first compile runs in the background, :class:`.compiled.Library`) and
+    without a compiler the same CasADi Function runs interpreted. ``compiled`` tells which
+    the next call uses; :meth:`wait_compiled` waits for a compile in progress.
     """
 
     def __init__(self, problem, *, compile: bool = True):
-        from .compiled import compile_functions
+        from .compiled import Library
 
         self.problem = problem
         self.function = newton_function(problem)
         # The problem's post function (certificate, stiffness, report) goes into the
         # same library: a solved point becomes a Result without an interpreted call.
-        libs = compile_functions([self.function, problem.post_function()]) if compile \
-            else None
-        self._lib, self._post = libs if libs is not None else (None, None)
-        self.compiled = self._lib is not None
+        self._library = Library(
+            [self.function, problem.post_function()], key=kernel_key(problem),
+            label=f"the Newton kernel of {problem.n_legs} lines",
+            mode=None if compile else "off")
+        self._lib = self._post = None
+
+    @property
+    def compiled(self) -> bool:
+        """Whether calls run the compiled library (switching to it once it is ready)."""
+        if self._lib is None and self._library.ready:
+            self._lib, self._post = self._library.instances()
+        return self._lib is not None
+
+    def wait_compiled(self, timeout: float | None = None) -> bool:
+        """Wait for a compile in progress; whether the kernel now runs compiled."""
+        self._library.wait(timeout)
+        return self.compiled
 
     def clone(self) -> "NewtonKernel":
         """A kernel over the same library with its own buffers, for another thread."""
         other = object.__new__(NewtonKernel)
-        other.problem, other.function, other.compiled = self.problem, self.function, self.compiled
-        other._lib = self._lib.clone() if self._lib is not None else None
-        other._post = self._post.clone() if self._post is not None else None
+        other.problem, other.function = self.problem, self.function
+        other._library, other._lib, other._post = self._library, None, None
         return other
 
     def post(self, x: np.ndarray, p: np.ndarray) -> dict:
@@ -231,7 +254,7 @@ class NewtonKernel:
     def raw(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
         """Run the kernel; its outputs in order, as views of this kernel's buffers
         (overwritten by the next call) when compiled. For tight loops."""
-        if self._lib is None:
+        if not self.compiled:
             return [np.asarray(v, dtype=float).ravel() for v in self.function(x0, p, tol)]
         lib = self._lib
         lib.inputs[0][:] = x0
@@ -243,7 +266,7 @@ class NewtonKernel:
     def solve(self, x0: np.ndarray, p: np.ndarray, tol: float) -> dict:
         """Run the kernel; the outputs as numpy arrays (copies) keyed by name."""
         names = _OUTPUTS
-        if self._lib is not None:
+        if self.compiled:
             lib = self._lib
             lib.inputs[0][:] = x0
             lib.inputs[1][:] = p
