@@ -156,3 +156,81 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
                 y[0] = sol.y[0, -1]
         y[2], y[3] = tx, 0.0
     return dict(X=-y[0], Z=-y[1], HA=y[2], VA=y[3], grounded=grounded)
+
+
+def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
+    """Integrate a line from its anchor end, for a line that may lie along a boundary.
+
+    Written for lines bounded by the free surface (a buoyant line, ``w < 0``), and general:
+    at the anchor the line pulls the anchor with ``(HA, VA)`` (``VA`` upward positive), so
+    the tension the rest of the line exerts at ``s = 0`` is ``(Tx, Tz) = (HA, VA)``; along a
+    suspended element ``dTz/ds = w`` as in :func:`integrate_leg`. Where ``Tz`` reaches zero
+    (the vertex, ``s_v = -VA / w``) and ``float_length > 0``, the line lies along a horizontal
+    boundary at the vertex's height for ``float_length`` (unstretched) metres: ``Tz = 0``,
+    ``dx/ds = 1 + Tx/EA``, ``Tx`` constant (no friction); then it is suspended again, with
+    ``Tz = w (s - s_v - float_length)``. A slack line (``HA = 0``) is laid straight along the
+    boundary (the loose part is the caller's business, as in :func:`integrate_leg`).
+
+    From the anchor this is an initial-value problem for a buoyant line: whether the vertex
+    lies on the surface is what the caller checks (it sets the anchor's depth to the
+    vertex height for a floating line).
+
+    Returns
+    -------
+    dict
+        ``X``, ``Z``: the far end relative to the anchor [m]; ``HF``, ``VF``: the force the
+        far end exerts on the line (``(Tx, Tz)`` at ``s = L``) [N]; ``z_vertex``,
+        ``x_vertex``: where ``Tz`` first vanishes (None if it does not within the line);
+        ``z_max``, ``z_min``: the highest and lowest heights reached; with ``n > 0`` also
+        ``s``, ``x``, ``z`` sampled at ``n`` points.
+    """
+    t_scale = max(math.hypot(HA, VA), abs(w) * L, 1e-300)
+    stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
+    scale = (L * (1.0 + stretch_max), t_scale)
+    c = 0.0 if ea is None else 1.0 / ea
+    rhs = _suspended_rhs(w, ea)
+    s_v = -VA / w if w != 0.0 else math.inf
+    has_vertex = 0.0 < s_v < L
+    s_f = min(s_v + float_length, L) if has_vertex and float_length > 0.0 else s_v
+
+    def tz(s):
+        """The vertical tension, exactly (it is linear between the breakpoints)."""
+        if not has_vertex or s <= s_v:
+            return VA + w * s
+        return 0.0 if s <= s_f else w * (s - s_f)
+
+    breaks = [0.0] + ([s_v, s_f] if has_vertex else []) + [L]
+    samples = np.linspace(0.0, L, n) if n else np.zeros(0)
+    xs, zs = np.full(samples.shape, np.nan), np.full(samples.shape, np.nan)
+    y = np.array([0.0, 0.0, float(HA), float(VA)])
+    heights = [0.0]
+    vertex = None
+    for s0, s1 in zip(breaks[:-1], breaks[1:]):
+        if s1 <= s0:
+            continue
+        inside = (samples >= s0) & (samples <= s1)
+        if has_vertex and s0 == s_v and s1 == s_f:
+            # On the boundary: horizontal, constant tension.
+            x0 = y[0]
+            xs[inside] = x0 + (samples[inside] - s0) * (1.0 + HA * c)
+            zs[inside] = y[1]
+            y = np.array([x0 + (s1 - s0) * (1.0 + HA * c), y[1], float(HA), 0.0])
+            continue
+        if inside.any():
+            sol = solve_ivp(rhs, (s0, s1), y, method="DOP853", rtol=RTOL,
+                            atol=[1e-16 * scale[0]] * 2 + [1e-16 * scale[1]] * 2,
+                            t_eval=samples[inside])
+            xs[inside], zs[inside] = sol.y[0], sol.y[1]
+        y = _integrate(rhs, s0, s1, y, scale)
+        y[2], y[3] = HA, tz(s1)
+        # Tz keeps its sign inside a piece, so the height is monotone there: the extremes
+        # are at the breakpoints.
+        heights.append(y[1])
+        if has_vertex and s1 == s_v:
+            vertex = (y[0], y[1])
+    out = dict(X=y[0], Z=y[1], HF=float(HA), VF=tz(L), z_max=max(heights),
+               z_min=min(heights), x_vertex=None if vertex is None else vertex[0],
+               z_vertex=None if vertex is None else vertex[1])
+    if n:
+        out.update(s=samples, x=xs, z=zs)
+    return out

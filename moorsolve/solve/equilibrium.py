@@ -27,8 +27,9 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from ..physics.catenary import (LegKind, initial_state, leg_profile, segment_profile,
-                                sloped_leg_profile)
+from ..physics.catenary import LegKind, initial_state
+from ..physics.profile import (leg_profile, segment_profile, single_leg_profile,
+                               surface_segment_profile)
 from ..physics.wall_tension import wall_tension
 from .newton import STATUS_TEXT
 from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
@@ -106,8 +107,11 @@ def _compute_rest_leg_states(case: Case):
             states.append(initial_state(kind, X, Z, leg.length, w, None))
             continue
         lt = leg.line_type
-        states.append(initial_state(leg_kind(case, leg), X, Z, leg.length,
-                                    lt.weight_in_water, lt.ea))
+        kind = leg_kind(case, leg)
+        gap = (leg.anchor[2] + case.environment.depth if kind.lifted
+               else -leg.anchor[2] if kind.surface and not kind.from_fairlead else 0.0)
+        states.append(initial_state(kind, X, Z, leg.length, lt.weight_in_water, lt.ea,
+                                    max(gap, 0.0)))
     return states
 
 
@@ -485,23 +489,21 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
                                           float(xp[problem.leg_offsets[i]]), p, i))
             continue
         H, VF, HA, VA, grounded, susp_x, _, _, X, Z, gx, gy = (float(v) for v in row[:12])
+        floating = float(row[18])
         lt = leg.line_type
         u = float(xp[problem.leg_offsets[i]])
         start_i = len(ENV_PARAMS) + i * n_par
         anchor = tuple(float(v) for v in p[start_i: start_i + 3])
         fairlead = (gx, gy, leg.fairlead[2])
         ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
-        td = max(X - susp_x, 0.0) if grounded > 0 else 0.0
-        slope = 0.0
-        if kind.sloped:
-            slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
-            prof = sloped_leg_profile(H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
-                                      mu=env.seabed.friction if kind.friction else 0.0,
-                                      t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
-        else:
-            prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water,
-                               ea=lt.ea, mu=env.seabed.friction if kind.friction else 0.0,
-                               X=X, Z=Z, n=_PROFILE_POINTS)
+        # Where the line meets the seabed (or the surface) toward the fairlead.
+        td = max(X - susp_x, 0.0) if grounded > 0 or floating > 0 else 0.0
+        slope = (env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy) if kind.sloped \
+            else 0.0
+        prof = single_leg_profile(kind, H=H, VF=VF, VA=VA, L=leg.length, w=lt.weight_in_water,
+                                  ea=lt.ea, mu=env.seabed.friction, X=X, Z=Z,
+                                  anchor_z=anchor[2], fairlead_z=fairlead[2], depth=env.depth,
+                                  slope=slope, n=_PROFILE_POINTS)
         profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
                    "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
         if lt.sealed and lt.diameter:
@@ -518,7 +520,7 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
             # it pulls down-slope), the tension is the whole pull.
             fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA),
             anchor_horizontal_N=HA, anchor_vertical_N=max(VA, 0.0) if kind.sloped else VA,
-            grounded_length_m=grounded, touchdown_from_anchor_m=td,
+            grounded_length_m=grounded, touchdown_from_anchor_m=td if grounded > 0 else 0.0,
             # Slack: no horizontal tension and line loose on the seabed (or, for a
             # weightless line, longer than its chord); a vertical taut leg is not slack.
             uplift=bool(uplift), slack=bool(u < 0.0 or (H == 0.0 and grounded > 0.0)),
@@ -526,8 +528,10 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
             fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
             anchor=anchor, fairlead=fairlead,
             touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td,
-                              anchor[2] + slope * td) if grounded > 0 else None),
-            mbl_N=lt.mbl, profile=profile))
+                              env.seabed_z(anchor[0] + ux * td, anchor[1] + uy * td))
+                             if grounded > 0 else None),
+            mbl_N=lt.mbl, profile=profile, floating_length_m=floating,
+            touchup_from_anchor_m=td if floating > 0 else 0.0))
     table = np.atleast_2d(legs_out)
     legs = [dataclasses.replace(lr, fairlead_force=(float(table[i][12]), float(table[i][13]),
                                                     -lr.fairlead_vertical_N))
@@ -589,11 +593,22 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                                n=_PROFILE_POINTS)
         elif k == len(rows) - 1 and kind.reversed_top:
             # Solved from the fairlead end: draw it from there, then turn it round.
-            back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water,
-                                   ea=lt.ea, h=max(leg.fairlead[2] + env.depth, 0.0),
-                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+            if sk.block == "floating":
+                back = surface_segment_profile(
+                    H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water, ea=lt.ea,
+                    d=max(-leg.fairlead[2], 0.0), X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+            else:
+                back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length,
+                                       w=lt.weight_in_water, ea=lt.ea,
+                                       h=max(leg.fairlead[2] + env.depth, 0.0),
+                                       X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
             prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
                     "tension": back["tension"][::-1]}
+        elif sk.block == "floating":
+            prof = surface_segment_profile(H=r["H"], V=r["VF"], L=seg.length,
+                                           w=lt.weight_in_water, ea=lt.ea,
+                                           d=max(-r["lower_z"], 0.0), X=r["X"], Z=r["Z"],
+                                           n=_PROFILE_POINTS)
         else:
             prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                    ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
@@ -608,6 +623,7 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                          "top_tension_N": top, "bottom_tension_N": bottom,
                          "horizontal_tension_N": r["H"], "top_vertical_N": r["VF"],
                          "bottom_vertical_N": r["VA"], "grounded_length_m": r["grounded"],
+                         "floating_length_m": r["floating"],
                          "max_tension_N": float(np.max(prof["tension"])),
                          "utilisation": (float(np.max(prof["tension"])) / lt.mbl
                                          if lt.mbl else None)})
@@ -619,11 +635,18 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                            "on_seabed": bool(rows[k - 1]["joint_reaction"] > 0
                                              or r["lower_h"] <= 0),
                            "seabed_reaction_N": max(rows[k - 1]["joint_reaction"], 0.0),
+                           # The surface holds a joint down (a negative reaction).
+                           "on_surface": bool(rows[k - 1]["joint_reaction"] < 0
+                                              or r["lower_z"] >= 0),
+                           "surface_reaction_N": max(-rows[k - 1]["joint_reaction"], 0.0),
                            "clump_weight_N": clump.weight if clump is not None else 0.0})
     td = _anchor_touchdown(rows, leg, kind)
     xs = np.concatenate(parts["x"])
     profile = {"x_m": anchor[0] + ux * xs, "y_m": anchor[1] + uy * xs,
                "z_m": np.concatenate(parts["z"]), "tension_N": np.concatenate(parts["tension"])}
+    floating = float(row[18])
+    at_surface = np.flatnonzero(profile["z_m"] >= -1e-9 * max(env.depth, 1.0))
+    touchup = float(xs[at_surface[0]]) if floating > 0 and at_surface.size else 0.0
     first = rows[0]
     uplift = VA > 0 and first["grounded"] <= 0
     mbl = min((seg.line_type.mbl for seg in leg.segments if seg.line_type.mbl), default=None)
@@ -639,7 +662,8 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
         anchor=anchor, fairlead=fairlead,
         touchdown_point=((anchor[0] + ux * td, anchor[1] + uy * td, anchor[2] + 0.0)
                          if td is not None else None),
-        mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints))
+        mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints),
+        floating_length_m=floating, touchup_from_anchor_m=touchup)
 
 
 def _line_load(case: Case, leg) -> tuple:
@@ -735,7 +759,8 @@ def _discrete_leg_result(case, leg, kind, row, nodes, p, i) -> LegResult:
     VA = max(VA_raw, 0.0) if on_bed else VA_raw
     td = X - susp_x if (on_bed and flags[1]) else None
     profile = {"x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
-               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy()}
+               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy(),
+               "surface_reaction_N": nodes[:, 8].copy()}
     segments, joints = [], []
     start = 0
     for k, (seg, m) in enumerate(zip(leg.segments, kind.elements)):
@@ -774,7 +799,12 @@ def _discrete_leg_result(case, leg, kind, row, nodes, p, i) -> LegResult:
                          if td is not None else None),
         mbl_N=mbl, profile=profile,
         segments=tuple(segments) if leg.multi_segment else (),
-        joints=tuple(joints))
+        joints=tuple(joints), floating_length_m=float(row[18]),
+        touchup_from_anchor_m=(float(np.hypot(nodes[np.argmax(nodes[:, 9] > 0.5), 2]
+                                              - anchor[0],
+                                              nodes[np.argmax(nodes[:, 9] > 0.5), 3]
+                                              - anchor[1]))
+                               if np.any(nodes[:, 9] > 0.5) else 0.0))
 
 
 def _anchor_touchdown(rows, leg, kind):

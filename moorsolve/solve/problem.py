@@ -54,8 +54,10 @@ import numpy as np
 
 from ..model import DEGREES_OF_FREEDOM, Case, Leg
 from . import body_loads as body_load_models
-from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
-                                sloped_leg_function, straight_segment_function)
+from ..physics.catenary import (LegKind, descent_force, leg_function,
+                                lifted_segment_function, sloped_leg_function,
+                                straight_segment_function, surface_leg_function,
+                                surface_segment_function)
 
 #: Environment parameter layout (angles in radians).
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
@@ -78,7 +80,7 @@ SEABED_PARAMS = ("depth", "gradient_x", "gradient_y")
 #: reaction of the joint at its top [N] (0 for the top segment), and its mismatch as a force.
 SEGMENT_COLUMNS = ("leg", "segment", "H", "VF", "HA", "VA", "grounded", "suspended_x",
                    "descent_x", "rX", "rZ", "X", "Z", "lower_h", "lower_xi", "lower_z",
-                   "joint_unbalanced", "joint_reaction", "mismatch_N")
+                   "joint_unbalanced", "joint_reaction", "mismatch_N", "floating")
 
 #: Yaw is bounded to keep the solver away from the mirrored equilibrium with the lines
 #: crossing under the hull (yaw near 180 deg, REFERENCE.md section 1).
@@ -209,7 +211,17 @@ def leg_kind(case: Case, leg: Leg):
     contact = _on_seabed(case, leg) and w > 0
     return LegKind(elastic=lt.elastic, contact=contact,
                    friction=contact and case.environment.seabed.friction > 0,
-                   neutral=(w == 0), sloped=contact and case.environment.seabed.sloped)
+                   neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
+                   # The seabed bounds a sinking line from an anchor above a flat seabed too,
+                   # and the free surface bounds every buoyant line (solved from the fairlead
+                   # when that lies at or above the surface).
+                   lifted=w > 0 and not contact and not case.environment.seabed.sloped,
+                   surface=w < 0, from_fairlead=w < 0 and _at_surface(leg.fairlead[2]))
+
+
+def _at_surface(z: float) -> bool:
+    """Whether a point at height ``z`` [m] is at or above the still-water level."""
+    return z >= -1e-9
 
 
 def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
@@ -220,14 +232,16 @@ def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
         if w == 0:
             kinds.append(SegmentKind("straight", lt.elastic))
         elif w < 0:
-            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False)))
+            # Bounded by the free surface, which may hold the joint above it down.
+            kinds.append(SegmentKind("floating", lt.elastic))
         else:
             # Friction acts on the anchor segment's grounded length only (README).
             friction = k == 0 and _on_seabed(case, leg) and case.environment.seabed.friction > 0
             kinds.append(SegmentKind("lifted", lt.elastic, friction=friction))
     fairlead_on_seabed = leg.fairlead[2] <= -case.environment.depth + 1e-9
-    return MultiLegKind(tuple(kinds), reversed_top=fairlead_on_seabed and kinds[-1].block
-                        == "lifted")
+    return MultiLegKind(tuple(kinds), reversed_top=(
+        (fairlead_on_seabed and kinds[-1].block == "lifted")
+        or (_at_surface(leg.fairlead[2]) and kinds[-1].block == "floating")))
 
 
 def structure_key(case: Case) -> tuple:
@@ -276,7 +290,8 @@ def segment_parameters(case: Case) -> np.ndarray:
     kinds = [leg_kind(case, leg) for leg in case.legs]
     multi = [leg for leg, k in zip(case.legs, kinds) if isinstance(k, MultiLegKind)]
     discrete = [leg for leg, k in zip(case.legs, kinds) if isinstance(k, DiscreteLegKind)]
-    if not multi and not discrete and not case.environment.seabed.sloped:
+    lifted = any(isinstance(k, LegKind) and k.lifted for k in kinds)
+    if not multi and not discrete and not lifted and not case.environment.seabed.sloped:
         return np.zeros(0)
     values = [case.environment.depth, *case.environment.seabed.gradient]
     for leg in multi:
@@ -368,8 +383,12 @@ class EquilibriumProblem:
             effects.append("elastic")
         if not all(k.elastic for k in self.kinds):
             effects.append("inextensible")
-        if any(k.contact for k in self.kinds):
+        if any(k.contact or getattr(k, "lifted", False) for k in self.kinds):
             effects.append("seabed_contact")
+        if any(getattr(k, "surface", False) or any(
+                s.block == "floating" for s in getattr(k, "segments", ()))
+               for k in self.kinds):
+            effects.append("surface_contact")
         if any(k.friction for k in self.kinds):
             effects.append("seabed_friction")
         if any(getattr(k, "sloped", False) for k in self.kinds):
@@ -468,6 +487,14 @@ class EquilibriumProblem:
                     # The seabed's rise per metre along the leg, anchor toward fairlead.
                     args["t"] = (seabed["gradient_x"] * dx + seabed["gradient_y"] * dy) / X
                     out = sloped_leg_function(kind.elastic, kind.friction).call(args)
+                elif kind.surface:
+                    # Depth below the surface of the end the block starts from.
+                    start_z = P["fair_z"] if kind.from_fairlead else P["anchor_z"]
+                    args["d"] = ca.fmax(-start_z, 0)
+                    out = surface_leg_function(kind.elastic, kind.from_fairlead).call(args)
+                elif kind.lifted:
+                    args["h"] = ca.fmax(P["anchor_z"] + seabed["depth"], 0)
+                    out = lifted_segment_function(kind.elastic).call(args)
                 else:
                     out = leg_function(kind).call(args)
                 scale = 1.0 / P["length"]
@@ -493,7 +520,8 @@ class EquilibriumProblem:
             line_weights.append(ca.fabs(P["weight"]) * P["length"])
             leg_out.append(ca.vertcat(row["H"], row["VF"], row["HA"], row["VA"],
                                       row["grounded"], row["suspended_x"], row["rX"],
-                                      row["rZ"], X, Z, gx, gy, fx, fy, row["J"]))
+                                      row["rZ"], X, Z, gx, gy, fx, fy, row["J"],
+                                      row.get("floating", 0 * H)))
 
         loads = {}
         if case.body is not None:
@@ -593,15 +621,7 @@ class EquilibriumProblem:
         xi = [x[iu + 2 + 2 * j] for j in range(nj)]
         sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
         z_bed = -seabed["depth"]
-        Vs, N = [], []
-        for j in range(nj):
-            if _can_ground(kind.segments[j]):
-                Vs.append(ca.fmax(sigma[j], 0))
-                N.append(ca.fmax(-sigma[j], 0))
-            else:
-                Vs.append(sigma[j])
-                N.append(0 * sigma[j])
-        Vs.append(V_top)
+        Vs, N = [None] * nj + [V_top], []
         node_xi = [0] + xi + [X]
         node_z = [P["anchor_z"]]
         outs, res, mismatch = [], [], []
@@ -612,15 +632,24 @@ class EquilibriumProblem:
             # equation defines it instead of being a residual.
             Zk = P["fair_z"] - node_z[k] if top else 0
             h = ca.fmax(node_z[k] - z_bed, 0)
+            d = ca.fmax(-node_z[k], 0)          # depth below the surface
             if top and kind.reversed_top:
-                # Solved from the fairlead (on the seabed) toward the joint below.
+                # Solved from the fairlead (on the seabed, or at the surface for a
+                # floating top segment) toward the joint below.
                 Zk = node_z[k] - P["fair_z"]
                 h = ca.fmax(P["fair_z"] - z_bed, 0)
+                d = ca.fmax(-P["fair_z"], 0)
             L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
+            if not top:
+                Vs[k], Nk = _joint_split(sk, sigma[k], u, L, w, c if sk.elastic else 0, h, d)
+                N.append(Nk)
             if sk.block == "leg":
                 o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
                                                    ea_inv=c, mu=P["friction"]))
                 o["descent_x"] = 0 * u
+            elif sk.block == "floating":
+                o = surface_segment_function(sk.elastic).call(dict(
+                    X=Xk, Z=Zk, h=d, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=0))
             elif sk.block == "lifted":
                 o = lifted_segment_function(sk.elastic, sk.friction).call(dict(
                     X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"]))
@@ -663,15 +692,17 @@ class EquilibriumProblem:
             worst = ca.fmax(worst, m)
         top, bottom = outs[-1][0], outs[0][0]
         grounded = sum((o["grounded"] for o, _, _, _ in outs), 0 * u)
+        floating = sum((o.get("floating", 0 * u) for o, _, _, _ in outs), 0 * u)
         row = dict(H=top["H"], VF=top["VF"], HA=bottom["HA"], VA=bottom["VA"],
                    grounded=grounded, suspended_x=top["suspended_x"], rX=worst, rZ=0 * u,
-                   J=ca.DM([1.0, 0.0, 0.0, 1.0]))
+                   J=ca.DM([1.0, 0.0, 0.0, 1.0]), floating=floating)
         rows = []
         for k, (o, Xk, Zk, h) in enumerate(outs):
             rows.append(ca.vertcat(
                 i, k, o["H"], o["VF"], o["HA"], o["VA"], o["grounded"], o["suspended_x"],
                 o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
-                joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k]))
+                joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k],
+                o.get("floating", 0 * u)))
         return res, row, rows
 
     def _discrete_leg(self, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z):
@@ -714,10 +745,36 @@ class EquilibriumProblem:
         for i, d in enumerate(self.free):
             if d == "yaw":
                 lb[i], ub[i] = -YAW_LIMIT, YAW_LIMIT
-        for i, kind in enumerate(self.kinds):
-            if not kind.contact and not kind.neutral:
-                lb[self.leg_offsets[i]] = 0.0   # a hanging catenary cannot go slack
+        # No bound on a leg's u: every block continues its spans monotonically for u < 0
+        # (loose line on a boundary, or for a line with nothing to lie on no root there),
+        # so H = max(u, 0) = 0 is an interior root, not a bound IPOPT must reach.
         return lb, ub
+
+
+def _joint_split(kind: SegmentKind, sigma, u, L, w, c, h, d):
+    """The top tension ``V`` of the segment below a joint and the boundary's reaction on
+    the joint [N, upward], from the joint's signed unknown ``sigma``.
+
+    A sinking segment arrives at a joint on the seabed along it (``V = 0``) and the seabed
+    pushes the joint up: ``V = max(sigma, 0)``, ``N = max(-sigma, 0)``; a buoyant segment
+    mirrors it at the surface (``V = min(sigma, 0)``, ``N = -max(sigma, 0)``). The split is
+    offered only where the segment, hanging with ``V = 0`` from its lower end (``h`` above
+    the seabed, or ``d`` below the surface), reaches the boundary at all; otherwise ``V =
+    sigma`` and no reaction. Without that condition a state with the segment's vertex at the
+    joint, clear of the boundary, and a reaction holding the joint there would satisfy every
+    equation: a false root the solver can fall into.
+    """
+    if kind.block == "lifted":
+        V1 = descent_force(ca.fmax(u, 0), h, w, c)
+        reaches = w * L > -V1
+        return (ca.if_else(reaches, ca.fmax(sigma, 0), sigma),
+                ca.if_else(reaches, ca.fmax(-sigma, 0), 0))
+    if kind.block == "floating":
+        V1 = descent_force(ca.fmax(u, 0), d, -w, c)
+        reaches = -w * L > -V1
+        return (ca.if_else(reaches, ca.fmin(sigma, 0), sigma),
+                ca.if_else(reaches, -ca.fmax(sigma, 0), 0))
+    return sigma, 0 * sigma
 
 
 def _closing_force(J, rX, rZ):

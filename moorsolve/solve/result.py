@@ -54,7 +54,10 @@ class LegResult:
     weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
     segment utilisation. ``fairlead_force`` is the force [N] the line exerts on its
     fairlead, global ``(Fx, Fy, Fz)``: along the leg's plane for an analytic leg, with a
-    sideways part for a line in a current.
+    sideways part for a line in a current. ``floating_length_m`` is the unstretched length
+    floating on the free surface (a buoyant line, the analogue of ``grounded_length_m``) and
+    ``touchup_from_anchor_m`` the horizontal distance from the anchor at which the line first
+    reaches the surface (0 when nothing floats).
     """
 
     name: str
@@ -78,6 +81,8 @@ class LegResult:
     segments: tuple = ()
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
+    floating_length_m: float = 0.0
+    touchup_from_anchor_m: float = 0.0
 
     @property
     def utilisation(self) -> Optional[float]:
@@ -100,6 +105,8 @@ class LegResult:
             "anchor_vertical_N": self.anchor_vertical_N,
             "grounded_length_m": self.grounded_length_m,
             "touchdown_from_anchor_m": self.touchdown_from_anchor_m,
+            "floating_length_m": self.floating_length_m,
+            "touchup_from_anchor_m": self.touchup_from_anchor_m,
             "uplift": self.uplift,
             "slack": self.slack,
             "uplift_angle_deg": self.uplift_angle_deg,
