@@ -79,6 +79,7 @@ def format_check_table(report: CheckReport) -> str:
                  f"conditions pass ({report.time_s:.2f} s)")
     for failure in failures:
         lines.append(f"  failed: {failure}")
+    lines += [f"WARNING: {w['condition']}: {w['message']}" for w in report.warnings]
     return "\n".join(lines)
 
 
@@ -140,6 +141,10 @@ def render_html(report: CheckReport, case, images: dict) -> str:
              (f'<p class="{verdict.lower()}">Result: <b>{verdict}</b>: '
               f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
               f"conditions pass under {_e(report.standard)} (quasi-static analysis).</p>")]
+    if report.warnings:
+        parts.append('<div class="fail"><p>Warnings:</p><ul>' + "".join(
+            f"<li>{_e(w['condition'])}: {_e(w['message'])}</li>" for w in report.warnings)
+            + "</ul></div>")
 
     # 1. Case summary.
     parts.append("<h2>1. Case</h2>")

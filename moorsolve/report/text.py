@@ -46,6 +46,8 @@ def format_table(result: Result) -> str:
         state = "slack" if leg.slack else ("uplift" if leg.uplift else
                                            ("touchdown" if leg.grounded_length_m > 0
                                             else "suspended"))
+        if leg.floating_length_m > 0:
+            state += ", floating"
         util = f"{leg.utilisation:.2f}" if leg.utilisation is not None else "-"
         lines.append(
             f"{leg.name:<8}{leg.fairlead_tension_N / 1e3:11.2f}"
@@ -54,4 +56,6 @@ def format_table(result: Result) -> str:
             f"{leg.grounded_length_m:12.2f}{util:>7}  {state}")
     for note in result.notes:
         lines.append(f"note: {note}")
+    # Last, where a terminal leaves them in view.
+    lines += [f"WARNING: {w['message']}" for w in result.warnings]
     return "\n".join(lines)

@@ -31,10 +31,11 @@ from ..physics.catenary import LegKind, initial_state
 from ..physics.profile import (leg_profile, segment_profile, single_leg_profile,
                                surface_segment_profile)
 from ..physics.wall_tension import wall_tension
-from .newton import STATUS_TEXT
+from .newton import CONVERGED, STATUS_TEXT
 from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
                       EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
                       leg_parameters, parameter_vector, segment_parameters, structure_key)
+from .audit import audit, result_warnings
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -304,6 +305,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
 
     elapsed = time.perf_counter() - t0
     certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
+    stats["status"] = explain_status(stats["status"], certified, stats.get("polish_steps", 0))
     cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                        tolerance=tol, status=stats["status"],
                        iterations=stats["iterations"], solve_time_s=elapsed)
@@ -312,6 +314,9 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
+    # An independent check of what is reported (raises AuditFailure), and the warnings.
+    audit(result, case)
+    result = dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))
     broken = _over_mbl(result)
     if broken and not allow_overload:
         raise ConvergenceError(
@@ -342,6 +347,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         st = solver.stats()
         stats["iterations"] += int(st.get("iter_count", 0))
         stats["status"] = st.get("return_status", "unknown")
+        stats["polish_steps"] = 0
         x = np.asarray(sol["x"]).ravel()
         x = _polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
@@ -418,9 +424,26 @@ def _polish(problem, x, p, lb, ub, stats, tol):
                 break
             alpha *= 0.5
         stats["iterations"] += 1
+        stats["polish_steps"] = stats.get("polish_steps", 0) + 1
         if not improved:
             break
     return x
+
+
+#: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
+SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
+                    STATUS_TEXT[CONVERGED])
+
+
+def explain_status(status: str, certified: bool, polish_steps: int) -> str:
+    """The solver status a result reports: the solver's own, explained when it is not a
+    success but the point certifies (a certified point is an equilibrium whatever the
+    solver's stopping reason: the certificate is recomputed from it)."""
+    if not certified or status in SUCCESS_STATUSES:
+        return status
+    how = (f"after {polish_steps} Newton polish step{'s' if polish_steps != 1 else ''}"
+           if polish_steps else "as the solver left it")
+    return f"{status}; the point reached is certified {how}"
 
 
 def _over_mbl(result: Result) -> list[str]:
@@ -504,7 +527,8 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
                                   ea=lt.ea, mu=env.seabed.friction, X=X, Z=Z,
                                   anchor_z=anchor[2], fairlead_z=fairlead[2], depth=env.depth,
                                   slope=slope, n=_PROFILE_POINTS)
-        profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
+        profile = {"s_m": prof["s"],
+                   "x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
                    "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
         if lt.sealed and lt.diameter:
             depth_below = np.maximum(-profile["z_m"], 0.0)
@@ -581,7 +605,8 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
     anchor = tuple(float(v) for v in p[start_i: start_i + 3])
     fairlead = (gx, gy, leg.fairlead[2])
     ux, uy = ((gx - anchor[0]) / X, (gy - anchor[1]) / X) if X > 1e-12 else (1.0, 0.0)
-    parts = {k: [] for k in ("x", "z", "tension")}
+    parts = {k: [] for k in ("s", "x", "z", "tension")}
+    arc_below = 0.0
     segments, joints = [], []
     td = None
     for k, (seg, sk, r) in enumerate(zip(leg.segments, kind.segments, rows)):
@@ -602,8 +627,8 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                                        w=lt.weight_in_water, ea=lt.ea,
                                        h=max(leg.fairlead[2] + env.depth, 0.0),
                                        X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
-            prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
-                    "tension": back["tension"][::-1]}
+            prof = {"s": (seg.length - back["s"])[::-1], "x": (r["X"] - back["x"])[::-1],
+                    "z": (r["Z"] + back["z"])[::-1], "tension": back["tension"][::-1]}
         elif sk.block == "floating":
             prof = surface_segment_profile(H=r["H"], V=r["VF"], L=seg.length,
                                            w=lt.weight_in_water, ea=lt.ea,
@@ -614,6 +639,8 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                                    ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
                                    n=_PROFILE_POINTS)
         sl = slice(1, None) if k else slice(None)
+        parts["s"].append(arc_below + prof["s"][sl])
+        arc_below += seg.length
         parts["x"].append(r["lower_xi"] + prof["x"][sl])
         parts["z"].append(r["lower_z"] + prof["z"][sl])
         parts["tension"].append(prof["tension"][sl])
@@ -642,19 +669,22 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
                            "clump_weight_N": clump.weight if clump is not None else 0.0})
     td = _anchor_touchdown(rows, leg, kind)
     xs = np.concatenate(parts["x"])
-    profile = {"x_m": anchor[0] + ux * xs, "y_m": anchor[1] + uy * xs,
+    profile = {"s_m": np.concatenate(parts["s"]),
+               "x_m": anchor[0] + ux * xs, "y_m": anchor[1] + uy * xs,
                "z_m": np.concatenate(parts["z"]), "tension_N": np.concatenate(parts["tension"])}
     floating = float(row[18])
     at_surface = np.flatnonzero(profile["z_m"] >= -1e-9 * max(env.depth, 1.0))
     touchup = float(xs[at_surface[0]]) if floating > 0 and at_surface.size else 0.0
     first = rows[0]
     uplift = VA > 0 and first["grounded"] <= 0
+    # The seabed takes a downward pull on an anchor lying on it; one above it feels it.
+    VA_reported = VA if first["lower_h"] > 0 else max(VA, 0.0)
     mbl = min((seg.line_type.mbl for seg in leg.segments if seg.line_type.mbl), default=None)
     return LegResult(
         name=leg.name,
         fairlead_tension_N=math.hypot(H, VF), horizontal_tension_N=H,
-        fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, max(VA, 0.0)),
-        anchor_horizontal_N=HA, anchor_vertical_N=max(VA, 0.0),
+        fairlead_vertical_N=VF, anchor_tension_N=math.hypot(HA, VA_reported),
+        anchor_horizontal_N=HA, anchor_vertical_N=VA_reported,
         grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
         uplift=bool(uplift), slack=bool(u < 0.0),
         uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
@@ -758,7 +788,10 @@ def _discrete_leg_result(case, leg, kind, row, nodes, p, i) -> LegResult:
     # The anchor's vertical pull: the seabed takes a downward one when the anchor lies on it.
     VA = max(VA_raw, 0.0) if on_bed else VA_raw
     td = X - susp_x if (on_bed and flags[1]) else None
-    profile = {"x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
+    arc = np.concatenate([[0.0], np.cumsum(np.repeat(
+        [seg.length / m for seg, m in zip(leg.segments, kind.elements)], kind.elements))])
+    profile = {"s_m": arc,
+               "x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
                "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy(),
                "surface_reaction_N": nodes[:, 8].copy()}
     segments, joints = [], []

@@ -163,6 +163,9 @@ class Result:
     state: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
     notes: tuple = ()
     case: Optional[object] = field(default=None, repr=False, compare=False)
+    #: What an engineer must not miss (wall compression, line floating, an end in air):
+    #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.solve.audit.result_warnings`.
+    warnings: tuple = ()
 
     @property
     def iterations(self) -> int:
@@ -194,5 +197,6 @@ class Result:
             "legs": [leg.to_dict(profile=profiles) for leg in self.legs],
             "loads": {k: list(v) for k, v in self.loads.items()},
             "notes": list(self.notes),
+            "warnings": [dict(w) for w in self.warnings],
             "case": self.case_name,
         }

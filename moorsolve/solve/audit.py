@@ -1,0 +1,337 @@
+"""An independent audit of every result, and the warnings an engineer must see.
+
+The certificate says the solver's residuals vanish. The audit asks a different question:
+do the quantities *reported* make a physically consistent equilibrium? It reads only the
+result (each line's profile, end forces, joints; the body position and loads) and the case
+data (weights, lengths, stiffness, the seabed), and recomputes everything with plain numpy:
+none of the solver's blocks, residuals or profile functions. A result that fails it is an
+error (:class:`~moorsolve.errors.ConvergenceError` naming what failed), never a note: an
+answer that is certified and wrong is the worst defect a solver can have.
+
+Per line:
+
+- the profile is finite and starts at the anchor and ends at the fairlead;
+- it is continuous: no step between two profile points is longer than the stretched arc
+  between them;
+- it lies between the seabed and the surface (a point above the water only where an end
+  is above it);
+- its tension at the ends is the reported end tension;
+- where the line leaves an end through the water, the profile's direction there is the end
+  force's (to within the turning of the line over one profile step);
+- a line that no current drags: the vertical forces at its ends carry the weight of the
+  part the seabed or the surface does not support (found from the profile: the runs lying
+  on a boundary), with every joint's clump and reaction; a frictionless line on a flat
+  seabed has the same horizontal tension at both ends;
+- a joint the seabed or the surface pushes is on it.
+
+Per free body: the reported fairlead forces, recomputed from each line's horizontal tension
+and end positions, balance the reported loads in every free degree of freedom.
+
+Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
+engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
+line floating on the surface, an end above the water (the line there is taken with its
+weight in water unless the line type gives its weight in air).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ConvergenceError
+
+__all__ = ["audit", "result_warnings", "AuditFailure"]
+
+#: Relative tolerance of geometric checks (of the line's length or the water depth): far
+#: above the round-off of a certified solution, far below any defect worth the name.
+GEOMETRY_REL = 1e-6
+#: Relative tolerance of force checks, on the largest force in the line or scene.
+FORCE_REL = 1e-6
+
+
+class AuditFailure(ConvergenceError):
+    """A certified solution whose reported quantities are not a consistent equilibrium."""
+
+
+def audit(result, case) -> list[str]:
+    """Check ``result`` (of ``case``) independently; raise :class:`AuditFailure` on a defect.
+
+    Returns the list of checks passed per line and body (for tests and reports).
+    """
+    problems, passed = [], []
+    env = case.environment
+    tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
+    for leg_case, leg in zip(case.legs, result.legs):
+        found = _audit_line(leg_case, leg, env, tol_rel, _is_lumped(case, leg_case))
+        problems += [f"leg {leg.name}: {p}" for p in found]
+        passed.append(leg.name)
+    problems += _audit_body(result, case)
+    if problems:
+        c = result.certificate
+        raise AuditFailure(
+            "the solution certified but its reported quantities fail the independent audit: "
+            + "; ".join(problems), residual_N=c.force_N, residual_Nm=c.moment_Nm,
+            status=c.status, iterations=c.iterations, result=result)
+    return passed
+
+
+def _is_lumped(case, leg_case) -> bool:
+    return case.environment.current is not None and any(
+        seg.line_type.drag is not None for seg in leg_case.segments)
+
+
+def _segment_data(leg_case):
+    """Per segment: unstretched length, weight [N/m], compliance [1/N]; cumulative ends."""
+    lengths = np.array([s.length for s in leg_case.segments])
+    weights = np.array([s.line_type.weight_in_water for s in leg_case.segments])
+    comp = np.array([1.0 / s.line_type.ea if s.line_type.ea else 0.0
+                     for s in leg_case.segments])
+    return lengths, weights, comp, np.concatenate([[0.0], np.cumsum(lengths)])
+
+
+def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
+    prof = leg.profile
+    out = []
+    pts = np.column_stack([np.asarray(prof[k], float) for k in ("x_m", "y_m", "z_m")])
+    T = np.asarray(prof["tension_N"], float)
+    s = np.asarray(prof["s_m"], float) if "s_m" in prof else None
+    lengths, weights, comp, ends = _segment_data(leg_case)
+    L = float(ends[-1])
+    t_max = max(float(np.max(np.abs(T))) if T.size else 0.0, leg.fairlead_tension_N,
+                leg.anchor_tension_N, float(np.sum(np.abs(weights) * lengths)), 1e-300)
+    size = max(L * (1.0 + t_max * float(np.max(comp))), env.depth, 1.0)
+    tol = tol_rel * size
+    if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(T))):
+        return ["the profile has non-finite points"]
+    anchor, fairlead = np.asarray(leg.anchor, float), np.asarray(leg.fairlead, float)
+    miss_a = float(np.linalg.norm(pts[0] - anchor))
+    miss_f = float(np.linalg.norm(pts[-1] - fairlead))
+    if miss_a > tol:
+        out.append(f"the profile starts {miss_a:.3g} m from the anchor")
+    if miss_f > tol:
+        out.append(f"the profile ends {miss_f:.3g} m from the fairlead")
+    step = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    if s is not None and s.size == len(pts):
+        ds = np.diff(s)
+        c_seg = comp[np.clip(np.searchsorted(ends, s[:-1] + ds / 2) - 1, 0, len(comp) - 1)]
+        t_step = np.maximum(np.abs(T[1:]), np.abs(T[:-1]))
+        allowed = ds * (1.0 + t_step * c_seg) * (1.0 + 1e-9) + tol
+        k = int(np.argmax(step - allowed))
+        if np.any(ds < -tol) or step[k] > allowed[k]:
+            out.append(f"the profile is not continuous: a step of {step[k]:.4g} m between "
+                       f"points {ds[k]:.4g} m apart along the line")
+        if abs(s[-1] - L) > tol or abs(s[0]) > tol:
+            out.append(f"the profile covers {s[0]:.4g} m to {s[-1]:.4g} m of a {L:.4g} m line")
+    bed = env.seabed_z(pts[:, 0], pts[:, 1])
+    below = float(np.max(bed - pts[:, 2]))
+    if below > tol:
+        k = int(np.argmax(bed - pts[:, 2]))
+        out.append(f"the line passes {below:.3g} m below the seabed (at "
+                   f"{pts[k, 0]:.2f}, {pts[k, 1]:.2f}, {pts[k, 2]:.2f} m)")
+    ceiling = max(0.0, anchor[2], fairlead[2])
+    above = float(np.max(pts[:, 2])) - ceiling
+    if above > tol:
+        out.append(f"the line rises {above:.3g} m above the surface" if ceiling == 0.0 else
+                   f"the line rises {above:.3g} m above its highest end, out of the water")
+    f_tol = FORCE_REL * t_max + tol_rel * t_max
+    # A lumped-node line's end node carries half of its element's weight and flow force, which
+    # the seabed takes at an anchor lying on it: the end tension may differ by that much.
+    end_tol = f_tol + (_element_load(leg_case, s, env) if lumped and s is not None else 0.0)
+    if abs(T[0] - leg.anchor_tension_N) > end_tol:
+        out.append(f"the profile's tension at the anchor, {T[0]:.6g} N, is not the reported "
+                   f"anchor tension {leg.anchor_tension_N:.6g} N")
+    if abs(T[-1] - leg.fairlead_tension_N) > end_tol:
+        out.append(f"the profile's tension at the fairlead, {T[-1]:.6g} N, is not the "
+                   f"reported fairlead tension {leg.fairlead_tension_N:.6g} N")
+    if not lumped and s is not None and s.size == len(pts):
+        # On a boundary: a profile drawn from a solved state puts a grounded or floating run
+        # exactly on it (to round-off), so the test is tight: a looser one would count the
+        # first metres of a line rising tangentially off the boundary as supported.
+        tight = 1e-12 * size
+        on_bed = pts[:, 2] - bed <= tight
+        on_top = pts[:, 2] >= -tight
+        out += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol)
+        out += _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed,
+                                       on_top, t_max, tight)
+    for j, joint in enumerate(leg.joints):
+        z = joint["position_m"][2]
+        zb = env.seabed_z(joint["position_m"][0], joint["position_m"][1])
+        if joint.get("seabed_reaction_N", 0.0) > f_tol and z - zb > tol:
+            out.append(f"joint {j + 1} is held up by a seabed reaction of "
+                       f"{joint['seabed_reaction_N']:.4g} N but is {z - zb:.3g} m above the "
+                       "seabed (a segment hanging down into a joint is outside the model)")
+        if joint.get("surface_reaction_N", 0.0) > f_tol and z < -tol:
+            out.append(f"joint {j + 1} is held down by the surface with "
+                       f"{joint['surface_reaction_N']:.4g} N but is {-z:.3g} m below it")
+        if z > tol:
+            clump = joint.get("clump_weight_N", 0.0)
+            out.append(f"joint {j + 1} is {z:.3g} m above the still-water level" + (
+                " (a buoy breaking the surface is outside the model: its lift is taken as "
+                "fully submerged; use a smaller buoy or a buoyant segment)" if clump < 0 else
+                " (lifted by the line above it; a joint on the surface is modelled only "
+                "under a buoyant segment)"))
+    return out
+
+
+def _element_load(leg_case, s, env) -> float:
+    """An upper bound [N] of one element's weight and flow force on a lumped-node line."""
+    step = float(np.max(np.diff(s))) if s.size > 1 else 0.0
+    current = env.current
+    speeds = [current.speed] + [row[1] for row in (current.profile or ())] if current else [0]
+    v = max(abs(float(x)) for x in speeds)
+    q = 0.0
+    for seg in leg_case.segments:
+        lt = seg.line_type
+        drag = lt.drag
+        flow = (0.5 * env.water_density * (lt.diameter or 0.0) * v * v
+                * (drag.normal + drag.tangential + abs(drag.side)) if drag else 0.0)
+        q = max(q, abs(lt.weight_in_water) + flow)
+    clumps = max([abs(c.weight) for c in leg_case.joint_clumps if c is not None] + [0.0])
+    return q * step + clumps
+
+
+def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol) -> list[str]:
+    """The end forces point along the profile where the line leaves an end through water."""
+    out = []
+    ux, uy = _plane(leg)
+    checks = [
+        ("fairlead", -1, -2, np.array([-leg.horizontal_tension_N * ux,
+                                       -leg.horizontal_tension_N * uy,
+                                       -leg.fairlead_vertical_N]), leg.fairlead_tension_N),
+        ("anchor", 0, 1, np.array([leg.anchor_horizontal_N * ux, leg.anchor_horizontal_N * uy,
+                                   leg.anchor_vertical_N]), leg.anchor_tension_N),
+    ]
+    for name, i, j, force, T in checks:
+        chord = pts[j] - pts[i]
+        length = float(np.linalg.norm(chord))
+        if T <= 0 or length <= tol or (on_boundary[i] and on_boundary[j]):
+            continue
+        if name == "anchor" and leg.anchor_vertical_N == 0.0 and on_boundary[i]:
+            continue     # the reported upward pull is clipped at 0 where the line lies
+        # The line pulls each end toward itself: along the chord from the end into the line.
+        direction = force / max(np.linalg.norm(force), 1e-300)
+        cosine = float(np.clip(direction @ chord / length, -1.0, 1.0))
+        angle = math.acos(cosine)
+        k = min(i, j) if i >= 0 else len(pts) - 2
+        w = abs(weights[min(np.searchsorted(ends, s[k] + 1e-12) - 1, len(weights) - 1)])
+        ds = abs(s[j] - s[i])
+        if T <= w * ds:
+            continue     # too little tension for the step to bound the line's turning
+        turning = w * ds / (T - w * ds) + 1e-6
+        if angle > turning:
+            out.append(f"the force at the {name} points {math.degrees(angle):.3g} deg away "
+                       f"from the line's direction there (at most "
+                       f"{math.degrees(turning):.2g} deg over one profile step)")
+    return out
+
+
+def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, on_top,
+                            t_max, tight) -> list[str]:
+    """The end forces carry the weight the seabed and the surface do not support.
+
+    A line leaving a boundary tangentially rises ``w s^2 / (2 T)`` in ``s``: a profile point
+    within ``s = sqrt(2 T tight / w)`` of the lift-off looks supported, so each end of a
+    supported run may shift the weight found by ``sqrt(2 T tight w)``.
+    """
+    if any(g != 0.0 for g in env.seabed.gradient) and leg.grounded_length_m > 0:
+        return []           # the slope's reaction has a horizontal part; not checked here
+    mid = (s[1:] + s[:-1]) / 2
+    seg = np.clip(np.searchsorted(ends, mid) - 1, 0, len(weights) - 1)
+    w = weights[seg]
+    ds = np.diff(s)
+    supported = (on_bed[1:] & on_bed[:-1]) | (on_top[1:] & on_top[:-1])
+    hanging = float(np.sum(w * ds * ~supported))
+    clumps = sum(c.weight for c in leg_case.joint_clumps if c is not None)
+    reactions = sum(j.get("seabed_reaction_N", 0.0) - j.get("surface_reaction_N", 0.0)
+                    for j in leg.joints)
+    # The anchor's upward pull as reported is clipped at 0 where the line lies on the
+    # seabed there: the seabed then takes that end's vertical load.
+    unbalanced = leg.fairlead_vertical_N - leg.anchor_vertical_N - hanging - clumps + reactions
+    scale = max(t_max, float(np.sum(np.abs(weights) * np.diff(ends))), 1e-300)
+    run_ends = 2 + int(np.count_nonzero(np.diff(supported.astype(int))))
+    allowance = run_ends * math.sqrt(2.0 * t_max * tight * float(np.max(np.abs(weights))))
+    out = []
+    if abs(unbalanced) > 1e-6 * scale + allowance:
+        out.append(f"the end forces do not carry the line's weight: {unbalanced:.4g} N of "
+                   f"vertical force unbalanced (the line hangs {hanging:.6g} N)")
+    frictionless = env.seabed.friction == 0.0 or leg.grounded_length_m == 0.0
+    if frictionless and abs(leg.horizontal_tension_N - leg.anchor_horizontal_N) > 1e-6 * scale:
+        out.append(f"the horizontal tension changes along a line with nothing to hold it "
+                   f"({leg.horizontal_tension_N:.6g} N at the fairlead, "
+                   f"{leg.anchor_horizontal_N:.6g} N at the anchor)")
+    return out
+
+
+def _plane(leg) -> tuple[float, float]:
+    dx, dy = leg.fairlead[0] - leg.anchor[0], leg.fairlead[1] - leg.anchor[1]
+    X = math.hypot(dx, dy)
+    return (dx / X, dy / X) if X > 1e-12 else (1.0, 0.0)
+
+
+def _audit_body(result, case) -> list[str]:
+    """The fairlead forces, recomputed, balance the loads in every free degree of freedom."""
+    if case.body is None or result.body is None:
+        return []
+    free = tuple(case.body.free)
+    if not free:
+        return []
+    x0, y0 = result.body["x_m"], result.body["y_m"]
+    force = np.zeros(3)
+    t_max = 0.0
+    out = []
+    for leg in result.legs:
+        ux, uy = _plane(leg)
+        H = leg.horizontal_tension_N
+        f = np.array([-H * ux, -H * uy])
+        if leg.fairlead_force is not None:
+            given = np.asarray(leg.fairlead_force[:2], float)
+            lumped = "seabed_reaction_N" in leg.profile     # may pull sideways (current)
+            if not lumped and np.linalg.norm(given - f) > FORCE_REL * max(H, 1.0):
+                out.append(f"leg {leg.name}: the fairlead force {given.tolist()} N is not the "
+                           f"horizontal tension {H:.6g} N toward the anchor")
+            f = given
+        rx, ry = leg.fairlead[0] - x0, leg.fairlead[1] - y0
+        force += (f[0], f[1], rx * f[1] - ry * f[0])
+        t_max = max(t_max, leg.fairlead_tension_N, leg.anchor_tension_N)
+    for load in result.loads.values():
+        force += np.asarray(load, float)
+    tol = max(10.0 * result.certificate.tolerance, FORCE_REL) * max(t_max, 1.0)
+    radius = max([math.hypot(leg.fairlead[0] - x0, leg.fairlead[1] - y0)
+                  for leg in result.legs] + [1.0])
+    names = {"surge": (0, "N"), "sway": (1, "N"), "yaw": (2, "N m")}
+    for dof in free:
+        k, unit = names[dof]
+        limit = tol * (radius if dof == "yaw" else 1.0)
+        if abs(force[k]) > limit:
+            out.append(f"the body is not in balance in {dof}: {force[k]:.4g} {unit} unbalanced "
+                       "by the reported line forces and loads")
+    return out
+
+
+# ---- warnings ---------------------------------------------------------------------------
+
+
+def result_warnings(result, case) -> list[dict]:
+    """What an engineer must not miss in ``result``: a list of ``{"code", "leg",
+    "message"}`` (codes ``wall_compression``, ``floating``, ``end_in_air``)."""
+    out = []
+    for leg_case, leg in zip(case.legs, result.legs):
+        prof = leg.profile
+        wall = prof.get("wall_tension_N")
+        if wall is not None and np.any(np.asarray(wall) < 0):
+            k = int(np.argmin(wall))
+            out.append(dict(code="wall_compression", leg=leg.name, message=(
+                f"leg {leg.name}: the wall tension of the sealed line is compressive, down to "
+                f"{float(wall[k]) / 1e3:.4g} kN at z = {float(prof['z_m'][k]):.1f} m (the "
+                "effective tension is positive there; the wall may buckle)")))
+        if leg.floating_length_m > 0:
+            out.append(dict(code="floating", leg=leg.name, message=(
+                f"leg {leg.name}: {leg.floating_length_m:.2f} m of line floats on the surface "
+                f"(from {leg.touchup_from_anchor_m:.2f} m from the anchor)")))
+        for end, z in (("fairlead", leg.fairlead[2]), ("anchor", leg.anchor[2])):
+            if z > 0:
+                out.append(dict(code="end_in_air", leg=leg.name, message=(
+                    f"leg {leg.name}: the {end} is {z:.2f} m above the water; the line above "
+                    "the surface is taken with its weight in water")))
+    return out
