@@ -479,8 +479,25 @@ def _diagnose(problem, case, result) -> str:
                            f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
-        reasons.append(f"the solver stopped with status {result.certificate.status}")
+        reasons.append(f"the solver stopped with status {result.certificate.status}"
+                       + _along_a_boundary(case, result))
     return "; ".join(reasons)
+
+
+def _along_a_boundary(case, result) -> str:
+    """Name a segment lying along the seabed or the surface over its whole length between
+    two ends both on it: its height equation is degenerate there (``Z ~ V|V|`` at ``V = 0``),
+    which limits how closely its state can be certified."""
+    for leg, lr in zip(case.legs, result.legs):
+        for k, seg in enumerate(lr.segments):
+            lying = max(seg.get("grounded_length_m", 0.0), seg.get("floating_length_m", 0.0))
+            if lying >= seg["length_m"] * (1 - 1e-9):
+                where = "surface" if seg.get("floating_length_m", 0.0) > 0 else "seabed"
+                return (f" (leg {leg.name}: segment {k + 1} lies along the {where} over its "
+                        "whole length between two ends on it, where its height equation is "
+                        "degenerate: join it with the segment beside it, or move an end off "
+                        f"the {where})")
+    return ""
 
 
 # ---- result -----------------------------------------------------------------------------
