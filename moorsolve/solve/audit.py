@@ -245,9 +245,8 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
     clumps = sum(c.weight for c in leg_case.joint_clumps if c is not None)
     reactions = sum(j.get("seabed_reaction_N", 0.0) - j.get("surface_reaction_N", 0.0)
                     for j in leg.joints)
-    # The anchor's upward pull as reported is clipped at 0 where the line lies on the
-    # seabed there: the seabed then takes that end's vertical load.
-    unbalanced = leg.fairlead_vertical_N - leg.anchor_vertical_N - hanging - clumps + reactions
+    unbalanced = (leg.fairlead_vertical_N - _signed_anchor_pull(leg, pts) - hanging - clumps
+                  + reactions)
     scale = max(t_max, float(np.sum(np.abs(weights) * np.diff(ends))), 1e-300)
     run_ends = 2 + int(np.count_nonzero(np.diff(supported.astype(int))))
     allowance = run_ends * math.sqrt(2.0 * t_max * tight * float(np.max(np.abs(weights))))
@@ -261,6 +260,20 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
                    f"({leg.horizontal_tension_N:.6g} N at the fairlead, "
                    f"{leg.anchor_horizontal_N:.6g} N at the anchor)")
     return out
+
+
+def _signed_anchor_pull(leg, pts) -> float:
+    """The line's vertical pull on its anchor, signed (upward positive).
+
+    The result reports the upward pull, 0 for a line lying on the seabed at the anchor and
+    for an anchor pulled down (on a slope the soil takes that): the downward part is then
+    recovered from the reported anchor tension and the profile's direction there.
+    """
+    VA = leg.anchor_vertical_N
+    rest = leg.anchor_tension_N ** 2 - leg.anchor_horizontal_N ** 2
+    if VA == 0.0 and rest > 0.0 and len(pts) > 1 and pts[1, 2] < pts[0, 2]:
+        return -math.sqrt(rest)
+    return VA
 
 
 def _plane(leg) -> tuple[float, float]:

@@ -24,7 +24,9 @@ import numpy as np
 
 from ..model import DEGREES_OF_FREEDOM, Body, BodyLoads, Case
 from ..solve.equilibrium import get_problem, solve
-from ..solve.problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
+from ..physics.catenary import LegKind
+from ..solve.problem import (DISCRETE_PARAMS, ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS,
+                             SEGMENT_PARAMS, DiscreteLegKind, MultiLegKind, parameter_vector)
 from ..solve.result import Result
 
 #: The three horizontal-plane degrees of freedom, in the order of every matrix here.
@@ -336,6 +338,7 @@ class Sensitivity:
 
 
 _LEG_PATH = re.compile(r"legs\[([^\[\]]+)\]\.(\w+)$")
+_SEGMENT_PATH = re.compile(r"legs\[([^\[\]]+)\]\.segments\[(\d+)\]\.length$")
 _TYPE_PATH = re.compile(r"line_types\[([^\[\]]+)\]\.(\w+)$")
 _FORCE_PATH = re.compile(r"body\.loads\.force\[([0-2])\]$")
 
@@ -365,13 +368,65 @@ def _output_row(case: Case, name: str) -> int:
                      f"legs[NAME].FIELD with FIELD in {', '.join(LEG_OUTPUTS)}")
 
 
+def _segment_slots(case: Case, problem) -> dict:
+    """``(leg index, segment index, key) -> index`` in the parameter vector of the segment
+    parameters of multi-segment and lumped-node legs (layout: ``segment_parameters``)."""
+    slots = {}
+    cursor = len(ENV_PARAMS) + len(LEG_PARAMS) * problem.n_legs
+    if cursor == problem.n_p:
+        return slots
+    cursor += len(SEABED_PARAMS)
+    for kind_type, keys in ((MultiLegKind, SEGMENT_PARAMS), (DiscreteLegKind, DISCRETE_PARAMS)):
+        for i, (leg, kind) in enumerate(zip(case.legs, problem.kinds)):
+            if not isinstance(kind, kind_type):
+                continue
+            for k in range(len(leg.segments)):
+                for key in keys:
+                    slots[i, k, key] = cursor
+                    cursor += 1
+            cursor += len(leg.segments) - 1             # the joints' clump weights
+    return slots
+
+
+def _segment_of_item(leg, item: int, name: str) -> int:
+    """The segment at ``segments[item]`` of the leg's case-file list, where a clump between
+    two segments is an item too (as in sweep paths)."""
+    k = 0
+    for j, clump in enumerate(leg.joint_clumps + (None,)):
+        if item == 0:
+            return k
+        item -= 1
+        if clump is not None:
+            if item == 0:
+                raise ValueError(f"{name}: that item of leg {leg.name}'s segments is a "
+                                 "clump, which has no length")
+            item -= 1
+        k = j + 1
+    raise ValueError(f"{name}: leg {leg.name} has no such segment (its case-file list has "
+                     f"{len(leg.segments) + sum(c is not None for c in leg.joint_clumps)} "
+                     "items)")
+
+
+def _on_seabed(case: Case, leg) -> bool:
+    bed = case.environment.seabed_z(leg.anchor[0], leg.anchor[1])
+    return leg.anchor[2] <= bed + 1e-9 * max(case.environment.depth, 1.0)
+
+
 def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
-    """``dp/d(name)``: how the problem's parameter vector moves with the named input."""
+    """``dp/d(name)``: how the problem's parameter vector moves with the named input, as the
+    case defines it (an anchor on a sloped seabed moves along it)."""
     col = np.zeros(problem.n_p)
     n_env, n_leg = len(ENV_PARAMS), len(LEG_PARAMS)
+    segment_slots = _segment_slots(case, problem)
 
     def leg_slot(i, key):
         return n_env + i * n_leg + LEG_PARAMS.index(key)
+
+    def line_slots(i, k, key):
+        """The slots of segment k of leg i for ``key`` (length, weight, ea_inv)."""
+        if (i, k, key) in segment_slots:
+            return [segment_slots[i, k, key]]
+        return [leg_slot(i, key)]
 
     env = case.environment
     if name in _ENV_PARAMETERS:
@@ -379,10 +434,13 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         if getattr(env, model) is None:
             raise ValueError(f"{name}: the case has no {model} (a scene without it builds "
                              f"no {model} model, so there is nothing to differentiate)")
-        if case.body is None or not any(
+        drags_lines = model == "current" and any(
+            isinstance(k, DiscreteLegKind) for k in problem.kinds)
+        if not drags_lines and (case.body is None or not any(
                 getattr(case.body.loads, m) is not None
-                for m in (("wave_drift",) if model == "waves" else (model,))):
-            # The environment acts only through body loads in this model.
+                for m in (("wave_drift",) if model == "waves" else (model,)))):
+            # The environment acts only through body loads (and the current on lines that
+            # feel it) in this model.
             return col
         col[ENV_PARAMS.index(key)] = factor
         return col
@@ -402,26 +460,61 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
     m = _TYPE_PATH.match(name)
     if m:
         field = m.group(2)
-        legs = [i for i, leg in enumerate(case.legs) if leg.line_type.name == m.group(1)]
-        if not legs:
-            raise ValueError(f"{name}: no leg uses line type {m.group(1)!r}")
         if field not in ("ea", "weight_in_water"):
             raise ValueError(f"{name}: line-type parameters are ea and weight_in_water")
-        for i in legs:
-            col += _parameter_column(case, problem, f"legs[{i}]." + (
-                "ea" if field == "ea" else "weight"))
+        used = [(i, k, seg) for i, leg in enumerate(case.legs)
+                for k, seg in enumerate(leg.segments) if seg.line_type.name == m.group(1)]
+        if not used:
+            raise ValueError(f"{name}: no leg uses line type {m.group(1)!r}")
+        for i, k, seg in used:
+            if field == "ea":
+                if seg.line_type.ea is None:
+                    raise ValueError(f"{name}: line type {m.group(1)!r} is inextensible")
+                for j in line_slots(i, k, "ea_inv"):
+                    col[j] += -1.0 / seg.line_type.ea ** 2
+            else:
+                for j in line_slots(i, k, "weight"):
+                    col[j] += 1.0
+        return col
+    m = _SEGMENT_PATH.match(name)
+    if m:
+        i = _leg_index(case, m.group(1), name)
+        k = _segment_of_item(case.legs[i], int(m.group(2)), name)
+        for j in line_slots(i, k, "length"):
+            col[j] += 1.0
+        if len(case.legs[i].segments) == 1:
+            col[leg_slot(i, "length")] = 1.0
         return col
     m = _LEG_PATH.match(name)
     if m and m.group(2) in _LEG_PARAMETERS:
         i = _leg_index(case, m.group(1), name)
         leg, field = case.legs[i], m.group(2)
+        if field in ("length", "ea", "weight") and leg.multi_segment:
+            raise ValueError(f"{name}: leg {leg.name} has {len(leg.segments)} segments; give "
+                             f"legs[{leg.name}].segments[K].length, or "
+                             "line_types[NAME].ea / .weight_in_water")
         if field == "ea":
             if leg.line_type.ea is None:
                 raise ValueError(f"{name}: leg {leg.name}'s line is inextensible (no ea)")
-            col[leg_slot(i, "ea_inv")] = -1.0 / leg.line_type.ea ** 2
+            for j in set(line_slots(i, 0, "ea_inv") + [leg_slot(i, "ea_inv")]):
+                col[j] = -1.0 / leg.line_type.ea ** 2
+        elif field in ("length", "weight"):
+            for j in set(line_slots(i, 0, field) + [leg_slot(i, field)]):
+                col[j] = 1.0
         elif field == "anchor_z" and problem.kinds[i].contact:
             raise ValueError(f"{name}: leg {leg.name}'s anchor lies on the seabed; raising "
                              f"it changes the model (no contact), so there is no derivative")
+        elif field == "fairlead_z" and getattr(problem.kinds[i], "from_fairlead", False):
+            raise ValueError(f"{name}: leg {leg.name}'s fairlead is at the surface; raised it "
+                             "leaves the water (another model), lowered under a floating line "
+                             "the line must leave the surface to reach it (its force changes "
+                             "like the square root of the depth): there is no derivative")
+        elif field in ("anchor_x", "anchor_y"):
+            col[leg_slot(i, field)] = 1.0
+            if _on_seabed(case, leg):
+                # The case puts this anchor on the seabed: moved in x or y it stays on it,
+                # so its z follows the slope.
+                col[leg_slot(i, "anchor_z")] = env.seabed.gradient[field == "anchor_y"]
         else:
             key = {"fairlead_x": "fair_x", "fairlead_y": "fair_y",
                    "fairlead_z": "fair_z"}.get(field, field)
@@ -429,8 +522,24 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         return col
     raise ValueError(
         f"parameter {name!r}: must be legs[NAME].FIELD with FIELD in "
-        f"{', '.join(_LEG_PARAMETERS)}, line_types[NAME].ea or .weight_in_water, "
+        f"{', '.join(_LEG_PARAMETERS)}, legs[NAME].segments[K].length, "
+        f"line_types[NAME].ea or .weight_in_water, "
         f"{', '.join(_ENV_PARAMETERS)}, environment.seabed.friction or body.loads.force[0-2]")
+
+
+def _reported_anchor_pull(problem, ps, i, kind, VA):
+    """The anchor's vertical pull as the result reports it, where that is clipped at 0 for
+    an anchor on the seabed (sloped, multi-segment and lumped-node legs; the flat leg block
+    clips it itself); None where the block's value is reported."""
+    if isinstance(kind, LegKind) and not kind.sloped:
+        return None
+    n_env, n_leg = len(ENV_PARAMS), len(LEG_PARAMS)
+    ax, ay, az = (ps[n_env + i * n_leg + LEG_PARAMS.index(k)]
+                  for k in ("anchor_x", "anchor_y", "anchor_z"))
+    seabed = n_env + n_leg * problem.n_legs
+    depth, gx, gy = (ps[seabed + k] for k in range(len(SEABED_PARAMS)))
+    bed = -depth + gx * ax + gy * ay
+    return ca.if_else(az <= bed + 1e-9 * ca.fmax(depth, 1), ca.fmax(VA, 0), VA)
 
 
 def _sensitivity_function(problem) -> ca.Function:
@@ -442,9 +551,18 @@ def _sensitivity_function(problem) -> ca.Function:
         legs_out = problem.report(xs, ps)[0]
         body, t_fair, t_anchor = problem.summary(xs, ps)
         rows = [body[0], body[1], body[2] * (180.0 / math.pi)]
-        for i in range(problem.n_legs):
+        for i, kind in enumerate(problem.kinds):
             H, VF, HA, VA, grounded = (legs_out[i, k] for k in range(5))
-            rows += [t_fair[i], H, VF, t_anchor[i], HA, VA, grounded]
+            clipped = _reported_anchor_pull(problem, ps, i, kind, VA)
+            if clipped is not None:
+                # The result reports the upward pull on an anchor lying on the seabed
+                # (0 when it pulls down: the seabed takes that), and its tension from it.
+                VA = clipped
+                t_anchor_i = ca.hypot(HA, VA) if not getattr(kind, "sloped", False) \
+                    else t_anchor[i]
+            else:
+                t_anchor_i = t_anchor[i]
+            rows += [t_fair[i], H, VF, t_anchor_i, HA, VA, grounded]
         y = ca.vertcat(*rows)
         f = ca.Function("sensitivity_blocks", [xs, ps],
                         [ca.jacobian(g, xs), ca.jacobian(g, ps),
@@ -464,11 +582,14 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
         ``x_m``, ``y_m``, ``yaw_deg`` and ``legs[NAME].FIELD`` with FIELD one of
         ``LEG_OUTPUTS`` (``fairlead_tension_N``, ``anchor_vertical_N`` ...).
     parameters : str or sequence of str
-        ``legs[NAME].length | ea | weight | anchor_x | anchor_y | anchor_z | fairlead_x |
-        fairlead_y | fairlead_z`` (that leg's line only), ``line_types[NAME].ea`` and
-        ``.weight_in_water`` (every leg of the type), ``environment.wind.speed``,
-        ``environment.current.speed``, ``environment.waves.hs`` and their
-        ``toward_deg``, ``environment.seabed.friction``, ``body.loads.force[0|1|2]``.
+        ``legs[NAME].length | ea | weight`` (a one-segment leg's line only),
+        ``legs[NAME].segments[K].length`` (item K of the case file's segment list, clumps
+        counted), ``legs[NAME].anchor_x | anchor_y | anchor_z | fairlead_x | fairlead_y |
+        fairlead_z``, ``line_types[NAME].ea`` and ``.weight_in_water`` (every segment of
+        the type), ``environment.wind.speed``, ``environment.current.speed``,
+        ``environment.waves.hs`` and their ``toward_deg``, ``environment.seabed.friction``,
+        ``body.loads.force[0|1|2]``. Each moves as the case defines it: an anchor on a
+        sloped seabed moved in x or y stays on it.
 
     Returns
     -------
