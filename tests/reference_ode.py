@@ -234,3 +234,44 @@ def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
     if n:
         out.update(s=samples, x=xs, z=zs)
     return out
+
+
+def integrate_to_slope(*, H, V, L, w, t, ea=None, mu=0.0):
+    """A sinking leg whose anchor lies on a seabed of slope ``t`` (rise per metre along the
+    leg, anchor toward fairlead), integrated from the fairlead end forces ``(H, V)``.
+
+    The suspended part runs down from the fairlead until its direction is the seabed's
+    (``Tz = H t``): there it touches down, tangentially, and the rest lies on the slope. Along
+    the slope the tension changes by ``w (sin(theta) + mu cos(theta))`` per metre toward the
+    anchor (weight along the slope, friction fully mobilised toward the anchor), never below
+    zero; the line stretches by ``T/EA``.
+
+    Returns ``X``, ``Z`` (fairlead relative to the anchor), ``TA`` (anchor tension, along the
+    slope), ``grounded`` and the touchdown point ``x_td``, ``z_td`` relative to the anchor.
+    """
+    c = 0.0 if ea is None else 1.0 / ea
+    rhs = _suspended_rhs(w, ea)
+    t_scale = max(math.hypot(H, V), abs(w) * L)
+    scale = (L * (1.0 + t_scale * c), t_scale)
+    s_td = L - (V - H * t) / w            # Tz = V - w (L - s) reaches H t here
+    y = _integrate(rhs, L, max(s_td, 0.0), [0.0, 0.0, float(H), float(V)], scale)
+    grounded = max(s_td, 0.0)
+    sec = math.sqrt(1.0 + t * t)
+    cos_t, sin_t = 1.0 / sec, t / sec
+    k = w * (sin_t + mu * cos_t)
+    T = H * sec if grounded > 0 else math.hypot(H, V - w * L)
+
+    def ground(s, yy):
+        tension = max(yy[1], 0.0)
+        return [1.0 + tension * c, k]
+
+    if grounded > 0:
+        sol = solve_ivp(ground, (grounded, 0.0), [0.0, T], method="DOP853", rtol=RTOL,
+                        atol=[1e-16 * scale[0], 1e-16 * scale[1]], max_step=grounded / 50)
+        along, T = -sol.y[0, -1], max(sol.y[1, -1], 0.0)
+    else:
+        along = 0.0
+    # Fairlead relative to the touchdown is minus the end state; the touchdown relative to
+    # the anchor is ``along`` metres up the slope.
+    x_td, z_td = along * cos_t, along * sin_t
+    return dict(X=x_td - y[0], Z=z_td - y[1], TA=T, grounded=grounded, x_td=x_td, z_td=z_td)

@@ -209,14 +209,16 @@ def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | No
         z = np.where(ground, (sg + stretch) * sin_t, (LB + stretch_td) * sin_t + zs)
         tension = np.where(ground, Tg, np.hypot(H, Tv))
     else:
-        # Slack: loose on the slope up to below the fairlead, then hanging straight.
+        # Slack: loose on the slope up to below the fairlead, then hanging straight. On the
+        # slope the tension is what the weight along it leaves (0 where friction holds it,
+        # growing toward an anchor up a slope the line would slide down).
         foot = X / cos_t
         ground = s <= LB
         along = np.minimum(sg, foot)
         hang = np.maximum(s - LB, 0.0)
         x = np.where(ground, along * cos_t, X)
         z = np.where(ground, along * sin_t, X * t + hang + w * hang**2 / 2 * c)
-        tension = np.where(ground, 0.0, w * hang)
+        tension = np.where(ground, Tg, w * hang)
     return dict(s=s, x=x, z=z, tension=tension)
 
 

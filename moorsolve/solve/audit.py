@@ -144,6 +144,8 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
     if abs(T[-1] - leg.fairlead_tension_N) > end_tol:
         out.append(f"the profile's tension at the fairlead, {T[-1]:.6g} N, is not the "
                    f"reported fairlead tension {leg.fairlead_tension_N:.6g} N")
+    if not lumped and env.seabed.sloped:
+        out += _audit_slack_on_slope(pts, T, bed, env.seabed.friction, t_max, size)
     if not lumped and s is not None and s.size == len(pts):
         # On a boundary: a profile drawn from a solved state puts a grounded or floating run
         # exactly on it (to round-off), so the test is tight: a looser one would count the
@@ -260,6 +262,29 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
                    f"({leg.horizontal_tension_N:.6g} N at the fairlead, "
                    f"{leg.anchor_horizontal_N:.6g} N at the anchor)")
     return out
+
+
+def _audit_slack_on_slope(pts, T, bed, mu, t_max, size) -> list[str]:
+    """Line lying on a slope without tension stays only where friction holds it.
+
+    A grounded run whose tension is zero (a loose, slack line; or the far end of a run whose
+    tension friction and the slope used up) is held by static friction alone: it slides
+    unless the slope along it is at most the friction coefficient. The model keeps loose
+    line where it lies, so a run steeper than that is not an equilibrium.
+    """
+    on = pts[:, 2] - bed <= 1e-9 * size
+    loose = on & (np.abs(T) <= 1e-9 * t_max)
+    both = loose[1:] & loose[:-1]
+    run = np.linalg.norm(np.diff(pts[:, :2], axis=0), axis=1)
+    rise = np.abs(np.diff(pts[:, 2]))
+    steep = both & (run > 1e-12 * size) & (rise > (mu + 1e-9) * run)
+    if not np.any(steep):
+        return []
+    k = int(np.argmax(steep))
+    return [f"{float(np.sum(np.hypot(run, rise)[steep])):.3g} m of line lies without tension "
+            f"on a seabed sloping {rise[k] / run[k]:.3g} along it, steeper than the friction "
+            f"coefficient {mu:g} holds: it would slide (loose line on a slope is outside the "
+            "model; give the seabed friction, or a shorter or a lumped-node line)"]
 
 
 def _signed_anchor_pull(leg, pts) -> float:

@@ -111,6 +111,15 @@ def _compute_rest_leg_states(case: Case):
         kind = leg_kind(case, leg)
         gap = (leg.anchor[2] + case.environment.depth if kind.lifted
                else -leg.anchor[2] if kind.surface and not kind.from_fairlead else 0.0)
+        if kind.sloped and X > 0:
+            # As on a flat seabed under the fairlead's height above the slope (a shear of
+            # the leg's plane), the touchdown's vertical force shifted by H t.
+            g = case.environment.seabed.gradient
+            t = (g[0] * (fx - leg.anchor[0]) + g[1] * (fy - leg.anchor[1])) / X
+            u, V = initial_state(dataclasses.replace(kind, sloped=False), X, Z - t * X,
+                                 leg.length, lt.weight_in_water, lt.ea)
+            states.append((u, V + max(u, 0.0) * t))
+            continue
         states.append(initial_state(kind, X, Z, leg.length, lt.weight_in_water, lt.ea,
                                     max(gap, 0.0)))
     return states
