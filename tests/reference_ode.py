@@ -275,3 +275,39 @@ def integrate_to_slope(*, H, V, L, w, t, ea=None, mu=0.0):
     # the anchor is ``along`` metres up the slope.
     x_td, z_td = along * cos_t, along * sin_t
     return dict(X=x_td - y[0], Z=z_td - y[1], TA=T, grounded=grounded, x_td=x_td, z_td=z_td)
+
+
+def integrate_in_current(*, H, V, L, w, ea, diameter, rho, normal, tangential, velocity,
+                         z_fairlead):
+    """A line in a current in its vertical plane, integrated from the fairlead end forces.
+
+    ``velocity(z)`` is the current's speed along +x at height ``z`` (signed: a current
+    that reverses with depth). Per unstretched metre the line carries its weight ``w`` and
+    the flow force on its stretched length ``(1 + T/EA)``: ``(rho d/2)(C_n |U_n| U_n +
+    C_t |U_t| U_t)`` (Merkin 1980, seed 004, chapter 5). With ``T(s)`` the force the line
+    beyond ``s`` exerts, ``dT/ds = -q``; ``dr/ds = (1 + T/EA) T/|T|``. Integrated from
+    ``s = L`` (the fairlead, at height ``z_fairlead``) to 0; returns the fairlead's position
+    relative to the anchor ``X``, ``Z`` and the anchor force ``HA``, ``VA`` (the line's pull).
+    """
+    c = 0.0 if ea is None else 1.0 / ea
+    q = rho * diameter / 2
+
+    def rhs(s, y):
+        x, z, tx, tz = y
+        T = math.hypot(tx, tz)
+        ex, ez = tx / T, tz / T
+        u = velocity(z_fairlead + z)
+        along = u * ex
+        un = (u - along * ex, -along * ez)
+        un_mag = math.hypot(*un)
+        stretch = 1.0 + T * c
+        fx = q * (normal * un_mag * un[0] + tangential * abs(along) * along * ex) * stretch
+        fz = q * (normal * un_mag * un[1] + tangential * abs(along) * along * ez) * stretch
+        return [stretch * ex, stretch * ez, -fx, -(fz - w)]
+
+    sol = solve_ivp(rhs, (L, 0.0), [0.0, 0.0, float(H), float(V)], method="DOP853",
+                    rtol=1e-12, atol=1e-12 * max(L, math.hypot(H, V)))
+    if sol.status != 0:
+        raise RuntimeError(f"ODE integration failed: {sol.message}")
+    x, z, tx, tz = sol.y[:, -1]
+    return dict(X=-x, Z=-z, HA=tx, VA=tz)

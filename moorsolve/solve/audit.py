@@ -180,7 +180,8 @@ def _element_load(leg_case, s, env) -> float:
     """An upper bound [N] of one element's weight and flow force on a lumped-node line."""
     step = float(np.max(np.diff(s))) if s.size > 1 else 0.0
     current = env.current
-    speeds = [current.speed] + [row[1] for row in (current.profile or ())] if current else [0]
+    speeds = [current.speed] + [abs(row[1]) for row in (current.profile or ())] if current \
+        else [0]
     v = max(abs(float(x)) for x in speeds)
     q = 0.0
     for seg in leg_case.segments:

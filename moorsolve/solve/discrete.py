@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ..physics.drag import current_speed, line_drag
+from ..physics.drag import current_velocity, line_drag
 from .problem import DISCRETE_PARAMS, SEABED_PARAMS  # noqa: F401  (layout documented there)
 
 #: Columns of ``EquilibriumProblem.node_report``: per node of a discretised leg (anchor
@@ -117,10 +117,10 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
         stiff = ca.fmax(ca.fabs(T[e]) / L_e, fs / ls)
         mismatch.append(ca.fabs(r) * (ca.fmax(1 / (L_e * c), stiff) if elastic else stiff))
         z_mid = (nodes[e][2] + nodes[e + 1][2]) / 2
-        speed = (current_speed(z_mid, current["profile"]) if current["profile"]
-                 else current["speed"])
+        flow = (current_velocity(z_mid, current["profile"], heading, current["headings"])
+                if current["profile"] else current["speed"] * heading)
         side = sp["side"] if kind.side else 0.0
-        drag = line_drag(t, speed * heading, sp["diameter"], rho, sp["normal"],
+        drag = line_drag(t, flow, sp["diameter"], rho, sp["normal"],
                          sp["tangential"], side) * length * current["factor"]
         weight = ca.vertcat(0, 0, -sp["weight"] * L_e)
         tau.append(t)

@@ -730,15 +730,12 @@ def _line_load(case: Case, leg) -> tuple:
     """
     _, w = _equivalent_line(case, leg)
     env = case.environment
-    cur = env.current
-    speed = cur.speed
-    if cur.profile:
-        zs, vs = zip(*cur.profile)
-        speed = float(np.interp(-env.depth / 2, zs, vs))
+    ux, uy = env.current.velocity(-env.depth / 2)
+    speed = math.hypot(ux, uy)
     drag = sum(0.5 * env.water_density * (seg.line_type.diameter or 0.0)
                * (seg.line_type.drag.normal if seg.line_type.drag else 0.0) * speed**2
                * seg.length for seg in leg.segments) / leg.length
-    th = math.radians(cur.toward_deg)
+    th = math.atan2(uy, ux)
     q = np.array([drag * math.cos(th), drag * math.sin(th), -w])
     size = float(np.linalg.norm(q))
     return size, (q / size if size > 0 else np.array([0.0, 0.0, -1.0]))

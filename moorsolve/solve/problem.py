@@ -162,6 +162,7 @@ class DiscreteLegKind:
     elastic_segments: tuple
     profile_rows: int = 0
     side: bool = False
+    profile_headings: bool = False
 
     @property
     def elastic(self) -> bool:
@@ -202,6 +203,7 @@ def leg_kind(case: Case, leg: Leg):
             elements=counts,
             elastic_segments=tuple(seg.line_type.elastic for seg in leg.segments),
             profile_rows=len(profile) if profile else 0,
+            profile_headings=case.environment.current.profile_headings,
             side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
                      for seg in leg.segments))
     if leg.multi_segment:
@@ -307,8 +309,11 @@ def segment_parameters(case: Case) -> np.ndarray:
                        lt.diameter or 0.0, drag.normal if drag else 0.0,
                        drag.tangential if drag else 0.0, drag.side if drag else 0.0]
         values += [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
-    if discrete and case.environment.current.profile:
-        values += [v for row in case.environment.current.profile for v in row]
+    current = case.environment.current
+    if discrete and current.profile:
+        # (z, signed speed along the heading) rows, or (z, ux, uy) when each row has its own.
+        rows = current.profile_vectors() if current.profile_headings else current.profile
+        values += [v for row in rows for v in row]
     return np.asarray(values, dtype=float)
 
 
@@ -431,12 +436,15 @@ class EquilibriumProblem:
         n_disc = sum(len(DISCRETE_PARAMS) * len(k.elements) + len(k.elements) - 1
                      for k in self.kinds if isinstance(k, DiscreteLegKind))
         profile = None
-        rows = next((k.profile_rows for k in self.kinds if isinstance(k, DiscreteLegKind)), 0)
+        first = next((k for k in self.kinds if isinstance(k, DiscreteLegKind)), None)
+        rows = first.profile_rows if first is not None else 0
+        headings = first is not None and first.profile_headings
         if rows:
-            flat = seg_values[disc_cursor + n_disc: disc_cursor + n_disc + 2 * rows]
-            profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
+            width = 3 if headings else 2
+            flat = seg_values[disc_cursor + n_disc: disc_cursor + n_disc + width * rows]
+            profile = [tuple(flat[width * r: width * (r + 1)]) for r in range(rows)]
         current = dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
-                       factor=E["load_factor"])
+                       headings=headings, factor=E["load_factor"])
 
         q = {d: 0 for d in DEGREES_OF_FREEDOM}
         for i, d in enumerate(self.free):
