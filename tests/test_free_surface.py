@@ -173,3 +173,36 @@ def test_folded_line_reports_a_clean_success():
     leg = result.legs[0]
     assert leg.fairlead_vertical_N == pytest.approx(2500.0, rel=1e-4)
     assert leg.anchor_vertical_N == pytest.approx(-500.0, rel=1e-3)
+
+
+def test_a_bare_joint_pulled_out_of_the_water_is_not_blamed_on_a_buoy():
+    """Issue 20: a joint without a buoy, lifted out of the water by the floating hose above a
+    weightless rope, was reported as "the buoy is too large for this leg". No joint here has
+    a buoy; the model has no surface for a joint above a rope: refused, with the reason."""
+    case = load_case({
+        "environment": {"depth": 40},
+        "line_types": {"chain": {"weight_in_water": 300.0, "ea": 1e8},
+                       "rope": {"weight_in_water": 0.0, "ea": 1e7},
+                       "hose": {"weight_in_water": -400.0, "ea": 1e7}},
+        "legs": [{"name": "A", "anchor": [0, 0], "fairlead": [120, 0, 0],
+                  "segments": [{"type": "chain", "length": 30}, {"type": "rope", "length": 45},
+                               {"type": "hose", "length": 80}]}]})
+    with pytest.raises(ConvergenceError) as err:
+        solve(case)
+    assert "buoy is too large" not in err.value.reason
+    assert "a buoy breaking" not in err.value.reason
+    assert "joint 2 is" in err.value.reason and "above the still-water level" in err.value.reason
+
+
+def test_a_buoy_that_breaks_the_surface_is_named():
+    """A buoy lifting its joint out of the water: its lift is modelled as fully submerged,
+    so the state is refused, naming the buoy."""
+    case = load_case({
+        "environment": {"depth": 40},
+        "line_types": {"chain": {"weight_in_water": 300.0, "ea": 1e8}},
+        "legs": [{"name": "A", "anchor": [0, 0], "fairlead": [20, 0, -10],
+                  "segments": [{"type": "chain", "length": 50},
+                               {"clump": {"weight": -1e5}},
+                               {"type": "chain", "length": 30}]}]})
+    with pytest.raises(ConvergenceError, match="a buoy breaking the surface"):
+        solve(case)

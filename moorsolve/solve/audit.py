@@ -41,7 +41,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 
-__all__ = ["audit", "result_warnings", "AuditFailure"]
+__all__ = ["audit", "audit_findings", "result_warnings", "AuditFailure"]
 
 #: Relative tolerance of geometric checks (of the line's length or the water depth): far
 #: above the round-off of a certified solution, far below any defect worth the name.
@@ -57,23 +57,34 @@ class AuditFailure(ConvergenceError):
 def audit(result, case) -> list[str]:
     """Check ``result`` (of ``case``) independently; raise :class:`AuditFailure` on a defect.
 
-    Returns the list of checks passed per line and body (for tests and reports).
+    Returns the names of the lines audited.
     """
-    problems, passed = [], []
-    env = case.environment
-    tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
-    for leg_case, leg in zip(case.legs, result.legs):
-        found = _audit_line(leg_case, leg, env, tol_rel, _is_lumped(case, leg_case))
-        problems += [f"leg {leg.name}: {p}" for p in found]
-        passed.append(leg.name)
-    problems += _audit_body(result, case)
+    problems = audit_findings(result, case)
     if problems:
         c = result.certificate
         raise AuditFailure(
             "the solution certified but its reported quantities fail the independent audit: "
             + "; ".join(problems), residual_N=c.force_N, residual_Nm=c.moment_Nm,
             status=c.status, iterations=c.iterations, result=result)
-    return passed
+    return [leg.name for leg in result.legs]
+
+
+def audit_findings(result, case, boundaries_only: bool = False) -> list[str]:
+    """What the audit finds wrong with ``result``, one sentence each (empty: nothing).
+
+    With ``boundaries_only`` only where lines and joints sit against the seabed and the
+    surface: read at the best point of a solve that did not certify (whose forces need not
+    balance), it says what the model could not represent there (a joint pulled out of the
+    water, a line through the seabed, loose line on a slope).
+    """
+    problems = []
+    env = case.environment
+    tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
+    for leg_case, leg in zip(case.legs, result.legs):
+        found = _audit_line(leg_case, leg, env, tol_rel, _is_lumped(case, leg_case),
+                            boundaries_only)
+        problems += [f"leg {leg.name}: {p}" for p in found]
+    return problems + ([] if boundaries_only else _audit_body(result, case))
 
 
 def _is_lumped(case, leg_case) -> bool:
@@ -90,9 +101,10 @@ def _segment_data(leg_case):
     return lengths, weights, comp, np.concatenate([[0.0], np.cumsum(lengths)])
 
 
-def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
+def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> list[str]:
     prof = leg.profile
     out = []
+    consistency = []        # what needs a solved state: ends, continuity, forces
     pts = np.column_stack([np.asarray(prof[k], float) for k in ("x_m", "y_m", "z_m")])
     T = np.asarray(prof["tension_N"], float)
     s = np.asarray(prof["s_m"], float) if "s_m" in prof else None
@@ -108,9 +120,9 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
     miss_a = float(np.linalg.norm(pts[0] - anchor))
     miss_f = float(np.linalg.norm(pts[-1] - fairlead))
     if miss_a > tol:
-        out.append(f"the profile starts {miss_a:.3g} m from the anchor")
+        consistency.append(f"the profile starts {miss_a:.3g} m from the anchor")
     if miss_f > tol:
-        out.append(f"the profile ends {miss_f:.3g} m from the fairlead")
+        consistency.append(f"the profile ends {miss_f:.3g} m from the fairlead")
     step = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     if s is not None and s.size == len(pts):
         ds = np.diff(s)
@@ -119,10 +131,11 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
         allowed = ds * (1.0 + t_step * c_seg) * (1.0 + 1e-9) + tol
         k = int(np.argmax(step - allowed))
         if np.any(ds < -tol) or step[k] > allowed[k]:
-            out.append(f"the profile is not continuous: a step of {step[k]:.4g} m between "
-                       f"points {ds[k]:.4g} m apart along the line")
+            consistency.append(f"the profile is not continuous: a step of {step[k]:.4g} m "
+                               f"between points {ds[k]:.4g} m apart along the line")
         if abs(s[-1] - L) > tol or abs(s[0]) > tol:
-            out.append(f"the profile covers {s[0]:.4g} m to {s[-1]:.4g} m of a {L:.4g} m line")
+            consistency.append(f"the profile covers {s[0]:.4g} m to {s[-1]:.4g} m of a "
+                               f"{L:.4g} m line")
     bed = env.seabed_z(pts[:, 0], pts[:, 1])
     below = float(np.max(bed - pts[:, 2]))
     if below > tol:
@@ -139,11 +152,11 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
     # the seabed takes at an anchor lying on it: the end tension may differ by that much.
     end_tol = f_tol + (_element_load(leg_case, s, env) if lumped and s is not None else 0.0)
     if abs(T[0] - leg.anchor_tension_N) > end_tol:
-        out.append(f"the profile's tension at the anchor, {T[0]:.6g} N, is not the reported "
-                   f"anchor tension {leg.anchor_tension_N:.6g} N")
+        consistency.append(f"the profile's tension at the anchor, {T[0]:.6g} N, is not the "
+                           f"reported anchor tension {leg.anchor_tension_N:.6g} N")
     if abs(T[-1] - leg.fairlead_tension_N) > end_tol:
-        out.append(f"the profile's tension at the fairlead, {T[-1]:.6g} N, is not the "
-                   f"reported fairlead tension {leg.fairlead_tension_N:.6g} N")
+        consistency.append(f"the profile's tension at the fairlead, {T[-1]:.6g} N, is not the "
+                           f"reported fairlead tension {leg.fairlead_tension_N:.6g} N")
     if not lumped and env.seabed.sloped:
         out += _audit_slack_on_slope(pts, T, bed, env.seabed.friction, t_max, size)
     if not lumped and s is not None and s.size == len(pts):
@@ -153,9 +166,9 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
         tight = 1e-12 * size
         on_bed = pts[:, 2] - bed <= tight
         on_top = pts[:, 2] >= -tight
-        out += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol)
-        out += _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed,
-                                       on_top, t_max, tight)
+        consistency += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol)
+        consistency += _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights,
+                                               on_bed, on_top, t_max, tight)
     for j, joint in enumerate(leg.joints):
         z = joint["position_m"][2]
         zb = env.seabed_z(joint["position_m"][0], joint["position_m"][1])
@@ -173,7 +186,7 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped) -> list[str]:
                 "fully submerged; use a smaller buoy or a buoyant segment)" if clump < 0 else
                 " (lifted by the line above it; a joint on the surface is modelled only "
                 "under a buoyant segment)"))
-    return out
+    return out if boundaries_only else consistency + out
 
 
 def _element_load(leg_case, s, env) -> float:

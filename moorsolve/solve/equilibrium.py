@@ -35,7 +35,7 @@ from .newton import CONVERGED, STATUS_TEXT
 from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
                       EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
                       leg_parameters, parameter_vector, segment_parameters, structure_key)
-from .audit import audit, result_warnings
+from .audit import audit, audit_findings, result_warnings
 from .result import Certificate, LegResult, Result
 
 log = logging.getLogger(__name__)
@@ -488,7 +488,9 @@ def _diagnose(problem, case, result) -> str:
                            f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
+        found = audit_findings(result, case, boundaries_only=True)
         reasons.append(f"the solver stopped with status {result.certificate.status}"
+                       + (f"; at the best point reached: {'; '.join(found)}" if found else "")
                        + _along_a_boundary(case, result))
     return "; ".join(reasons)
 
@@ -593,26 +595,13 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
     lv = np.asarray(load_vec).ravel()
     for k, name in enumerate(problem.load_names):
         loads[name] = [float(v) for v in lv[3 * k: 3 * k + 3]]
-    notes = list(notes) + [
-        f"leg {lr.name}: the line passes below the seabed (contact not modelled "
-        f"for an anchor above the seabed or a buoyant line)"
-        for lr, kind in zip(legs, problem.kinds)
-        if not isinstance(kind, MultiLegKind) and not kind.contact
-        and np.min(lr.profile["z_m"]) < -env.depth - 1e-6]
+    # (A line through the seabed or out of the water, a joint held off its boundary: the
+    # audit's findings, errors of a certified point and reasons of one that is not.)
+    notes = list(notes)
     for lr, kind in zip(legs, problem.kinds):
         if isinstance(kind, DiscreteLegKind) and np.any(lr.profile["tension_N"][1:-1] < 0):
             notes.append(f"leg {lr.name}: some elements of the discretised line are in "
                          "compression (a loose line; its lumped-node shape is not unique)")
-    for lr in legs:
-        for j, joint in enumerate(lr.joints):
-            if joint["position_m"][2] > 0:
-                notes.append(f"leg {lr.name}: joint {j + 1} is {joint['position_m'][2]:.2f} m "
-                             "above the still-water level (its buoyancy is taken as fully "
-                             "submerged; the buoy is too large for this leg)")
-            if joint["seabed_reaction_N"] > 0 and joint["height_above_seabed_m"] > 1e-6:
-                notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
-                             f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
-                             "(a segment hanging down into a joint is outside the model)")
     # Clump weights are parameters: what they are depends on this case, not the structure.
     effects = list(problem.effects)
     clumps = [c.weight for leg in case.legs for c in leg.joint_clumps if c is not None]
