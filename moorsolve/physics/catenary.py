@@ -334,8 +334,10 @@ def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
             return H, w * np.sqrt(Z**2 + 2 * Z * H / w)
     # Suspended: sqrt(L^2 - Z^2) = 2 (H/|w|) sinh(|w| X / (2 H)) for the chord's sag.
     target = np.sqrt(max(L**2 - Z**2, 0.0))
-    if X <= 0:
-        return 0.0, w * L if w > 0 else 0.0
+    if X <= 1e-9 * L:
+        # Vertical: folded, the fairlead holding its side of the fold (of the two straight
+        # runs, d_F - d_A = Z and d_F + d_A = L for a sinking line).
+        return 0.0, w * (L + Z) / 2 if w > 0 else w * (L - Z) / 2
 
     def chord(H):
         return target - 2 * (H / aw) * np.sinh(min(aw * X / (2 * H), 700))
@@ -404,7 +406,7 @@ def _hyp(a, b):
 
 
 def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
-                             friction: bool = False):
+                             friction: bool = False, between_joints: bool = False):
     """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
 
     The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
@@ -422,7 +424,9 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
     1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
     ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
-    decays toward the lower end as in :func:`leg_equations`.
+    decays toward the lower end as in :func:`leg_equations`. ``between_joints``: the segment
+    joins two free joints of a multi-segment leg, whose span may be negative: loose line is
+    then counted only where the line lies, at most all of it.
 
     Returns
     -------
@@ -451,13 +455,19 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
             Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
         HA_t = ca.fmax(H - mu * w * LB, 0)
     loose = ca.fmax(-u, 0) / w
+    if between_joints:
+        # Between two free joints the span may be negative: loose line is then only where
+        # the line lies, and at most all of that, or a slack segment folded back past its
+        # upper end (a negative span made of loose line) would be a false root.
+        loose = ca.fmin(loose, ca.fmax(LB, 0))
     # Suspended when the line leaves the lower end less steeply than one that just touches
     # the seabed at its vertex, or when it has no vertex inside (still descending at the
     # upper end, V < 0: its lowest point is that end, which the caller puts on or above
     # the seabed). V = 0 with a steep start is a line arriving along the seabed.
     suspended = ca.logic_or(VA >= V1, V < 0)
     return dict(
-        rX=ca.if_else(suspended, Xs, Xt) - X - loose,
+        rX=(ca.if_else(suspended, Xs, Xt - loose) - X if between_joints
+            else ca.if_else(suspended, Xs, Xt) - X - loose),
         rZ=ca.if_else(suspended, Zs, Zt) - Z,
         H=H, VF=V, HA=ca.if_else(suspended, H, HA_t),
         VA=ca.if_else(suspended, VA, V1),
@@ -467,7 +477,8 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     )
 
 
-def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv):
+def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
+                              between_joints: bool = False):
     """A buoyant segment (``w < 0``) whose lower end is ``d >= 0`` below the surface.
 
     The free surface bounds it as the seabed bounds a sinking segment: this is
@@ -495,7 +506,8 @@ def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv):
     meets the seabed, mirrored). The surface carries the floating part's buoyancy as the
     seabed carries a grounded part's weight; no drag or friction acts along it.
     """
-    m = lifted_segment_equations(elastic, X, -Z, d, u, -V, L, -w, ea_inv)
+    m = lifted_segment_equations(elastic, X, -Z, d, u, -V, L, -w, ea_inv,
+                                 between_joints=between_joints)
     return dict(rX=m["rX"], rZ=-m["rZ"], H=m["H"], VF=-m["VF"], HA=m["HA"], VA=-m["VA"],
                 grounded=0 * m["H"], floating=m["grounded"], suspended_x=m["suspended_x"],
                 descent_x=m["descent_x"])
@@ -551,15 +563,16 @@ def surface_leg_function(elastic: bool, from_fairlead: bool) -> ca.Function:
 
 
 @lru_cache(maxsize=None)
-def surface_segment_function(elastic: bool) -> ca.Function:
+def surface_segment_function(elastic: bool, between_joints: bool = False) -> ca.Function:
     """:func:`surface_segment_equations` as a ``casadi.Function`` (inputs
     ``LIFTED_INPUTS`` with ``h`` the lower end's depth below the surface; outputs
     ``SEGMENT_OUTPUTS + ("floating",)``)."""
     args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
     X, Z, h, u, V, L, w, ea_inv, _ = args
-    out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv)
+    out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv, between_joints)
     names = SEGMENT_OUTPUTS + ("floating",)
-    return ca.Function(f"segment_surface_{'elastic' if elastic else 'inextensible'}", args,
+    tag = ("elastic" if elastic else "inextensible") + ("_joints" if between_joints else "")
+    return ca.Function(f"segment_surface_{tag}", args,
                        [out[k] for k in names], list(LIFTED_INPUTS), list(names))
 
 
@@ -586,11 +599,14 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
 
 
 @lru_cache(maxsize=None)
-def lifted_segment_function(elastic: bool, friction: bool = False) -> ca.Function:
+def lifted_segment_function(elastic: bool, friction: bool = False,
+                            between_joints: bool = False) -> ca.Function:
     """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
     args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
-    out = lifted_segment_equations(elastic, *args, friction=friction)
-    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+    out = lifted_segment_equations(elastic, *args, friction=friction,
+                                   between_joints=between_joints)
+    tag = (("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+           + ("_joints" if between_joints else ""))
     return ca.Function(f"segment_lifted_{tag}", args,
                        [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
                        list(SEGMENT_OUTPUTS))

@@ -114,8 +114,9 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
                 leg.anchor_tension_N, float(np.sum(np.abs(weights) * lengths)), 1e-300)
     size = max(L * (1.0 + t_max * float(np.max(comp))), env.depth, 1.0)
     tol = tol_rel * size
-    if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(T))):
-        return ["the profile has non-finite points"]
+    if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(T)) and math.isfinite(t_max)
+            and math.isfinite(size)):
+        return ["the profile has non-finite points or tensions"]
     anchor, fairlead = np.asarray(leg.anchor, float), np.asarray(leg.fairlead, float)
     miss_a = float(np.linalg.norm(pts[0] - anchor))
     miss_f = float(np.linalg.norm(pts[-1] - fairlead))
@@ -309,9 +310,9 @@ def _signed_anchor_pull(leg, pts) -> float:
     recovered from the reported anchor tension and the profile's direction there.
     """
     VA = leg.anchor_vertical_N
-    rest = leg.anchor_tension_N ** 2 - leg.anchor_horizontal_N ** 2
-    if VA == 0.0 and rest > 0.0 and len(pts) > 1 and pts[1, 2] < pts[0, 2]:
-        return -math.sqrt(rest)
+    TA, HA = leg.anchor_tension_N, leg.anchor_horizontal_N
+    if VA == 0.0 and TA > HA and len(pts) > 1 and pts[1, 2] < pts[0, 2]:
+        return -math.sqrt((TA - HA) * (TA + HA))
     return VA
 
 

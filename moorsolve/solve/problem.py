@@ -656,10 +656,10 @@ class EquilibriumProblem:
                                                    ea_inv=c, mu=P["friction"]))
                 o["descent_x"] = 0 * u
             elif sk.block == "floating":
-                o = surface_segment_function(sk.elastic).call(dict(
+                o = surface_segment_function(sk.elastic, True).call(dict(
                     X=Xk, Z=Zk, h=d, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=0))
             elif sk.block == "lifted":
-                o = lifted_segment_function(sk.elastic, sk.friction).call(dict(
+                o = lifted_segment_function(sk.elastic, sk.friction, True).call(dict(
                     X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"]))
             else:
                 o = straight_segment_function(sk.elastic).call(dict(
