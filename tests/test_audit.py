@@ -19,7 +19,7 @@ import pytest
 from moorsolve import ConvergenceError, load_case, solve
 from moorsolve.cli import main
 from moorsolve.report.text import format_table
-from moorsolve.solve import equilibrium
+from moorsolve.solve import outcome
 from moorsolve.solve.audit import AuditFailure, audit
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
@@ -137,12 +137,12 @@ def test_an_unbalanced_body_fails():
 
 def test_solve_raises_when_the_reported_profile_is_wrong(monkeypatch):
     """An audit failure inside ``solve`` is a ConvergenceError with the reason."""
-    real = equilibrium.single_leg_profile
+    real = outcome.leg_profile
 
     def broken(*args, **kwargs):
         prof = real(*args, **kwargs)
         return dict(prof, z=prof["z"] + 1.0)
-    monkeypatch.setattr(equilibrium, "single_leg_profile", broken)
+    monkeypatch.setattr(outcome, "leg_profile", broken)
     with pytest.raises(ConvergenceError, match="independent audit: leg A: the profile starts"):
         solve(one_leg(100.0, [0, 0], [80.0, 0, 0.0], 100.0))
 

@@ -202,7 +202,7 @@ def test_spread_moorings_are_right_or_refused(data):
         if leg_case.multi_segment:
             continue
         one = type(case)(name="leg", environment=case.environment,
-                         line_types=case.line_types, legs=(leg_case,))
+                         line_types=case.line_types, lines=(leg_case,))
         kind = "buoyant" if leg_case.line_type.weight_in_water < 0 else (
             "chain_friction" if case.environment.seabed.friction else "chain")
         reference_check(kind, one, leg)

@@ -21,7 +21,6 @@ import pytest
 
 import moorsolve
 from moorsolve.model.paths import with_values
-from moorsolve.studies import study
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
 TOL = 1e-12
@@ -255,31 +254,25 @@ def test_floating_line_and_anchor_above_the_seabed():
 
 def test_slope_moves_the_anchor_along_the_seabed():
     """On a 0.3 slope the anchor tension's derivative by the anchor's x equals differences
-    of re-solved cases with the anchor kept on the seabed; the derivative with its z held
-    (what the sensitivity once gave) is off by far more than that agreement."""
+    of re-solved cases with the anchor kept on the seabed (holding its z, as the derivative
+    once did, was 6 % to 36 % off here)."""
     data = steep_buoy([0.3, 0.1], 0.0)
     case = moorsolve.load_case(data)
     result = moorsolve.solve(case, tol=TOL)
-    out, par = "legs[L2].anchor_tension_N", "legs[L2].anchor_x"
-    exact = moorsolve.sensitivity(result, out, par)[out, par]
+    out = "legs[L2].anchor_tension_N"
     x, y, _ = case.legs[1].anchor
     h = 1e-4
 
     def tension(anchor):
         moved = moorsolve.load_case(with_values(data, {"legs[L2].anchor": anchor}))
         return moorsolve.solve(moved, tol=TOL).leg("L2").anchor_tension_N
-    along = (tension([x + h, y]) - tension([x - h, y])) / (2 * h)
-    assert exact == pytest.approx(along, rel=1e-5)
-    # The z-held derivative: the same implicit-function product on the x column alone.
-    problem = study.get_problem(case)
-    G_x, G_p, Y_x, Y_p = (np.asarray(v) for v in study._sensitivity_function(problem)(
-        result.state, study._params(case)))
-    column = np.zeros(problem.n_p)
-    column[len(study.ENV_PARAMS) + len(study.LEG_PARAMS) + study.LEG_PARAMS.index(
-        "anchor_x")] = 1.0
-    row = 3 + len(study.LEG_OUTPUTS) + study.LEG_OUTPUTS.index("anchor_tension_N")
-    held = float(Y_x[row] @ -np.linalg.solve(G_x, G_p @ column) + Y_p[row] @ column)
-    assert abs(held - along) > 1e-2 * abs(along), (held, along)
+    for k, par in enumerate(("legs[L2].anchor_x", "legs[L2].anchor_y")):
+        exact = moorsolve.sensitivity(result, out, par)[out, par]
+        plus, minus = [x, y], [x, y]
+        plus[k] += h
+        minus[k] -= h
+        along = (tension(plus) - tension(minus)) / (2 * h)
+        assert exact == pytest.approx(along, rel=1e-5), par
 
 
 def test_multi_segment_leg_refuses_a_leg_wide_length():

@@ -80,7 +80,7 @@ def audit_findings(result, case, boundaries_only: bool = False) -> list[str]:
     problems = []
     env = case.environment
     tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
-    for leg_case, leg in zip(case.legs, result.legs):
+    for leg_case, leg in zip(case.lines, result.legs):
         found = _audit_line(leg_case, leg, env, tol_rel, _is_lumped(case, leg_case),
                             boundaries_only)
         problems += [f"leg {leg.name}: {p}" for p in found]
@@ -323,43 +323,67 @@ def _plane(leg) -> tuple[float, float]:
 
 
 def _audit_body(result, case) -> list[str]:
-    """The fairlead forces, recomputed, balance the loads in every free degree of freedom."""
-    if case.body is None or result.body is None:
-        return []
-    free = tuple(case.body.free)
-    if not free:
-        return []
-    x0, y0 = result.body["x_m"], result.body["y_m"]
-    force = np.zeros(3)
-    t_max = 0.0
+    """The reported line forces balance every free body and free point.
+
+    Per body free in surge, sway or yaw: the global horizontal forces and the moment about
+    the vertical through the body's origin, from every line end on the body (the reported
+    end forces at the reported end positions) and every reported load; weight and buoyancy
+    are vertical and take no part. (Heave, roll and pitch would need the hydrostatics: not
+    recomputed here; a body with extra springs is left to the certificate.) Per free point:
+    all three components, with its weight in water and the seabed's reported reaction.
+    """
     out = []
-    for leg in result.legs:
-        ux, uy = _plane(leg)
-        H = leg.horizontal_tension_N
-        f = np.array([-H * ux, -H * uy])
-        if leg.fairlead_force is not None:
-            given = np.asarray(leg.fairlead_force[:2], float)
-            lumped = "seabed_reaction_N" in leg.profile     # may pull sideways (current)
-            if not lumped and np.linalg.norm(given - f) > FORCE_REL * max(H, 1.0):
-                out.append(f"leg {leg.name}: the fairlead force {given.tolist()} N is not the "
-                           f"horizontal tension {H:.6g} N toward the anchor")
-            f = given
-        rx, ry = leg.fairlead[0] - x0, leg.fairlead[1] - y0
-        force += (f[0], f[1], rx * f[1] - ry * f[0])
-        t_max = max(t_max, leg.fairlead_tension_N, leg.anchor_tension_N)
-    for load in result.loads.values():
-        force += np.asarray(load, float)
-    tol = max(10.0 * result.certificate.tolerance, FORCE_REL) * max(t_max, 1.0)
-    radius = max([math.hypot(leg.fairlead[0] - x0, leg.fairlead[1] - y0)
-                  for leg in result.legs] + [1.0])
-    names = {"surge": (0, "N"), "sway": (1, "N"), "yaw": (2, "N m")}
-    for dof in free:
-        k, unit = names[dof]
-        limit = tol * (radius if dof == "yaw" else 1.0)
-        if abs(force[k]) > limit:
-            out.append(f"the body is not in balance in {dof}: {force[k]:.4g} {unit} unbalanced "
-                       "by the reported line forces and loads")
+    t_max = max([1.0] + [max(leg.fairlead_tension_N, leg.anchor_tension_N)
+                         for leg in result.legs])
+    tol = max(10.0 * result.certificate.tolerance, FORCE_REL) * t_max
+    for bi, body in enumerate(case.bodies):
+        free = [d for d in ("surge", "sway", "yaw") if d in body.free]
+        if not free or body.stiffness is not None or bi >= len(result.bodies):
+            continue
+        origin = result.bodies[bi]
+        x0, y0 = origin["x_m"], origin["y_m"]
+        total = np.zeros(3)
+        radius = 1.0
+        for line, leg in zip(case.lines, result.legs):
+            for end, pos, force in ((line.a, leg.anchor, _end_force(leg, "a")),
+                                    (line.b, leg.fairlead, _end_force(leg, "b"))):
+                if end.body != body.name or force is None:
+                    continue
+                rx, ry = pos[0] - x0, pos[1] - y0
+                total += (force[0], force[1], rx * force[1] - ry * force[0])
+                radius = max(radius, math.hypot(rx, ry))
+        for name, load in result.loads.items():
+            if len(case.bodies) > 1 and not name.startswith(body.name + "."):
+                continue
+            f = np.asarray(load, float)
+            total += (f[0], f[1], f[2] if f.size == 3 else f[5])
+        for dof in free:
+            k, unit = {"surge": (0, "N"), "sway": (1, "N"), "yaw": (2, "N m")}[dof]
+            if abs(total[k]) > tol * (radius if dof == "yaw" else 1.0):
+                out.append(f"body {body.name} is not in balance in {dof}: {total[k]:.4g} "
+                           f"{unit} unbalanced by the reported line forces and loads")
+    env = case.environment
+    for point, reported in zip(case.free_points, result.points):
+        total = np.array([0.0, 0.0, -env.gravity * (point.mass
+                                                    - env.water_density * point.volume)])
+        for line, leg in zip(case.lines, result.legs):
+            for end, which in ((line.a, "a"), (line.b, "b")):
+                force = _end_force(leg, which)
+                if end.point == point.name and force is not None:
+                    total += force
+        gx, gy = env.seabed.gradient
+        normal = np.array([-gx, -gy, 1.0]) / math.sqrt(1 + gx * gx + gy * gy)
+        total += reported.get("seabed_reaction_N", 0.0) * normal
+        if np.linalg.norm(total) > tol:
+            out.append(f"point {point.name} is not in balance: {np.linalg.norm(total):.4g} N "
+                       "unbalanced by the reported line forces, its weight and the seabed")
     return out
+
+
+def _end_force(leg, which: str):
+    """The force [N] the line exerts on its end A or B, as reported (global 3-vector)."""
+    force = leg.anchor_force if which == "a" else leg.fairlead_force
+    return None if force is None else np.asarray(force, float)
 
 
 # ---- warnings ---------------------------------------------------------------------------
@@ -369,7 +393,7 @@ def result_warnings(result, case) -> list[dict]:
     """What an engineer must not miss in ``result``: a list of ``{"code", "leg",
     "message"}`` (codes ``wall_compression``, ``floating``, ``end_in_air``)."""
     out = []
-    for leg_case, leg in zip(case.legs, result.legs):
+    for leg_case, leg in zip(case.lines, result.legs):
         prof = leg.profile
         wall = prof.get("wall_tension_N")
         if wall is not None and np.any(np.asarray(wall) < 0):

@@ -24,8 +24,8 @@ seabed is capped at the local water depth ``D`` (``clip(zeta, 0, D)``) and the s
 node that would rise above it down with ``max(zeta - D, 0) force_scale / length_scale`` [N]
 (a buoyant line floats; REFERENCE.md section 7). A node on the seabed is frictionless
 (seabed friction acts only on analytic legs); on a sloped seabed a grounded node can slide
-down the plane. The fairlead node carries half of the
-top element's weight and flow force onto the body, the anchor node half of the first one's.
+down the plane. The fairlead node carries half of the top element's weight and flow force
+onto the body, the anchor node half of the first one's.
 
 The discretisation is the midpoint rule for the distributed load: without current it tends
 to the elastic catenary with the element count; the tests report the observed order. The
@@ -37,7 +37,8 @@ from __future__ import annotations
 import casadi as ca
 
 from ..physics.drag import current_velocity, line_drag
-from .problem import DISCRETE_PARAMS, SEABED_PARAMS  # noqa: F401  (layout documented there)
+from .layout import DISCRETE_PARAMS
+from .lines import LineBlock
 
 #: Columns of ``EquilibriumProblem.node_report``: per node of a discretised leg (anchor
 #: first), its position [m], the line tension there [N] (the end resultant at the anchor and
@@ -59,8 +60,9 @@ def _node_share(loads, j):
     return share
 
 
-def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z):
-    """Residuals, the report row and the node rows of discretised leg ``i``."""
+def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair) -> LineBlock:
+    """The block of lumped-node line ``i`` (the module notes), its nodes from end A
+    (``anchor``) to end B (``fair``), both global 3-vectors [m]."""
     fs, ls = problem.force_scale, problem.length_scale
     k_N = fs / ls
     rho = problem.case.environment.water_density
@@ -78,9 +80,7 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     def bed(px, py):
         return -depth + gx * px + gy * py
 
-    # Nodes 0 (anchor) .. n (fairlead).
-    anchor = ca.vertcat(P["anchor_x"], P["anchor_y"], P["anchor_z"])
-    fair = ca.vertcat(fair_xy[0], fair_xy[1], P["fair_z"])
+    # Nodes 0 (end A) .. n (end B).
     nodes, zeta, water = [anchor], [], []
     for j in range(1, n):
         px, py, zj = x[base + 3 * (j - 1)], x[base + 3 * (j - 1) + 1], x[base + 3 * (j - 1) + 2]
@@ -145,11 +145,11 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     on_fair = -T[-1] * tau[-1] + loads[-1] / 2
     on_anchor = T[0] * tau[0] + loads[0] / 2
     tol = 1e-9 * ca.fmax(depth, 1)
-    anchor_down = ca.if_else(P["anchor_z"] <= bed(P["anchor_x"], P["anchor_y"]) + tol, 1, 0)
-    fair_down = ca.if_else(P["fair_z"] <= bed(fair_xy[0], fair_xy[1]) + tol, 1, 0)
+    anchor_down = ca.if_else(anchor[2] <= bed(anchor[0], anchor[1]) + tol, 1, 0)
+    fair_down = ca.if_else(fair[2] <= bed(fair[0], fair[1]) + tol, 1, 0)
     flags = [anchor_down] + grounded_node + [fair_down]
-    afloat = ([ca.if_else(P["anchor_z"] >= 0, 1, 0)] + floating_node
-              + [ca.if_else(P["fair_z"] >= 0, 1, 0)])
+    afloat = ([ca.if_else(anchor[2] >= 0, 1, 0)] + floating_node
+              + [ca.if_else(fair[2] >= 0, 1, 0)])
     grounded = floating = 0
     run, touchdown = anchor_down, 0
     for e in range(n):
@@ -164,9 +164,10 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     for m in mismatch[1:]:
         worst = ca.fmax(worst, m)
     H = ca.sqrt(on_fair[0]**2 + on_fair[1]**2 + _FLOOR**2)
+    X = ca.sqrt((fair[0] - anchor[0])**2 + (fair[1] - anchor[1])**2 + _FLOOR**2)
     row = dict(H=H, VF=-on_fair[2], HA=ca.sqrt(on_anchor[0]**2 + on_anchor[1]**2),
                VA=on_anchor[2], grounded=grounded, suspended_x=X - touchdown, rX=worst,
-               rZ=0 * worst, J=ca.DM([1.0, 0.0, 0.0, 1.0]), fx=on_fair[0], fy=on_fair[1],
+               rZ=0 * worst, J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=fair[2] - anchor[2],
                floating=floating)
     rows = []
     for j in range(n + 1):
@@ -178,4 +179,4 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
             tension, reaction = (T[j - 1] + T[j]) / 2, reactions[j - 1]
             hold = holds[j - 1]
         rows.append(ca.vertcat(i, j, nodes[j], tension, reaction, flags[j], hold, afloat[j]))
-    return res, row, rows
+    return LineBlock(res, on_anchor, on_fair, worst, row, [], rows)
