@@ -206,3 +206,49 @@ def test_a_buoy_that_breaks_the_surface_is_named():
                                {"type": "chain", "length": 30}]}]})
     with pytest.raises(ConvergenceError, match="a buoy breaking the surface"):
         solve(case)
+
+
+@pytest.mark.parametrize("w_air", [1500.0, 3000.0])
+@pytest.mark.parametrize("z_top", [2.0, 8.0])
+def test_a_fairlead_in_air_uses_the_weight_in_air(w_air, z_top):
+    """Issue 20: a fairlead above the water took the line's weight in water for the part in
+    air, without a note. With the line type's weight_in_air the part above the surface is
+    its own catenary: the reported end forces, integrated down the line's ODE with the
+    weight changing at the surface (tests/reference_ode.py), land on the anchor."""
+    from reference_ode import integrate_through_surface
+    case = load_case({
+        "environment": {"depth": 20.0},
+        "line_types": {"c": {"weight_in_water": 1300.0, "ea": 5e8, "weight_in_air": w_air}},
+        "legs": [{"name": "A", "anchor": [0, 0, -12.0], "fairlead": [100, 0, z_top],
+                  "segments": [{"type": "c", "length": 106.0}]}]})
+    result = solve(case)
+    leg = result.legs[0]
+    ref = integrate_through_surface(H=leg.horizontal_tension_N, V=leg.fairlead_vertical_N,
+                                    L=106.0, w_water=1300.0, w_air=w_air, z_top=z_top, ea=5e8)
+    assert ref["X"] == pytest.approx(100.0, abs=1e-7 * 106)
+    assert ref["Z"] == pytest.approx(z_top + 12.0, abs=1e-7 * 106)
+    assert ref["VA"] == pytest.approx(leg.anchor_vertical_N, abs=1e-7 * leg.fairlead_tension_N)
+    assert [w["code"] for w in result.warnings] == ["end_in_air"]
+    assert "weight in air" in result.warnings[0]["message"]
+    # Without the weight in air the part above is taken with the weight in water, and the
+    # warning says so.
+    plain = load_case({**case.source, "line_types": {"c": {"weight_in_water": 1300.0,
+                                                           "ea": 5e8}}})
+    warned = solve(plain)
+    assert "weight_in_air" in warned.warnings[0]["message"]
+    assert warned.legs[0].fairlead_vertical_N < leg.fairlead_vertical_N
+
+
+def test_weight_in_air_is_validated_and_comes_from_the_catalogue():
+    from moorsolve import CaseError
+    base = {"environment": {"depth": 20.0},
+            "legs": [{"name": "A", "anchor": [0, 0], "fairlead": [100, 0, 5.0],
+                      "segments": [{"type": "c", "length": 110.0}]}]}
+    with pytest.raises(CaseError, match=r"line_types.c.weight_in_air.*less than the weight"):
+        load_case({**base, "line_types": {"c": {"weight_in_water": 1300.0,
+                                                "weight_in_air": 1000.0}}})
+    case = load_case({**base, "line_types": {"c": {"catalog": "studless_r3",
+                                                   "diameter": "81 mm"}}})
+    lt = case.line_types["c"]
+    assert lt.weight_in_air == pytest.approx(0.0199 * 81**2 * 9.80665, rel=1e-12)
+    assert lt.weight_in_air > lt.weight_in_water

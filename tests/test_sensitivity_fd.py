@@ -21,6 +21,7 @@ import pytest
 
 import moorsolve
 from moorsolve.model.paths import with_values
+from test_study import _outputs as outputs_of
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
 TOL = 1e-12
@@ -102,19 +103,6 @@ def _get(data, path):
     for part in path.split("."):
         node = node[part]
     return float(node)
-
-
-def outputs_of(result, names):
-    d = result.to_dict(profiles=False)
-    legs = {leg["name"]: leg for leg in d["legs"]}
-    out = []
-    for n in names:
-        if n in ("x_m", "y_m", "yaw_deg"):
-            out.append(d["body"][n])
-        else:
-            leg, field = n[len("legs["):].split("].")
-            out.append(legs[leg][field])
-    return np.array(out, float)
 
 
 def check_parameters(data, params, legs):

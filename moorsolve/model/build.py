@@ -26,6 +26,8 @@ Schema (SI units, ``[...]`` lists)::
       waves: {hs: >= 0 [m], toward_deg}        optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
+             weight_in_air >= weight_in_water [N/m or mass/m] (for a line end above
+             the water; a catalogue line has it from its mass),
              sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
                                                drag needs a diameter
       NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],

@@ -69,6 +69,9 @@ class LegKind:
     lifted : bool
         A sinking line whose anchor is above a flat seabed: the seabed still bounds it
         (:func:`lifted_segment_equations` with the anchor's height above the seabed).
+    air : bool
+        The upper end is above the water and the line type gives its weight in air: the
+        part above the surface is the catenary of :func:`air_part`.
     surface : bool
         A buoyant line bounded by the free surface (:func:`surface_leg_equations`).
     from_fairlead : bool
@@ -85,6 +88,7 @@ class LegKind:
     lifted: bool = False
     surface: bool = False
     from_fairlead: bool = False
+    air: bool = False
 
     @property
     def bounded(self) -> bool:
@@ -108,6 +112,8 @@ class LegKind:
             parts.append("surface_from_fairlead" if self.from_fairlead else "surface")
         else:
             parts.append("suspended")
+        if self.air:
+            parts.append("air")
         return "_".join(parts)
 
 
@@ -360,6 +366,38 @@ def _lifted_start(plain: LegKind, X, Z, L, w, ea, h) -> tuple[float, float]:
         return initial_state(LegKind(elastic=plain.elastic, contact=True), X, Z + h, L - h,
                              w, ea)
     return H, V
+
+
+# ---- a line end above the water -------------------------------------------------------
+
+
+def air_part(H, V, z_top, w_air, ea_inv):
+    """The part of a line between the surface and an upper end ``z_top > 0`` above it.
+
+    Above the water the line weighs ``w_air`` per metre (no buoyancy). From the upper end's
+    vertical tension ``V`` down to the crossing of the surface, the vertical tension falls
+    by ``w_air`` per metre; the rise is ``f(T) - f(T_c) = w_air z_top`` with
+    ``f(T) = T + T^2/(2 EA)`` (the elastic catenary's height, Merkin 1980, seed 004, sections
+    2.1 and 2.3, written in the tensions ``T``, ``T_c`` at the two ends), so the tension at
+    the crossing is closed form: ``T_c = 2 r / (1 + sqrt(1 + 2 r/EA))``, ``r = f(T) - w_air
+    z_top``, and ``V_c = sqrt(T_c^2 - H^2)`` (continued as ``-sqrt(H^2 - T_c^2)`` where the
+    line could not reach the surface: no root there).
+
+    Returns
+    -------
+    dict
+        ``V`` the vertical tension at the crossing [N], ``length`` the unstretched length in
+        air [m], ``x`` its horizontal extent [m].
+    """
+    T = _hyp(H, V)
+    r = ca.fmax(T + ea_inv * T**2 / 2 - w_air * z_top, 0)
+    Tc = 2 * r / (1 + ca.sqrt(1 + 2 * ea_inv * r))
+    q = Tc**2 - H**2
+    Vc = ca.sign(q) * ca.sqrt(ca.fabs(q) + _H_FLOOR**2) - ca.sign(q) * _H_FLOOR
+    Hg = ca.fmax(H, _H_FLOOR)
+    length = (V - Vc) / w_air
+    x = (H / w_air) * (ca.asinh(V / Hg) - ca.asinh(Vc / Hg)) + H * length * ea_inv
+    return dict(V=Vc, length=length, x=x)
 
 
 # ---- segments of a multi-segment leg ----------------------------------------------------

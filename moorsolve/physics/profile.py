@@ -259,3 +259,30 @@ def single_leg_profile(kind: LegKind, *, H: float, VF: float, VA: float, L: floa
                                   t=slope, X=X, Z=Z, n=n)
     return leg_profile(kind, H=H, V=VF, L=L, w=w, ea=ea, mu=mu if kind.friction else 0.0,
                        X=X, Z=Z, n=n)
+
+
+def with_air_part(water: dict, *, H: float, V: float, z_top: float, w_air: float,
+                  ea: float | None, L: float, n: int = 21) -> dict:
+    """A profile whose upper end is ``z_top`` above the water: the water part ``water``
+    (drawn up to the surface crossing, from the lower end) followed by the part in air, the
+    catenary of :func:`~moorsolve.physics.catenary.air_part` under ``w_air``.
+
+    ``V`` is the vertical tension at the upper end [N], ``L`` the line's whole unstretched
+    length [m].
+    """
+    from .catenary import air_part
+    c = 1.0 / ea if ea else 0.0
+    part = {k: float(v) for k, v in air_part(H, V, z_top, w_air, c).items()}
+    s_air = np.linspace(0.0, part["length"], n)
+    Tv = part["V"] + w_air * s_air
+    if H > 0:
+        x = (H / w_air) * (np.arcsinh(Tv / H) - np.arcsinh(part["V"] / H)) + H * s_air * c
+    else:
+        x = np.zeros_like(s_air)
+    z = (np.hypot(H, Tv) - np.hypot(H, part["V"])) / w_air + (part["V"] * s_air
+                                                              + w_air * s_air**2 / 2) * c
+    x0, z0 = water["x"][-1], water["z"][-1]
+    return dict(s=np.concatenate([water["s"], (L - part["length"]) + s_air[1:]]),
+                x=np.concatenate([water["x"], x0 + x[1:]]),
+                z=np.concatenate([water["z"], z0 + z[1:]]),
+                tension=np.concatenate([water["tension"], np.hypot(H, Tv)[1:]]))

@@ -166,7 +166,7 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
         # first metres of a line rising tangentially off the boundary as supported.
         tight = 1e-12 * size
         on_bed = pts[:, 2] - bed <= tight
-        on_top = pts[:, 2] >= -tight
+        on_top = np.abs(pts[:, 2]) <= tight       # afloat: on the surface, not above
         consistency += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol)
         consistency += _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights,
                                                on_bed, on_top, t_max, tight)
@@ -256,6 +256,10 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
     mid = (s[1:] + s[:-1]) / 2
     seg = np.clip(np.searchsorted(ends, mid) - 1, 0, len(weights) - 1)
     w = weights[seg]
+    # Above the water a line weighs its weight in air, where the case gives it.
+    in_air = np.array([sg.line_type.weight_in_air if sg.line_type.weight_in_air is not None
+                       else sg.line_type.weight_in_water for sg in leg_case.segments])[seg]
+    w = np.where((pts[1:, 2] + pts[:-1, 2]) / 2 > 0, in_air, w)
     ds = np.diff(s)
     supported = (on_bed[1:] & on_bed[:-1]) | (on_top[1:] & on_top[:-1])
     hanging = float(np.sum(w * ds * ~supported))
@@ -408,7 +412,14 @@ def result_warnings(result, case) -> list[dict]:
                 f"(from {leg.touchup_from_anchor_m:.2f} m from the anchor)")))
         for end, z in (("fairlead", leg.fairlead[2]), ("anchor", leg.anchor[2])):
             if z > 0:
+                lt = leg_case.segments[-1 if end == "fairlead" else 0].line_type
+                how = (f"with its weight in air, {lt.weight_in_air:.4g} N/m"
+                       if lt.weight_in_air is not None and not leg_case.multi_segment
+                       and not _is_lumped(case, leg_case) else
+                       "with its weight in water (give the line type a weight_in_air)"
+                       if lt.weight_in_air is None else
+                       "with its weight in water (a multi-segment or lumped-node line)")
                 out.append(dict(code="end_in_air", leg=leg.name, message=(
                     f"leg {leg.name}: the {end} is {z:.2f} m above the water; the line above "
-                    "the surface is taken with its weight in water")))
+                    f"the surface is taken {how}")))
     return out

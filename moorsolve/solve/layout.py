@@ -33,7 +33,7 @@ from ..model import Case
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
               "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor")
 LINE_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
-               "length", "weight", "ea_inv", "friction")
+               "length", "weight", "ea_inv", "friction", "weight_air")
 #: The ``legs:`` form's name for :data:`LINE_PARAMS`.
 LEG_PARAMS = LINE_PARAMS
 SEABED_PARAMS = ("depth", "gradient_x", "gradient_y")
@@ -72,7 +72,8 @@ def line_parameters(case: Case) -> np.ndarray:
     for line in case.lines:
         lt = line.line_type
         rows.append([*_end_coordinates(line.a), *_end_coordinates(line.b), line.length,
-                     lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0, mu])
+                     lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0, mu,
+                     lt.weight_in_air if lt.weight_in_air is not None else lt.weight_in_water])
     return np.asarray(rows, dtype=float).reshape(-1)
 
 

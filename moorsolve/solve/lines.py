@@ -59,7 +59,7 @@ import casadi as ca
 
 from ..model import Case, Line
 from ..model.build_network import end_position
-from ..physics.catenary import (LegKind, descent_force, leg_function,
+from ..physics.catenary import (LegKind, air_part, descent_force, leg_function,
                                 lifted_segment_function, sloped_leg_function,
                                 straight_segment_function, surface_leg_function,
                                 surface_segment_function)
@@ -310,11 +310,14 @@ def line_kind(case: Case, line: Line) -> LineKind:
     w = lt.weight_in_water
     contact = lower == "anchor" and w > 0
     # The free surface bounds every buoyant line; one whose upper end is at (or above) the
-    # surface is solved from that end (LegKind.from_fairlead).
+    # surface is solved from that end (LegKind.from_fairlead). An upper end above the water
+    # with a weight in air given: the part in air is its own catenary (LegKind.air).
+    air = tz > 1e-9 and w != 0 and lt.weight_in_air is not None
     block = LegKind(elastic=lt.elastic, contact=contact,
                     friction=contact and case.environment.seabed.friction > 0,
                     neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
-                    surface=w < 0, from_fairlead=w < 0 and at_surface(tz))
+                    surface=w < 0, from_fairlead=w < 0 and at_surface(tz) and not air,
+                    air=air)
     return LineKind(block, flipped, lower, upper, lifted=(w > 0 and lower != "anchor"))
 
 
@@ -399,6 +402,14 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     block = kind.block
     args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"], ea_inv=P["ea_inv"],
                 mu=P["friction"])
+    air = None
+    if block.air:
+        # The upper end is above the water: its part in air, in closed form, then the water
+        # block up to the surface crossing (its top, at z = 0).
+        air = air_part(ca.fmax(u, 0), V, upper[2], P["weight_air"],
+                       P["ea_inv"] if block.elastic else 0)
+        args = dict(args, X=X - air["x"], Z=-lower[2], V=air["V"],
+                    L=P["length"] - air["length"])
     if kind.lifted:
         h = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
         out = lifted_segment_function(block.elastic, False).call(dict(args, h=h))
@@ -413,6 +424,8 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
         out = sloped_leg_function(block.elastic, block.friction).call(args)
     else:
         out = leg_function(block).call(args)
+    if air is not None:
+        out = dict(out, VF=V, suspended_x=out["suspended_x"] + air["x"])
     scale = 1.0 / P["length"]
     residuals = [out["rX"] * scale, out["rZ"] * scale]
     J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),

@@ -14,9 +14,9 @@ import math
 import numpy as np
 
 from ..model import Case
-from ..physics.catenary import LegKind
+from ..physics.catenary import LegKind, air_part
 from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
-                               surface_leg_profile, surface_segment_profile)
+                               surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.wall_tension import wall_tension
 from .lines import SEGMENT_COLUMNS
 from .problem import LINE_COLUMNS, ROTATIONS
@@ -182,22 +182,32 @@ def _single_result(case, line, kind, row, u) -> LegResult:
     mu = env.seabed.friction if kind.friction else 0.0
     slope = 0.0
     floating = row["floating"]
+    length, V_top, X_top, Z_top = line.length, VF, X, Z
+    if kind.block.air:
+        # The water part up to the surface crossing; the part in air is added below.
+        part = {k: float(v) for k, v in air_part(
+            H, VF, upper[2], lt.weight_in_air, 1.0 / lt.ea if lt.ea else 0.0).items()}
+        length, VF, X, Z = line.length - part["length"], part["V"], X - part["x"], -lower[2]
     if kind.lifted:
         h = max(lower[2] - env.seabed_z(lower[0], lower[1]), 0.0)
-        prof = segment_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea, h=h,
+        prof = segment_profile(H=H, V=VF, L=length, w=lt.weight_in_water, ea=lt.ea, h=h,
                                X=X, Z=Z, n=_PROFILE_POINTS)
     elif kind.surface:
         start_z = upper[2] if kind.block.from_fairlead else lower[2]
         prof = surface_leg_profile(from_fairlead=kind.block.from_fairlead, H=H, VF=VF, VA=VA,
-                                   L=line.length, w=lt.weight_in_water, ea=lt.ea,
+                                   L=length, w=lt.weight_in_water, ea=lt.ea,
                                    d=max(-start_z, 0.0), X=X, Z=Z, n=_PROFILE_POINTS)
     elif kind.sloped:
         slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
-        prof = sloped_leg_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea,
+        prof = sloped_leg_profile(H=H, V=VF, L=length, w=lt.weight_in_water, ea=lt.ea,
                                   mu=mu, t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
     else:
-        prof = leg_profile(kind.block, H=H, V=VF, L=line.length, w=lt.weight_in_water,
+        prof = leg_profile(kind.block, H=H, V=VF, L=length, w=lt.weight_in_water,
                            ea=lt.ea, mu=mu, X=X, Z=Z, n=_PROFILE_POINTS)
+    if kind.block.air:
+        prof = with_air_part(prof, H=H, V=V_top, z_top=upper[2], w_air=lt.weight_in_air,
+                             ea=lt.ea, L=line.length)
+        VF, X, Z = V_top, X_top, Z_top
     profile = _orient(prof, lower, upper, kind.flipped, line.length)
     _add_wall_tension(profile, line, env)
     fields = _end_fields(line.name, a, b, fa, fb)
