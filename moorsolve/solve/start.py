@@ -15,7 +15,8 @@ import numpy as np
 
 from ..model import Case
 from ..model.build_network import end_position as case_end_position
-from ..physics.catenary import LegKind, initial_state
+from ..physics.catenary import LegKind
+from ..physics.closed_form import initial_state
 from ..physics.profile import leg_profile
 from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
