@@ -356,10 +356,15 @@ def polish(problem, x, p, lb, ub, stats, tol):
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
         J = np.asarray(problem.jacobian(x, p))
+        if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
+            break           # absurd input (a 1e30 coefficient): nothing to polish
         try:
             step = np.linalg.solve(J, g)
         except np.linalg.LinAlgError:
-            step, *_ = np.linalg.lstsq(J, g, rcond=None)
+            try:
+                step, *_ = np.linalg.lstsq(J, g, rcond=None)
+            except np.linalg.LinAlgError:
+                break
         improved = False
         alpha = 1.0
         for _ in range(6):
