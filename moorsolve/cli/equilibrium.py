@@ -7,7 +7,8 @@ import sys
 
 from ..errors import ConvergenceError
 from .common import (EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS, check_output,
-                     print_text, save_figure, solver_option, tolerance, whole_number)
+                     overload_option, print_text, save_figure, solver_option, tolerance,
+                     whole_number)
 
 
 def add_commands(sub) -> None:
@@ -19,12 +20,14 @@ def add_commands(sub) -> None:
     p.add_argument("--no-profiles", action="store_true",
                    help="leave the line profiles out of the JSON")
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_solve)
     p = sub.add_parser("plot", help="plan and elevation views of the equilibrium")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("-o", "--output", required=True, help="image file to write (.png, .pdf, .svg)")
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_plot)
     p = sub.add_parser("accuracy", help="solve time against error over tolerances and "
                                         "model fidelity")
@@ -34,13 +37,15 @@ def add_commands(sub) -> None:
                    help="also write time against error as an image (.png, .pdf, .svg)")
     p.add_argument("--repeats", type=whole_number("--repeats", 1, 1000), default=7,
                    help="solves per setting; the median time is reported (default 7)")
+    overload_option(p)
     p.set_defaults(run=run_accuracy)
 
 
 def run_solve(args) -> int:
     from .. import load_case, solve
     from ..report.text import format_table, to_json
-    result = solve(load_case(args.case), tol=args.tol, solver=args.solver)
+    result = solve(load_case(args.case), tol=args.tol, solver=args.solver,
+                   allow_overload=args.allow_overload)
     print_text(to_json(result, profiles=not args.no_profiles) if args.json
                else format_table(result))
     return EXIT_OK
@@ -51,7 +56,7 @@ def run_plot(args) -> int:
     from ..plot import plot_equilibrium
     case = load_case(args.case)
     check_output(args.output, "--output", IMAGE_EXTENSIONS)
-    result = solve(case, tol=args.tol, solver=args.solver)
+    result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), args.output)
     print(f"wrote {args.output}")
     return EXIT_OK
@@ -64,7 +69,8 @@ def run_accuracy(args) -> int:
     if args.plot:
         check_output(args.plot, "--plot", IMAGE_EXTENSIONS)
     try:
-        rungs = accuracy_ladder(case, repeats=args.repeats)
+        rungs = accuracy_ladder(case, repeats=args.repeats,
+                                allow_overload=args.allow_overload)
     except ConvergenceError as exc:
         print(f"moorsolve: the reference solve failed: {exc}", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM

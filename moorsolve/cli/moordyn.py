@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from .common import EXIT_OK, YAML_EXTENSIONS, check_output, solver_option, tolerance
+from .common import (EXIT_OK, YAML_EXTENSIONS, check_output, overload_option, solver_option,
+                     tolerance)
 
 
 def add_commands(sub) -> None:
@@ -20,6 +21,7 @@ def add_commands(sub) -> None:
                         "and free points")
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_export)
 
 
@@ -34,6 +36,6 @@ def run_import(args) -> int:
 def run_export(args) -> int:
     from ..io import export_moordyn
     export_moordyn(args.case, args.output, version=args.version, equilibrium=args.equilibrium,
-                   tol=args.tol, solver=args.solver)
+                   tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     print(f"wrote {args.output}")
     return EXIT_OK

@@ -1,5 +1,6 @@
 """Design studies: ``sweep`` (a grid of case edits to CSV or parquet), ``envelope`` (offset and
-worst tension for every heading) and ``optimise`` (least line over a set of load cases)."""
+worst tension for every heading), ``stiffness`` (the restoring matrix at the equilibrium)
+and ``optimise`` (least line over a set of load cases)."""
 
 from __future__ import annotations
 
@@ -10,8 +11,8 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from .common import (EXIT_INTERRUPTED, EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS,
-                     YAML_EXTENSIONS, bad_input, check_output, heading_step, print_text,
-                     save_figure, solver_option, tolerance, whole_number)
+                     YAML_EXTENSIONS, bad_input, check_output, heading_step, overload_option,
+                     print_text, save_figure, solver_option, tolerance, whole_number)
 
 
 def add_commands(sub) -> None:
@@ -31,6 +32,7 @@ def add_commands(sub) -> None:
     p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                    help="run on an existing dask.distributed cluster")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    overload_option(p)
     p.set_defaults(run=run_sweep)
     p = sub.add_parser("envelope", help="offset and worst tension for every heading of the "
                                         "environment")
@@ -45,7 +47,16 @@ def add_commands(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the envelope as JSON")
     solver_option(p, default="newton")
     p.add_argument("--tol", type=tolerance, default=None)
+    overload_option(p)
     p.set_defaults(run=run_envelope)
+    p = sub.add_parser("stiffness", help="the mooring's linear restoring matrix at the "
+                                         "equilibrium, labelled with DOFs and units")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--json", action="store_true", help="print the matrix as JSON")
+    p.add_argument("--tol", type=tolerance, default=None)
+    solver_option(p)
+    overload_option(p)
+    p.set_defaults(run=run_stiffness)
     p = sub.add_parser("optimise", help="least line mass or cost over a set of load cases "
                                         "(design study file)")
     p.add_argument("case", help="case file (YAML)")
@@ -76,7 +87,8 @@ def run_sweep(args) -> int:
         progress = sys.stderr if (not args.quiet and sys.stderr.isatty()) else False
         table = sweep(case, grid, solver=args.solver, tol=args.tol, workers=args.workers,
                       output=args.output, resume=args.resume, overwrite=args.overwrite,
-                      scheduler=args.scheduler, progress=progress)
+                      scheduler=args.scheduler, progress=progress,
+                      allow_overload=args.allow_overload)
     except CaseError as exc:
         return bad_input(_set_field(exc))
     except KeyboardInterrupt:
@@ -114,7 +126,7 @@ def run_envelope(args) -> int:
         case = load_case(args.case)
         flows = None if args.flows is None else [f.strip() for f in args.flows.split(",")]
         envelope = offset_envelope(case, step_deg=args.step, flows=flows, solver=args.solver,
-                                   tol=args.tol)
+                                   tol=args.tol, allow_overload=args.allow_overload)
     except CaseError as exc:
         text = str(exc)
         if exc.field in ("flows", "step_deg"):
@@ -132,6 +144,20 @@ def run_envelope(args) -> int:
         print(f"moorsolve: no equilibrium at {int(missing.sum())} of "
               f"{len(missing)} headings", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM
+    return EXIT_OK
+
+
+def run_stiffness(args) -> int:
+    from .. import load_case, solve, stiffness
+    from ..report.matrix import stiffness_table
+    from ..studies.study import DOFS
+    result = solve(load_case(args.case), tol=args.tol, solver=args.solver,
+                   allow_overload=args.allow_overload)
+    table = stiffness_table(stiffness(result), DOFS)
+    if args.json:
+        print_text(json.dumps({"body": None, **table.to_dict()}, indent=2))
+    else:
+        print_text(f"{result.case_name}\n{table!r}")
     return EXIT_OK
 
 

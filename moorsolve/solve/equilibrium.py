@@ -311,8 +311,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     broken = _over_mbl(result)
     if broken and not allow_overload:
         raise ConvergenceError(
-            "overload: " + "; ".join(broken) + " (the mooring cannot hold this load; "
-            "pass allow_overload=True to inspect the equilibrium anyway)",
+            "overload: " + "; ".join(broken) + " (the mooring cannot hold this; to accept "
+            "the equilibrium anyway pass allow_overload=True, or --allow-overload)",
             residual_N=force_res, residual_Nm=moment_res, status=stats["status"],
             iterations=stats["iterations"], result=result)
     return result
@@ -420,13 +420,24 @@ def _polish(problem, x, p, lb, ub, stats, tol):
 
 
 def _over_mbl(result: Result) -> list[str]:
+    """Each leg over its MBL, in words; a leg whose unstretched length is shorter than
+    its anchor-fairlead distance with the body at rest says so, with the shortfall."""
     out = []
+    lengths = {leg.name: (leg.length, math.dist(leg.anchor, leg.fairlead))
+               for leg in (result.case.legs if result.case is not None else ())}
     for leg in result.legs:
         u = leg.utilisation
         if u is not None and u > 1.0:
-            out.append(f"leg {leg.name} would break: tension "
-                       f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
+            tension = (f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
                        f"> MBL {leg.mbl_N / 1e3:.1f} kN")
+            length, chord = lengths.get(leg.name, (math.inf, 0.0))
+            if chord > length:
+                out.append(f"leg {leg.name} cannot reach its fairlead: it is "
+                           f"{chord - length:.2f} m short (unstretched length {length:.2f} m, "
+                           f"anchor to fairlead {chord:.2f} m at rest); stretched to reach, "
+                           f"it would break: tension {tension}")
+            else:
+                out.append(f"leg {leg.name} would break: tension {tension}")
     return out
 
 
@@ -438,7 +449,8 @@ def _diagnose(problem, case, result) -> str:
         chord = math.dist(lr.anchor, lr.fairlead)
         if lt.ea is None and chord > leg.length * (1 + 1e-9):
             reasons.append(f"leg {leg.name} cannot reach: anchor-fairlead distance "
-                           f"{chord:.2f} m exceeds its inextensible length {leg.length:.2f} m")
+                           f"{chord:.2f} m exceeds its inextensible length {leg.length:.2f} m "
+                           f"by {chord - leg.length:.2f} m")
         elif lt.ea is None and chord > leg.length * (1 - 1e-4):
             reasons.append(f"leg {leg.name} is pulled straight (chord {chord:.3f} m of "
                            f"{leg.length:.3f} m): an inextensible line would need an "

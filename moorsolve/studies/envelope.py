@@ -90,7 +90,7 @@ def _f(value) -> Optional[float]:
 def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, *,
                     step_deg: float = 10.0, flows: Optional[Sequence[str]] = None,
                     solver: str = "newton", tol: Optional[float] = None,
-                    workers: Optional[int] = None) -> Envelope:
+                    workers: Optional[int] = None, allow_overload: bool = False) -> Envelope:
     """The equilibrium of ``case`` with its environment turned to every heading.
 
     Parameters
@@ -104,7 +104,7 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         Heading step [deg] when ``headings_deg`` is not given; 0 < step <= 180.
     flows : sequence of {"wind", "current", "waves"}, optional
         Which flows turn (default: every one the case has).
-    solver, tol, workers
+    solver, tol, workers, allow_overload
         As for :func:`moorsolve.sweep`.
 
     Returns
@@ -142,7 +142,8 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
     offsets = [getattr(env, f).toward_deg - reference for f in flows]
     paths = tuple(f"environment.{f}.toward_deg" for f in flows)
     values = [tuple(_wrap(h + d) for d in offsets) for h in headings]
-    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers)
+    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers,
+                  allow_overload=allow_overload)
 
     names = [leg.name for leg in case.legs]
     tension = np.column_stack(

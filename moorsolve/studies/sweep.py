@@ -43,6 +43,7 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
+from ..solve.equilibrium import _over_mbl as over_mbl
 from ..solve.equilibrium import get_problem, initial_point, solve
 from ..solve.problem import parameter_vector, structure_key
 
@@ -58,7 +59,7 @@ _KERNEL_POOLS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | None = None,
           workers: int | None = None, output=None, resume: bool = False,
           overwrite: bool = False, scheduler=None, progress=False,
-          chunk_size: int | None = None):
+          chunk_size: int | None = None, allow_overload: bool = False):
     """Solve ``case`` at every point of the cartesian product of ``grid``.
 
     Parameters
@@ -96,6 +97,9 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         Show a progress bar (tqdm) on stderr, or on the given file.
     chunk_size : int, optional
         Points per chunk (default: at least 64, at most 64 chunks).
+    allow_overload : bool
+        An equilibrium in which a line exceeds its MBL is a converged row (its ``reason``
+        still names the overload) instead of ``converged = False``.
 
     Returns
     -------
@@ -108,7 +112,8 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         it is the finished file read back (grid values that are not plain numbers are
         text there, lists as JSON).
     """
-    plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size)
+    plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size,
+                     allow_overload=allow_overload)
     sink = None
     if output is not None:
         from ..io.sweep_output import open_sink
@@ -166,7 +171,8 @@ class SweepPlan:
     """
 
     def __init__(self, case: Case, grid: Mapping, *, solver: str = "newton",
-                 tol: float | None = None, chunk_size: int | None = None):
+                 tol: float | None = None, chunk_size: int | None = None,
+                 allow_overload: bool = False):
         from ..io import load_case
         from ..model.paths import with_values
 
@@ -176,6 +182,7 @@ class SweepPlan:
             raise CaseError("case", "a sweep edits the case-file data; load the case with "
                                     "moorsolve.load_case (from a file or a dict)")
         self.case, self.solver = case, solver
+        self.allow_overload = bool(allow_overload)
         self.grid = grid
         self.axes = _axes(grid)
         self.tol = case.solver.tol if tol is None else float(tol)
@@ -230,13 +237,15 @@ class SweepPlan:
     def spec(self) -> dict:
         """Plain data from which a worker rebuilds this plan."""
         return {"source": self.case.source, "grid": _plain_grid(self.grid),
-                "solver": self.solver, "tol": self.tol, "chunks": self.chunks}
+                "solver": self.solver, "tol": self.tol, "chunks": self.chunks,
+                "allow_overload": self.allow_overload}
 
     @classmethod
     def from_spec(cls, spec: dict) -> "SweepPlan":
         from ..io import load_case
         grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
-        plan = cls(load_case(spec["source"]), grid, solver=spec["solver"], tol=spec["tol"])
+        plan = cls(load_case(spec["source"]), grid, solver=spec["solver"], tol=spec["tol"],
+                   allow_overload=spec["allow_overload"])
         plan.chunks = spec["chunks"]
         return plan
 
@@ -244,7 +253,8 @@ class SweepPlan:
         """What a resumed sweep must share with the one that wrote the file."""
         return {"case_sha256": _sha(self.case.source),
                 "grid_sha256": _sha(_plain_grid(self.grid)),
-                "solver": self.solver, "tol": self.tol, "n_points": self.n_points}
+                "solver": self.solver, "tol": self.tol, "n_points": self.n_points,
+                "allow_overload": self.allow_overload}
 
     def grid_columns(self) -> list[str]:
         return [p for paths, _ in self.axes for p in paths]
@@ -297,13 +307,13 @@ class SweepPlan:
             kernel = pool.acquire()
             try:
                 _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
-                            self.tol, self.case.body is not None)
+                            self.tol, self.case.body is not None, self.allow_overload)
             finally:
                 pool.release(kernel)
             retry = np.flatnonzero(~table.done).tolist()
         else:
             retry = list(range(len(points)))
-        _solve_each(retry, points, table, self.point_case, self.tol)
+        _solve_each(retry, points, table, self.point_case, self.tol, self.allow_overload)
         return points, table.columns()
 
     # -- rows ---------------------------------------------------------------------------------
@@ -451,10 +461,10 @@ class _Table:
         self.t_fair = np.full((n, len(names)), np.nan)
         self.t_anchor = np.full((n, len(names)), np.nan)
 
-    def from_result(self, i: int, result, reason: str = "") -> None:
+    def from_result(self, i: int, result, reason: str = "", converged=None) -> None:
         c = result.certificate
         self.done[i] = True
-        self.converged[i] = not reason
+        self.converged[i] = not reason if converged is None else converged
         self.reason[i], self.solver[i] = reason, result.solver
         self.iterations[i] = c.iterations
         self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
@@ -497,7 +507,8 @@ def _kernel_pool(problem) -> _KernelPool:
         return pool
 
 
-def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
+def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                allow_overload=False):
     n_p = problem.n_p
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
@@ -509,7 +520,7 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
         mbl = vectors[i, n_p:]
         over = np.maximum(tf, ta) > mbl
         table.done[row] = True
-        table.converged[row] = not over.any()
+        table.converged[row] = allow_overload or not over.any()
         table.solver[row] = "newton"
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
@@ -523,7 +534,13 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
                 for k in np.flatnonzero(over))
 
 
-def _solve_each(rows, points, table, point_case, tol):
+def _overload(result) -> str:
+    """The overload of an equilibrium accepted with ``allow_overload`` (else "")."""
+    over = over_mbl(result)
+    return "overload: " + "; ".join(over) if over else ""
+
+
+def _solve_each(rows, points, table, point_case, tol, allow_overload=False):
     """Full solves (IPOPT strategy), warm-started while the structure stays the same."""
     previous = {}
     for row in rows:
@@ -531,7 +548,8 @@ def _solve_each(rows, points, table, point_case, tol):
             pc = point_case(int(points[row]))
             key = id(get_problem(pc))        # a state is only meaningful to its own problem
             try:
-                result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
+                result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key),
+                               allow_overload=allow_overload)
             except ConvergenceError as err:
                 if err.result is not None and err.result.converged:
                     table.from_result(row, err.result, reason=err.reason)   # e.g. overload
@@ -542,7 +560,7 @@ def _solve_each(rows, points, table, point_case, tol):
                     table.residual[row, :2] = (err.residual_N, err.residual_Nm)
                 continue
         previous[key] = result.state
-        table.from_result(row, result)
+        table.from_result(row, result, reason=_overload(result), converged=True)
 
 
 # ---- running the chunks ----------------------------------------------------------------------
