@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import CaseError
 from ..model import Case
+from ..model.directions import direction_edit, wrap_deg
 from .sweep import sweep
 
 FLOWS = ("wind", "current", "waves")
@@ -140,8 +141,11 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
 
     reference = getattr(env, flows[0]).toward_deg
     offsets = [getattr(env, f).toward_deg - reference for f in flows]
-    paths = tuple(f"environment.{f}.toward_deg" for f in flows)
-    values = [tuple(_wrap(h + d) for d in offsets) for h in headings]
+    # Each heading as the case file would write it (its key and compass convention).
+    edits = [[direction_edit(case, f, wrap_deg(h + d)) for f, d in zip(flows, offsets)]
+             for h in headings]
+    paths = tuple(path for path, _ in edits[0])
+    values = [tuple(value for _, value in row) for row in edits]
     table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers,
                   allow_overload=allow_overload)
 
@@ -166,11 +170,6 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         x_m=x, y_m=y, yaw_deg=yaw, worst_tension_N=worst,
         worst_leg=tuple(names[k] if ok else "" for k, ok in zip(worst_index, solved)),
         converged=converged, reason=tuple(table["reason"]), table=table)
-
-
-def _wrap(angle: float) -> float:
-    """An angle in [0, 360), rounded so that 0 + 360 k stays exact."""
-    return round(angle % 360.0, 10) % 360.0
 
 
 def format_envelope(envelope: Envelope) -> str:
