@@ -192,7 +192,7 @@ def test_plan_shows_loads_offset_scale_and_north():
     for name, (fx, fy, _) in result.loads.items():
         assert any(t.startswith(f"{name.replace('_', ' ')} load") for t in labels), name
     assert any(t.startswith("offset 0.971 m") for t in labels)
-    assert any(a.get_title() == "loads on the body" for a in ax.child_axes)
+    assert any(a.get_title() == "body loads" for a in ax.child_axes)
     scale = [a for a in ax.artists if type(a).__name__ == "AnchoredSizeBar"]
     assert len(scale) == 1
     # A compass case gets a north arrow.

@@ -79,6 +79,14 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
                            label="body at rest")]
     centre = (scene.bodies[0].origin[:2] if scene.bodies
               else np.mean([line.fairlead[:2] for line in scene.lines], axis=0))
+    for line in scene.removed:
+        ax.plot(*line.xyz[:, :2].T, color="0.55", lw=1.2, ls=(0, (4, 3)), zorder=2)
+        ax.annotate(f"{line.name}\nremoved", line.anchor[:2], xytext=(0, -14),
+                    textcoords="offset points", ha="center", va="center", fontsize=7,
+                    color="0.4")
+    if scene.removed:
+        handles.append(Line2D([], [], color="0.55", lw=1.2, ls=(0, (4, 3)),
+                              label="removed line (where it was)"))
     for line in scene.lines:
         c = colour(line)
         xy = line.xyz[:, :2]
@@ -181,7 +189,7 @@ def _arrows(ax, scene: Scene, span: float) -> list:
 
 def _emptiest_corner(ax, scene: Scene) -> tuple:
     """Inset bounds (axes fraction) in the corner with the fewest drawn points."""
-    pts = np.vstack([line.xyz[:, :2] for line in scene.lines]
+    pts = np.vstack([line.xyz[:, :2] for line in scene.lines + scene.removed]
                     + [b.outline[:, :2] for b in scene.bodies])
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     u, v = (pts[:, 0] - x0) / (x1 - x0), (pts[:, 1] - y0) / (y1 - y0)
@@ -228,7 +236,7 @@ def _load_inset(ax, scene: Scene, loads: dict) -> None:
     inset.set_xticks([])
     inset.set_yticks([])
     key = nice(0.4 * reach)
-    inset.set_title("loads on the body", fontsize=7, pad=2)
+    inset.set_title("body loads", fontsize=7, pad=2)
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
     inset.add_artist(AnchoredSizeBar(inset.transData, key, si_force(key * 1e3),
                                      "lower right", pad=0.2, sep=2, frameon=False,

@@ -83,6 +83,9 @@ class Scene:
     sloped: bool
     north_deg: Optional[float] = None    # set when the case speaks in compass bearings
     fixed_ends: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: Lines of another result missing from this one (a damaged condition's broken line),
+    #: drawn as ghosts where they were.
+    removed: list = field(default_factory=list)
 
     @property
     def colour_by(self) -> str:
@@ -95,7 +98,7 @@ class Scene:
         """``[[xmin, ymin, zmin], [xmax, ymax, zmax]]`` of everything drawn, the narrower
         horizontal side widened about its middle to at least ``min_ratio`` of the wider
         (a scene of one line along x is not drawn as a strip)."""
-        pts = [line.xyz for line in self.lines] + [b.outline for b in self.bodies]
+        pts = [line.xyz for line in self.lines + self.removed] + [b.outline for b in self.bodies]
         pts += [np.array([b.origin, b.origin_rest]) for b in self.bodies]
         pts += [p.xyz[None, :] for p in self.points]
         allp = np.vstack([p for p in pts if len(p)]) if pts else np.zeros((1, 3))
@@ -107,8 +110,12 @@ class Scene:
         return np.array([lo, hi])
 
 
-def scene_of(result) -> Scene:
-    """The :class:`Scene` of a :class:`~moorsolve.Result`."""
+def scene_of(result, removed_from=None) -> Scene:
+    """The :class:`Scene` of a :class:`~moorsolve.Result`.
+
+    ``removed_from``: another Result (e.g. the intact condition) whose lines missing here
+    are kept as :attr:`Scene.removed`, to be drawn as ghosts.
+    """
     case = result.case
     env = case.environment if case is not None else None
     depth = env.depth if env is not None else _deepest(result)
@@ -132,10 +139,13 @@ def scene_of(result) -> Scene:
     fixed = np.zeros((0, 3))
     if not bodies:
         fixed = np.array([line.fairlead for line in lines]).reshape(-1, 3)
+    names = {leg.name for leg in result.legs}
+    removed = [_line(leg, seabed_z, depth) for leg in
+               (removed_from.legs if removed_from is not None else ()) if leg.name not in names]
     return Scene(title=result.case_name or "equilibrium", lines=lines, bodies=bodies,
                  points=points, loads={k: tuple(v) for k, v in result.loads.items()},
                  depth=depth, seabed_z=seabed_z, sloped=sloped, north_deg=north,
-                 fixed_ends=fixed)
+                 fixed_ends=fixed, removed=removed)
 
 
 def _deepest(result) -> float:

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .plan import plot_plan
-from .scene import Scene
+from .scene import Scene, scene_of
 from .style import POINT_STYLE, SEABED, WATER, as_scene, line_colours, line_label, new_axes, nice
 
 __all__ = ["plot_plan", "plot_elevation", "plot_3d", "plot_profiles", "plot_equilibrium",
@@ -92,6 +92,9 @@ def plot_elevation(result, ax=None, depth=None, *, along_deg=None):
                     color=SEABED, alpha=0.6, lw=0, zorder=1)
     ax.plot(s, bed[2], color=SEABED, lw=1.5, zorder=2)
     ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--", zorder=2)
+    for line in scene.removed:
+        ax.plot(line.xyz[:, :2] @ e, line.xyz[:, 2], color="0.55", lw=1.0, ls=(0, (4, 3)),
+                zorder=3)
     for line in scene.lines:
         xy = line.xyz[:, :2]
         ax.plot(xy @ e, line.xyz[:, 2], color=colour(line), lw=1.5,
@@ -158,6 +161,8 @@ def plot_3d(result, ax=None, *, elev: float = 24.0, azim: float = -60.0):
     ax.plot_surface(X, Y, Z, color=SEABED, alpha=0.3, lw=0, shade=False)
     ax.plot([gx[0], gx[1], gx[1], gx[0], gx[0]], [gy[0], gy[0], gy[1], gy[1], gy[0]],
             [0.0] * 5, color="tab:blue", lw=0.8, ls="--")
+    for line in scene.removed:
+        ax.plot(*line.xyz.T, color="0.55", lw=1.0, ls=(0, (4, 3)))
     for line in scene.lines:
         ax.plot(*line.xyz.T, color=colour(line), lw=1.6, ls=":" if line.slack else "-")
         ax.plot(*line.anchor[:, None], "v", color="k", ms=4)
@@ -227,20 +232,36 @@ def plot_profiles(result, ax=None):
 # ---- the equilibrium figure ------------------------------------------------------------
 
 
-def plot_equilibrium(result, depth=None):
+def plot_equilibrium(result, depth=None, *, layout: str = "landscape", removed_from=None):
     """Plan (with the colour bar and legend), elevation and 3-D view in one figure.
 
-    ``depth`` is ignored (the seabed comes from the case); kept for older calls.
+    Parameters
+    ----------
+    result : Result or Scene
+    depth : float, optional
+        Ignored (the seabed comes from the case); kept for older calls.
+    layout : {"landscape", "portrait"}
+        Plan left and the other views right (a screen), or the plan above them (a page).
+    removed_from : Result, optional
+        Another result (the intact condition) whose lines missing here are drawn as
+        ghosts: the broken line of a damaged condition.
 
     Returns
     -------
     matplotlib Figure
     """
     import matplotlib.pyplot as plt
-    scene = as_scene(result)
-    fig, axes = plt.subplot_mosaic([["plan", "elev"], ["plan", "3d"]], figsize=(15, 9),
-                                   layout="constrained", width_ratios=[1.25, 1],
-                                   per_subplot_kw={"3d": {"projection": "3d"}})
+    scene = result if isinstance(result, Scene) else scene_of(result, removed_from)
+    if layout == "portrait":
+        mosaic, size, ratios = [["plan", "plan"], ["elev", "3d"]], (11, 12.5), {
+            "height_ratios": [1.5, 1]}
+    elif layout == "landscape":
+        mosaic, size, ratios = [["plan", "elev"], ["plan", "3d"]], (15, 9), {
+            "width_ratios": [1.25, 1]}
+    else:
+        raise ValueError(f"layout {layout!r}: must be 'landscape' or 'portrait'")
+    fig, axes = plt.subplot_mosaic(mosaic, figsize=size, layout="constrained",
+                                   per_subplot_kw={"3d": {"projection": "3d"}}, **ratios)
     plot_plan(scene, axes["plan"], legend="figure")
     plot_elevation(scene, axes["elev"])
     plot_3d(scene, axes["3d"])

@@ -79,6 +79,10 @@ class LegResult:
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
 
+    def __repr__(self) -> str:
+        from ..report.notebook import leg_repr
+        return leg_repr(self)
+
     @property
     def utilisation(self) -> Optional[float]:
         """Largest tension over the minimum breaking load, when the MBL is known."""
@@ -156,6 +160,14 @@ class Result:
     state: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
     notes: tuple = ()
     case: Optional[object] = field(default=None, repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        from ..report.notebook import result_repr
+        return result_repr(self)
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import result_html
+        return result_html(self)
 
     @property
     def iterations(self) -> int:

@@ -53,6 +53,17 @@ class Envelope:
     reason: tuple
     table: object = dataclasses.field(repr=False, compare=False)
 
+    def __repr__(self) -> str:
+        ok = np.isfinite(self.worst_tension_N)
+        worst = f", worst {self.worst()['worst_leg']} toward {self.worst()['heading_deg']:g} deg" \
+            if ok.any() else ""
+        return (f"<Envelope {self.case_name!r}: {len(self.heading_deg)} headings, "
+                f"{int(ok.sum())} solved{worst}>")
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import envelope_html
+        return envelope_html(self)
+
     def worst(self) -> dict:
         """The heading with the largest worst tension (an overloaded equilibrium counts)."""
         tension = np.where(np.isfinite(self.worst_tension_N), self.worst_tension_N, -np.inf)
