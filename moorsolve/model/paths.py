@@ -83,6 +83,22 @@ def _set(node, steps: list, value, path: str) -> None:
             node[index] = copy.deepcopy(value)
 
 
+def concrete_paths(data: Mapping, path: str) -> list[str]:
+    """The field paths (``legs[2].anchor``, as validation names fields) that ``path``
+    selects in ``data``: names and ``*`` resolved to positions. A missing key is kept."""
+    out = [("", data)]
+    for step in parse_path(path):
+        nxt = []
+        for prefix, node in out:
+            if isinstance(step, str):
+                child = node.get(step) if isinstance(node, Mapping) else None
+                nxt.append((f"{prefix}.{step}" if prefix else step, child))
+            elif isinstance(node, list):
+                nxt += [(f"{prefix}[{i}]", node[i]) for i in _select(node, step[0], path)]
+        out = nxt
+    return [prefix for prefix, _ in out]
+
+
 def _private(node):
     """A shallow copy of a mapping or list (other values are returned as they are)."""
     if isinstance(node, Mapping):

@@ -43,6 +43,8 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
+from ..model.paths import concrete_paths
+from ..model.units import KINDS, recording
 from ..solve.equilibrium import _over_mbl as over_mbl
 from ..solve.equilibrium import get_problem, initial_point, solve
 from ..solve.problem import parameter_vector, structure_key
@@ -108,9 +110,11 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         position in that order): the grid values, then ``converged``, ``reason``,
         ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
         ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
-        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. With ``output``
-        it is the finished file read back (grid values that are not plain numbers are
-        text there, lists as JSON).
+        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. Grid values are
+        SI numbers in columns named with their unit (``environment.wind.speed [m/s]``
+        for ``"20 kn"``; ``body.loads.force[0] [N]`` ... for a list); values that are
+        not quantities keep the path as name. With ``output`` it is the finished file
+        read back (those other values are text there, lists as JSON).
     """
     plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size,
                      allow_overload=allow_overload)
@@ -191,18 +195,22 @@ class SweepPlan:
         self.names = [leg.name for leg in case.legs]
         self._with_values, self._load_case = with_values, load_case
 
-        # Each axis value validated once, as a case of its own.
-        axis_cases = []
+        # Each axis value validated once, as a case of its own; what it converted to SI
+        # gives the grid's columns (numbers in SI, the unit in the name).
+        axis_cases, self._grid = [], []
         for paths, values in self.axes:
-            cases = []
+            cases, quantities = [], []
             for value in values:
                 try:
-                    cases.append(load_case(with_values(case.source, _edits(paths, value)),
-                                           keep_source=False))
+                    with recording() as converted:
+                        cases.append(load_case(with_values(case.source, _edits(paths, value)),
+                                               keep_source=False))
                 except CaseError as err:
                     raise CaseError(f"grid[{_label(paths)!r}]",
                                     f"value {value!r}: {err}") from None
+                quantities.append(converted)
             axis_cases.append(cases)
+            self._grid.append(_grid_columns(case.source, paths, values, quantities))
 
         base_key = structure_key(case)
         base_vec = _point_vector(case)
@@ -257,7 +265,7 @@ class SweepPlan:
                 "allow_overload": self.allow_overload}
 
     def grid_columns(self) -> list[str]:
-        return [p for paths, _ in self.axes for p in paths]
+        return [col.name for columns in self._grid for col in columns]
 
     def result_columns(self) -> list[str]:
         return list(_Table(0, self.names).columns())
@@ -319,15 +327,17 @@ class SweepPlan:
     # -- rows ---------------------------------------------------------------------------------
 
     def frame(self, points, columns: dict, for_file: bool = False):
-        """A DataFrame of solved ``points`` indexed by ``point``; ``for_file`` writes grid
-        values that are not plain numbers as text (lists as JSON), numbers as floats."""
+        """A DataFrame of solved ``points`` indexed by ``point``. Grid values that are
+        quantities are SI numbers in columns named with their unit (``environment.wind.speed
+        [m/s]``; a list gives one column per item, ``body.loads.force[2] [N m]``); other
+        values keep the path as name, and ``for_file`` writes them as text (lists as JSON)."""
         import pandas as pd
 
         data = {}
-        for k, (paths, values) in enumerate(self.axes):
-            for j, path in enumerate(paths):
-                col = [_component(paths, values[self.indices[i][k]], j) for i in points]
-                data[path] = _file_values(path, self.axes[k], j, col) if for_file else col
+        for k, columns_k in enumerate(self._grid):
+            for col in columns_k:
+                cells = [col.values[self.indices[i][k]] for i in points]
+                data[col.name] = col.file_cells(cells) if for_file else cells
         data.update(columns)
         if for_file:
             data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
@@ -349,15 +359,63 @@ def _label(paths: tuple) -> str:
     return paths[0] if len(paths) == 1 else ",".join(paths)
 
 
+class _GridColumn:
+    """One grid column: its name and its value for each value of the axis."""
+
+    def __init__(self, name: str, values: list, numeric: bool):
+        self.name, self.values, self.numeric = name, values, numeric
+
+    def file_cells(self, cells: list) -> list:
+        if self.numeric:
+            return [float(v) for v in cells]
+        return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in cells]
+
+
+def _unit(kind: str) -> str:
+    return KINDS[kind][1] or "-"
+
+
+def _grid_columns(source, paths: tuple, values: list, quantities: list) -> list:
+    """The columns of one axis from the quantities each value converted to SI.
+
+    A path whose every value is one quantity is one column ``PATH [unit]``; a list of
+    quantities (``anchor``, ``body.loads.force``) one column per item, ``PATH[i] [unit]``
+    (NaN where a value is shorter); anything else (a name, a list of names) one text
+    column ``PATH`` with the values as given.
+    """
+    out = []
+    for j, path in enumerate(paths):
+        found = concrete_paths(source, path)
+        field = found[0] if found else path
+        scalars = [q.get(field) for q in quantities]
+        if all(item is not None for item in scalars):
+            out.append(_GridColumn(f"{path} [{_unit(scalars[0][1])}]",
+                                   [item[0] for item in scalars], True))
+            continue
+        items = [_items(q, field) for q in quantities]
+        width = max(len(row) for row in items)
+        if width and all(items):
+            for i in range(width):
+                kind = next(row[i][1] for row in items if len(row) > i)
+                out.append(_GridColumn(f"{path}[{i}] [{_unit(kind)}]",
+                                       [row[i][0] if len(row) > i else math.nan
+                                        for row in items], True))
+            continue
+        out.append(_GridColumn(path, [_component(paths, v, j) for v in values], all(
+            _numeric(_component(paths, v, j)) for v in values)))
+    return out
+
+
+def _items(quantities: dict, field: str) -> list:
+    """``[(value, kind), ...]`` of ``field[0]``, ``field[1]``, ... while recorded."""
+    out = []
+    while f"{field}[{len(out)}]" in quantities:
+        out.append(quantities[f"{field}[{len(out)}]"])
+    return out
+
+
 def _numeric(v) -> bool:
     return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
-
-
-def _file_values(path, axis, j, col):
-    paths, values = axis
-    if all(_numeric(_component(paths, v, j)) for v in values):
-        return [float(v) for v in col]
-    return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in col]
 
 
 def _plain(obj):
