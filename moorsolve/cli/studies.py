@@ -164,7 +164,8 @@ def run_stiffness(args) -> int:
 def run_optimise(args) -> int:
     from .. import load_case
     from ..report.optimise import format_optimisation, optimisation_json
-    from ..io.study_file import load_study, write_case_file
+    from ..io.output_files import write_edited_case_yaml
+    from ..io.study_file import load_study
     from ..studies.optimise import optimise
     case = load_case(args.case)
     if args.output is not None:
@@ -185,7 +186,8 @@ def run_optimise(args) -> int:
     if args.output is not None:
         data = dict(opt.optimised_data)
         data["name"] = f"{case.name} (optimised)"
-        write_case_file(data, args.output, header=(
+        # The case file itself, edited: its comments and layout stay.
+        write_edited_case_yaml(args.case, case.source, data, args.output, header=(
             f"{case.name}: optimised by moorsolve optimise --study {args.study}\n"
             f"{opt.objective} {opt.objective_start:,.0f} -> {opt.objective_optimum:,.0f} "
             f"{opt.unit}"))
