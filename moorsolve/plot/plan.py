@@ -182,9 +182,17 @@ def _arrows(ax, scene: Scene, span: float) -> list:
             handles.append(Line2D([], [], color=LOAD_COLOURS.get(name, "tab:red"),
                                   lw=4 if wide else 2, alpha=0.45 if wide else 1.0,
                                   label=f"{name.replace('_', ' ')} load {kn(np.hypot(*f))} "
-                                        f"toward {np.degrees(np.arctan2(f[1], f[0])) % 360:.0f}"
-                                        " deg (inset)"))
+                                        f"toward {_direction(f, scene.north_deg)} (inset)"))
     return handles
+
+
+def _direction(f, north_deg) -> str:
+    """The direction of a horizontal force in the case's words: degrees counter-clockwise
+    from +x, or a compass bearing when the case gives bearings."""
+    angle = math.degrees(math.atan2(f[1], f[0])) % 360.0
+    if north_deg is None:
+        return f"{angle:.0f} deg"
+    return f"{(north_deg - angle) % 360.0:03.0f} (compass)"
 
 
 def _emptiest_corner(ax, scene: Scene) -> tuple:
