@@ -14,9 +14,9 @@ import yaml
 
 import moorsolve
 from moorsolve import ConvergenceError, UnusedInputWarning
-from moorsolve.cli import main
 
 from conftest import CASES
+from test_cli import run
 
 
 def _data(name: str) -> dict:
@@ -32,15 +32,6 @@ def _unused(data: dict) -> dict:
     found = {w.message.field: str(w.message) for w in caught
              if issubclass(w.category, UnusedInputWarning)}
     return found
-
-
-def run(argv, capsys):
-    try:
-        status = main([str(a) for a in argv])
-    except SystemExit as exc:
-        status = exc.code
-    out = capsys.readouterr()
-    return status, out.out, out.err
 
 
 # ---- inputs no model uses -------------------------------------------------------------------
