@@ -194,3 +194,15 @@ def test_first_newton_compile_is_announced(tmp_path, monkeypatch, caplog):
     with caplog.at_level(logging.INFO, logger="moorsolve"):
         EquilibriumProblem(case, cached.force_scale, cached.length_scale).newton()
     assert not [r for r in caplog.records if "compil" in r.getMessage()]   # from the cache
+
+
+def test_unused_inputs_of_a_network_of_bodies():
+    data = _data("three_platforms.yaml")
+    data["environment"]["wind"] = {"speed": 20.0, "toward_deg": 0.0}
+    found = _unused(data)
+    assert list(found) == ["environment.wind"]
+    assert "no body declares a wind load model" in found["environment.wind"]
+    data["bodies"][1]["loads"] = {"wind": {"model": "drag", "area_x": 100, "area_y": 100}}
+    assert _unused(data) == {}
+    del data["environment"]["wind"]
+    assert list(_unused(data)) == ["bodies[1].loads.wind"]

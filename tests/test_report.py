@@ -192,17 +192,22 @@ def test_stiffness_is_labelled_with_dofs_and_units(capsys):
     result = moorsolve.solve(moorsolve.load_case(CASES / "floating_dock.yaml"))
     K = moorsolve.stiffness(result)
     table = stiffness_table(K)
-    assert table.rows == ("Fx [N]", "Fy [N]", "Mz [N m]")
-    assert table.columns == ("surge [m]", "sway [m]", "yaw [rad]")
+    assert table.rows == ("Fx [N]", "Fy [N]", "Fz [N]", "Mx [N m]", "My [N m]", "Mz [N m]")
+    assert table.columns == ("surge [m]", "sway [m]", "heave [m]", "roll [rad]",
+                             "pitch [rad]", "yaw [rad]")
     np.testing.assert_array_equal(np.asarray(table), K)
-    assert table[2, 2] == K[2, 2]
+    assert table[5, 5] == K[5, 5]
     frame = table.to_frame()
-    assert frame.loc["Mz [N m]", "yaw [rad]"] == K[2, 2]
+    assert frame.loc["Mz [N m]", "yaw [rad]"] == K[5, 5]
+    assert frame.loc["Fx [N]", "surge [m]"] == K[0, 0]
     assert "<caption>" in table._repr_html_()
+    planar = stiffness_table(K[np.ix_((0, 1, 5), (0, 1, 5))])
+    assert planar.rows == ("Fx [N]", "Fy [N]", "Mz [N m]")
     status = main(["stiffness", str(CASES / "floating_dock.yaml"), "--json"])
     import json
     data = json.loads(capsys.readouterr().out)
-    assert status == 0 and data["dofs"] == ["surge", "sway", "yaw"]
+    assert status == 0 and data["dofs"] == ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    assert data["rows"][5] == "Mz [N m]" and data["columns"][3] == "roll [rad]"
     np.testing.assert_allclose(data["matrix"], K, rtol=1e-9)
     assert main(["stiffness", str(CASES / "floating_dock.yaml")]) == 0
     out = capsys.readouterr().out

@@ -1,6 +1,5 @@
 """Design studies: ``sweep`` (a grid of case edits to CSV or parquet), ``envelope`` (offset and
-worst tension for every heading), ``stiffness`` (the restoring matrix at the equilibrium)
-and ``optimise`` (least line over a set of load cases)."""
+worst tension for every heading) and ``optimise`` (least line over a set of load cases)."""
 
 from __future__ import annotations
 
@@ -45,18 +44,12 @@ def add_commands(sub) -> None:
     p.add_argument("--plot", metavar="FILE", default=None,
                    help="write polar plots of offset and worst tension (.png, .pdf, .svg)")
     p.add_argument("--json", action="store_true", help="print the envelope as JSON")
+    p.add_argument("--body", default=None,
+                   help="the body whose offset is reported (a case with several bodies)")
     solver_option(p, default="newton")
     p.add_argument("--tol", type=tolerance, default=None)
     overload_option(p)
     p.set_defaults(run=run_envelope)
-    p = sub.add_parser("stiffness", help="the mooring's linear restoring matrix at the "
-                                         "equilibrium, labelled with DOFs and units")
-    p.add_argument("case", help="case file (YAML)")
-    p.add_argument("--json", action="store_true", help="print the matrix as JSON")
-    p.add_argument("--tol", type=tolerance, default=None)
-    solver_option(p)
-    overload_option(p)
-    p.set_defaults(run=run_stiffness)
     p = sub.add_parser("optimise", help="least line mass or cost over a set of load cases "
                                         "(design study file)")
     p.add_argument("case", help="case file (YAML)")
@@ -126,10 +119,11 @@ def run_envelope(args) -> int:
         case = load_case(args.case)
         flows = None if args.flows is None else [f.strip() for f in args.flows.split(",")]
         envelope = offset_envelope(case, step_deg=args.step, flows=flows, solver=args.solver,
-                                   tol=args.tol, allow_overload=args.allow_overload)
+                                   tol=args.tol, body=args.body,
+                                   allow_overload=args.allow_overload)
     except CaseError as exc:
         text = str(exc)
-        if exc.field in ("flows", "step_deg"):
+        if exc.field in ("flows", "step_deg", "body"):
             text = "--" + exc.field.split("_")[0] + text[len(exc.field):]
         return bad_input(text)
     if args.plot:
@@ -144,20 +138,6 @@ def run_envelope(args) -> int:
         print(f"moorsolve: no equilibrium at {int(missing.sum())} of "
               f"{len(missing)} headings", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM
-    return EXIT_OK
-
-
-def run_stiffness(args) -> int:
-    from .. import load_case, solve, stiffness
-    from ..report.matrix import stiffness_table
-    from ..studies.study import DOFS
-    result = solve(load_case(args.case), tol=args.tol, solver=args.solver,
-                   allow_overload=args.allow_overload)
-    table = stiffness_table(stiffness(result), DOFS)
-    if args.json:
-        print_text(json.dumps({"body": None, **table.to_dict()}, indent=2))
-    else:
-        print_text(f"{result.case_name}\n{table!r}")
     return EXIT_OK
 
 

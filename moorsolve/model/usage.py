@@ -44,31 +44,34 @@ def unused_inputs(case: Case) -> list[tuple[str, str]]:
         The dotted field and a sentence saying why nothing uses it and what would.
     """
     env = case.environment
-    loads = case.body.loads if case.body is not None else None
+    bodies = _bodies(case)
     drag_types = _line_drag(case)
     out = []
     for flow, model in _FLOW_MODEL.items():
         if getattr(env, flow) is None:
             continue
-        if loads is not None and getattr(loads, model) is not None:
+        if any(getattr(body.loads, model) is not None for _, body in bodies):
             continue
         if flow == "current" and drag_types:
             continue
-        what = f"body.loads.{model}"
+        where = bodies[0][0] if len(bodies) == 1 else "bodies[...]"
+        what = f"{where}.loads.{model}"
         if flow == "current":
             what += " or a line type with drag (and a diameter)"
-        holder = ("there is no body" if case.body is None
-                  else f"the body declares no {model.replace('_', ' ')} load model")
+        kind = model.replace("_", " ")
+        holder = ("there is no body" if not bodies else
+                  f"the body declares no {kind} load model" if len(bodies) == 1 else
+                  f"no body declares a {kind} load model")
         out.append((f"environment.{flow}",
                     f"given but not used: {holder}; add {what} for it to act"))
     if env.current is not None and env.current.profile and not drag_types:
         out.append(("environment.current.profile",
                     "given but not used: only lines with drag data see the current profile "
                     "(give a line type drag: {normal: ...} and a diameter)"))
-    if loads is not None:
+    for path, body in bodies:
         for flow, model in _FLOW_MODEL.items():
-            if getattr(loads, model) is not None and getattr(env, flow) is None:
-                out.append((f"body.loads.{model}",
+            if getattr(body.loads, model) is not None and getattr(env, flow) is None:
+                out.append((f"{path}.loads.{model}",
                             f"given but not used: the environment has no {flow} "
                             f"(add environment.{flow})"))
     if env.current is None:
@@ -84,25 +87,46 @@ def unused_inputs(case: Case) -> list[tuple[str, str]]:
         out.append(("environment.seabed.friction",
                     "given but not used: no leg has its anchor on the seabed with a line "
                     "that sinks, so no line can lie on it"))
-    out += _source_only(case, loads, drag_types)
+    out += _source_only(case, drag_types)
     return out
 
 
-def _rests_on_seabed(case: Case, leg) -> bool:
+def _bodies(case: Case) -> list:
+    """``(field path, body)`` of every body: ``body`` in the one-body form of a case,
+    ``bodies[i]`` in the network form."""
+    if getattr(case, "form", "legs") == "legs":
+        return [("body", case.body)] if case.body is not None else []
+    return [(f"bodies[{i}]", body) for i, body in enumerate(case.bodies)]
+
+
+def _rests_on_seabed(case: Case, line) -> bool:
+    """Whether a line can lie on the seabed: an end held on it (an anchor) with a sinking
+    segment there, or an end at a free point (which may sink onto it)."""
     env = case.environment
-    on_bed = leg.anchor[2] <= env.seabed_z(leg.anchor[0], leg.anchor[1]) \
-        + 1e-9 * max(env.depth, 1.0)
-    return on_bed and leg.segments[0].line_type.weight_in_water > 0
+    ends = ((getattr(line, "a", None), line.segments[0]),
+            (getattr(line, "b", None), line.segments[-1]))
+    for end, seg in ends:
+        if end is None:
+            continue
+        if end.point is not None and any(p.name == end.point and p.free for p in case.points):
+            return True
+        if end.body is None and end.point is None:
+            x, y, z = end.position
+            if z <= env.seabed_z(x, y) + 1e-9 * max(env.depth, 1.0) \
+                    and seg.line_type.weight_in_water > 0:
+                return True
+    return False
 
 
-def _source_only(case: Case, loads, drag_types) -> list[tuple[str, str]]:
+def _source_only(case: Case, drag_types) -> list[tuple[str, str]]:
     """Checks that need the case-file data: keys whose value equals the default."""
     source = case.source
     if not isinstance(source, Mapping):
         return []
     out = []
     env_data = source.get("environment")
-    wind_models = loads is not None and loads.wind is not None and case.environment.wind
+    wind_models = case.environment.wind is not None and any(
+        body.loads.wind is not None for _, body in _bodies(case))
     if isinstance(env_data, Mapping) and "air_density" in env_data and not wind_models:
         out.append(("environment.air_density",
                     "given but not used: only a wind load model uses it (body.loads.wind "

@@ -77,8 +77,9 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
                            label="body at equilibrium"),
                     Line2D([], [], marker="o", mfc="none", mec="0.5", ms=9, ls="",
                            label="body at rest")]
-    centre = (scene.bodies[0].origin[:2] if scene.bodies
-              else np.mean([line.fairlead[:2] for line in scene.lines], axis=0))
+    centre = np.mean([line.fairlead[:2] for line in scene.lines], axis=0)
+    if len(scene.bodies) == 1:
+        centre = scene.bodies[0].origin[:2]
     for line in scene.removed:
         ax.plot(*line.xyz[:, :2].T, color="0.55", lw=1.2, ls=(0, (4, 3)), zorder=2)
         ax.annotate(f"{line.name}\nremoved", line.anchor[:2], xytext=(0, -14),
@@ -95,13 +96,18 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
             ax.plot(*ground.T, color=SEABED, lw=5, alpha=0.55, solid_capstyle="round",
                     zorder=2)
         ax.plot(*xy.T, color=c, lw=1.8, ls=":" if line.slack else "-", zorder=3)
-        ax.plot(*line.anchor[:2], "v", color="k", ms=6, zorder=4)
+        if line.a_kind == "anchor":
+            ax.plot(*line.anchor[:2], "v", color="k", ms=6, zorder=4)
         if line.touchdown is not None:
             ax.plot(*line.touchdown[:2], "o", mfc="white", mec=c, ms=5, zorder=4)
-        out = line.anchor[:2] - centre
-        out = out / (np.linalg.norm(out) or 1.0)
-        ax.annotate(line_label(line, scene), line.anchor[:2], xytext=12 * out,
-                    textcoords="offset points", ha="center", va="center", fontsize=7)
+        if line.a_kind == "anchor":        # labelled beyond its anchor
+            out = line.anchor[:2] - centre
+            out = out / (np.linalg.norm(out) or 1.0)
+            ax.annotate(line_label(line, scene), line.anchor[:2], xytext=12 * out,
+                        textcoords="offset points", ha="center", va="center", fontsize=7)
+        elif np.ptp(xy[:, 0]) + np.ptp(xy[:, 1]) > 0.08 * span:   # a shared line: middle
+            ax.annotate(line_label(line, scene).replace("\n", " "), xy[len(xy) // 2],
+                        xytext=(4, 4), textcoords="offset points", fontsize=6, color="0.25")
     if scene.fixed_ends.size:
         ax.plot(scene.fixed_ends[:, 0], scene.fixed_ends[:, 1], "s", color="k", ms=4,
                 zorder=4)
@@ -136,10 +142,14 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
     if scene.north_deg is not None:
         _north(ax, scene.north_deg)
     title = "plan"
-    if scene.bodies:
+    if len(scene.bodies) == 1:
         b = scene.bodies[0]
         title += (f": offset {np.hypot(*b.offset[:2]):.3f} m "
                   f"(x {b.offset[0]:+.3f}, y {b.offset[1]:+.3f}), yaw {b.yaw_deg:+.3f} deg")
+    elif scene.bodies:
+        far = max(scene.bodies, key=lambda b: np.hypot(*b.offset[:2]))
+        title += (f": {len(scene.bodies)} bodies; largest offset "
+                  f"{np.hypot(*far.offset[:2]):.3f} m ({far.name})")
     if not scene.sloped:
         handles.append(Line2D([], [], color=SEABED, lw=2,
                               label=f"flat seabed, depth {scene.depth:.2f} m"))
@@ -156,26 +166,34 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
 
 
 def _arrows(ax, scene: Scene, span: float) -> list:
-    """The offset as an arrow from the body's rest origin, and the body loads in an inset
-    force diagram (head to tail, the total closing it) in the emptiest corner."""
+    """The offset of every body as an arrow from its rest origin, and the loads of the body
+    that carries the most in an inset force diagram (head to tail, the total closing it)
+    in the emptiest corner."""
     from matplotlib.lines import Line2D
     if not scene.bodies:
         return []
-    body = scene.bodies[0]
     handles = []
-    offset = body.offset[:2]
-    size = float(np.hypot(*offset))
-    if size > 0:
-        gain = nice(0.12 * span / size) if size < 0.12 * span else 1.0
-        ax.annotate("", xy=body.origin_rest[:2] + gain * offset, xytext=body.origin_rest[:2],
-                    arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=1.8, ls="--",
-                                    shrinkA=0, shrinkB=0), zorder=7)
+    sizes = [float(np.hypot(*b.offset[:2])) for b in scene.bodies]
+    largest = max(sizes)
+    if largest > 0:
+        gain = nice(0.12 * span / largest) if largest < 0.12 * span else 1.0
+        for body in scene.bodies:
+            ax.annotate("", xy=body.origin_rest[:2] + gain * body.offset[:2],
+                        xytext=body.origin_rest[:2], zorder=7,
+                        arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=1.8, ls="--",
+                                        shrinkA=0, shrinkB=0))
+        which = "" if len(scene.bodies) == 1 else \
+            f" (largest: {scene.bodies[int(np.argmax(sizes))].name})"
         handles.append(Line2D([], [], color="tab:red", ls="--", lw=1.8,
-                              label=f"offset {size:.3f} m" + (f" (drawn x{gain:g})"
-                                                              if gain != 1 else "")))
-    loads = {k: np.array(v[:2]) for k, v in scene.loads.items() if np.hypot(*v[:2]) > 0}
+                              label=f"offset {largest:.3f} m{which}" + (
+                                  f" (drawn x{gain:g})" if gain != 1 else "")))
+    carried = [(sum(np.hypot(*v[:2]) for v in b.loads.values()), k)
+               for k, b in enumerate(scene.bodies)]
+    body = scene.bodies[max(carried)[1]]
+    loads = {k: np.array(v[:2]) for k, v in body.loads.items() if np.hypot(*v[:2]) > 0}
     if loads:
-        _load_inset(ax, scene, loads)
+        title = "body loads" if len(scene.bodies) == 1 else f"loads on {body.name}"
+        _load_inset(ax, scene, loads, title)
         total = np.sum(list(loads.values()), axis=0)
         for name, f in list(loads.items()) + ([("total", total)] if len(loads) > 1 else []):
             wide = name == "total"
@@ -189,10 +207,10 @@ def _arrows(ax, scene: Scene, span: float) -> list:
 def _direction(f, north_deg) -> str:
     """The direction of a horizontal force in the case's words: degrees counter-clockwise
     from +x, or a compass bearing when the case gives bearings."""
-    angle = math.degrees(math.atan2(f[1], f[0])) % 360.0
+    angle = math.degrees(math.atan2(f[1], f[0]))
     if north_deg is None:
-        return f"{angle:.0f} deg"
-    return f"{(north_deg - angle) % 360.0:03.0f} (compass)"
+        return f"{round(angle) % 360:.0f} deg"
+    return f"{round(north_deg - angle) % 360:03.0f} (compass)"
 
 
 def _emptiest_corner(ax, scene: Scene) -> tuple:
@@ -215,7 +233,7 @@ def _emptiest_corner(ax, scene: Scene) -> tuple:
     return cx, cy, w, h
 
 
-def _load_inset(ax, scene: Scene, loads: dict) -> None:
+def _load_inset(ax, scene: Scene, loads: dict, title: str) -> None:
     """The body loads (global frame) as a force polygon in an inset, with a force scale."""
     bounds = _emptiest_corner(ax, scene)
     inset = ax.inset_axes(bounds)
@@ -244,7 +262,7 @@ def _load_inset(ax, scene: Scene, loads: dict) -> None:
     inset.set_xticks([])
     inset.set_yticks([])
     key = nice(0.4 * reach)
-    inset.set_title("body loads", fontsize=7, pad=2)
+    inset.set_title(title, fontsize=7, pad=2)
     from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
     inset.add_artist(AnchoredSizeBar(inset.transData, key, si_force(key * 1e3),
                                      "lower right", pad=0.2, sep=2, frameon=False,

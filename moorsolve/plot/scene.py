@@ -33,6 +33,10 @@ class LineView:
     fairlead: np.ndarray
     touchdown: Optional[np.ndarray]
     grounded: np.ndarray               # per point: on the seabed
+    #: What each end is held by: ``"anchor"`` (fixed in the scene), ``"body"``, ``"free"``
+    #: (a free point of the network); end A is the anchor end of a leg.
+    a_kind: str = "anchor"
+    b_kind: str = "body"
 
 
 @dataclass(frozen=True)
@@ -53,7 +57,8 @@ class BodyView:
     ``outline`` is the plan outline [m] at equilibrium (the convex hull of its line ends
     and its origin: the case gives no hull geometry; a segment or a point for a body on
     one line), ``outline_rest`` the same at rest; ``origin`` and
-    ``origin_rest`` the body-frame origin, ``yaw_deg`` its heading.
+    ``origin_rest`` the body-frame origin, ``yaw_deg`` its heading; ``loads`` its loads
+    (``name -> global force``).
     """
 
     name: str
@@ -63,6 +68,7 @@ class BodyView:
     outline: np.ndarray
     outline_rest: np.ndarray
     fairleads: np.ndarray
+    loads: dict = field(default_factory=dict)
 
     @property
     def offset(self) -> np.ndarray:
@@ -131,28 +137,43 @@ def scene_of(result, removed_from=None) -> Scene:
         def seabed_z(x, y):
             return np.full(np.broadcast(np.asarray(x), np.asarray(y)).shape, -depth)
         sloped, north = False, None
-    lines = [_line(leg, seabed_z, depth) for leg in result.legs]
+    topology = _topology(case, result.legs)
+    lines = [_line(leg, seabed_z, depth, *topology.get(leg.name, ("anchor", "body")))
+             for leg in result.legs]
     points = [p for leg in result.legs for p in _joints(leg)]
     points += [PointView(name=p["name"], xyz=np.array([p["x_m"], p["y_m"], p["z_m"]]),
                          kind="free") for p in (getattr(result, "points", None) or [])]
-    bodies = _bodies(result)
-    fixed = np.zeros((0, 3))
-    if not bodies:
-        fixed = np.array([line.fairlead for line in lines]).reshape(-1, 3)
+    bodies = _bodies(result, lines)
+    fixed = np.array([line.fairlead for line in lines if line.b_kind == "anchor"])
     names = {leg.name for leg in result.legs}
     removed = [_line(leg, seabed_z, depth) for leg in
                (removed_from.legs if removed_from is not None else ()) if leg.name not in names]
     return Scene(title=result.case_name or "equilibrium", lines=lines, bodies=bodies,
                  points=points, loads={k: tuple(v) for k, v in result.loads.items()},
                  depth=depth, seabed_z=seabed_z, sloped=sloped, north_deg=north,
-                 fixed_ends=fixed, removed=removed)
+                 fixed_ends=fixed.reshape(-1, 3), removed=removed)
+
+
+def _topology(case, legs) -> dict:
+    """``line name -> (kind of end A, kind of end B)`` from the case (a fixed named point
+    is an anchor too); without a case every line runs from an anchor to a body."""
+    if case is None or not hasattr(case, "lines"):
+        return {}
+    free = {p.name for p in getattr(case, "points", ()) if p.free}
+
+    def kind(end):
+        if getattr(end, "body", None) is not None:
+            return "body"
+        return "free" if getattr(end, "point", None) in free else "anchor"
+    return {line.name: (kind(line.a), kind(line.b)) for line in case.lines
+            if hasattr(line, "a")}
 
 
 def _deepest(result) -> float:
     return max((-float(np.min(leg.profile["z_m"])) for leg in result.legs), default=1.0)
 
 
-def _line(leg, seabed_z, depth) -> LineView:
+def _line(leg, seabed_z, depth, a_kind="anchor", b_kind="body") -> LineView:
     p = leg.profile
     xyz = np.column_stack([p["x_m"], p["y_m"], p["z_m"]]).astype(float)
     tension = float(np.max(p["tension_N"])) if len(p["tension_N"]) else 0.0
@@ -163,7 +184,7 @@ def _line(leg, seabed_z, depth) -> LineView:
                     fairlead=np.asarray(leg.fairlead, float),
                     touchdown=(None if leg.touchdown_point is None
                                else np.asarray(leg.touchdown_point, float)),
-                    grounded=grounded)
+                    grounded=grounded, a_kind=a_kind, b_kind=b_kind)
 
 
 def _joints(leg) -> list:
@@ -182,30 +203,57 @@ def _rotation(yaw_deg: float) -> np.ndarray:
     return np.array([[c, -s], [s, c]])
 
 
-def _bodies(result) -> list:
-    """The bodies of a result: ``Result.bodies`` (network form) or the one ``body``."""
-    poses = getattr(result, "bodies", None)
-    if not poses:
-        if result.body is None:
-            return []
-        poses = [dict(result.body, name="body", z_m=0.0)]
+def _bodies(result, lines) -> list:
+    """Every body of a result with its pose at rest and at equilibrium, its outline through
+    the ends of the lines it holds (read from the case) and its loads."""
+    poses = list(getattr(result, "bodies", None) or ())
+    if not poses and result.body is not None:
+        poses = [dict(result.body, name="body")]
+    case = result.case
+    ends_of = _body_ends(case, lines) if case is not None else {}
+    several = len(poses) > 1
     out = []
     for pose in poses:
-        # The lines ending on this body; the one-body form: all of them.
-        ends = [leg for leg in result.legs
-                if getattr(leg, "body", pose["name"]) in (pose["name"], None)]
-        fair = np.array([leg.fairlead for leg in ends], float).reshape(-1, 3)
+        name = pose["name"]
         origin = np.array([pose.get("x_m", 0.0), pose.get("y_m", 0.0), pose.get("z_m", 0.0)])
+        offset = pose.get("offset", pose)
+        origin_rest = origin - np.array([offset.get("x_m", 0.0), offset.get("y_m", 0.0),
+                                         offset.get("z_m", 0.0)])
         yaw = float(pose.get("yaw_deg", 0.0))
-        # Back to the case-file pose: undo the yaw about the origin, then the offset.
-        local = (fair[:, :2] - origin[:2]) @ _rotation(yaw)
-        rest = np.column_stack([local, fair[:, 2]])
+        yaw_rest = yaw - float(offset.get("yaw_deg", 0.0))
+        ends = ends_of.get(name)
+        if ends is None:          # no case: every line ends on the one body
+            fair = np.array([line.fairlead for line in lines], float).reshape(-1, 3)
+            local = (fair[:, :2] - origin[:2]) @ _rotation(yaw)
+        else:
+            fair = np.array([g for g, _ in ends], float).reshape(-1, 3)
+            local = np.array([at[:2] for _, at in ends], float).reshape(-1, 2)
+        rest = origin_rest[:2] + local @ _rotation(yaw_rest).T
         # The outline runs through the line ends and the body origin.
         outline = _hull(np.vstack([fair[:, :2], origin[:2]]))
-        outline_rest = _hull(np.vstack([rest[:, :2], np.zeros(2)]))
-        out.append(BodyView(name=pose["name"], origin=origin, origin_rest=np.zeros(3),
-                            yaw_deg=yaw, outline=_at(outline, 0.0),
-                            outline_rest=_at(outline_rest, 0.0), fairleads=fair))
+        outline_rest = _hull(np.vstack([rest, origin_rest[:2]]))
+        loads = {k.split(".", 1)[1] if several else k: tuple(v)
+                 for k, v in result.loads.items()
+                 if not several or k.startswith(name + ".")}
+        out.append(BodyView(name=name, origin=origin, origin_rest=origin_rest, yaw_deg=yaw,
+                            outline=_at(outline, origin[2]),
+                            outline_rest=_at(outline_rest, origin_rest[2]),
+                            fairleads=fair, loads=loads))
+    return out
+
+
+def _body_ends(case, lines) -> dict:
+    """``body name -> [(global position at equilibrium, position in the body frame)]``
+    of every line end on that body."""
+    by_name = {line.name: line for line in lines}
+    out: dict = {}
+    for line in getattr(case, "lines", ()):
+        view = by_name.get(line.name)
+        if view is None or not hasattr(line, "a"):
+            continue
+        for end, where in ((line.a, view.xyz[0]), (line.b, view.xyz[-1])):
+            if end.body is not None:
+                out.setdefault(end.body, []).append((where, np.asarray(end.position, float)))
     return out
 
 

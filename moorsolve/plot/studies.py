@@ -295,7 +295,7 @@ def plot_restoring(curve, ax=None, *, operating: float = 0.0, stiffness=None):
     operating : float
         Offset of the operating point [m, or deg for yaw] on the curve's axis: 0 when the
         curve was taken ``about`` the equilibrium.
-    stiffness : float or array (3, 3), optional
+    stiffness : float or array (3, 3) or (6, 6), optional
         The diagonal stiffness of this DOF (or the whole matrix from
         :func:`moorsolve.stiffness`): drawn as the tangent at the operating point.
 
@@ -306,23 +306,31 @@ def plot_restoring(curve, ax=None, *, operating: float = 0.0, stiffness=None):
     """
     import matplotlib.pyplot as plt
 
-    dofs = ("surge", "sway", "yaw")
-    k = dofs.index(curve["dof"])
+    six = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+    planar = ("surge", "sway", "yaw")
+    dof = curve["dof"]
+    forces = np.asarray(curve["force"], float)
+    k = (six if forces.shape[1] == 6 else planar).index(dof)
     offset = np.asarray(curve["offset"], float)
-    rotational = curve["dof"] == "yaw"
+    rotational = dof in ("roll", "pitch", "yaw")
     scale, unit = (1e-6, "MN m") if rotational else (1e-3, "kN")
-    force = np.asarray(curve["force"], float)[:, k] * scale
+    force = forces[:, k] * scale
+    name = {"surge": "force Fx", "sway": "force Fy", "heave": "force Fz", "roll": "moment Mx",
+            "pitch": "moment My", "yaw": "moment Mz"}[dof]
     if ax is None:
         _, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
-    ax.plot(offset, force, "o-", color="C0", ms=3,
-            label=f"mooring {'moment Mz' if rotational else 'force F' + 'xy'[k]} on the body")
+    ax.plot(offset, force, "o-", color="C0", ms=3, label=f"mooring {name} on the body")
     f0 = float(np.interp(operating, offset, force))
     ax.plot(operating, f0, "o", ms=10, mfc="none", mec="C3", mew=2,
             label=f"operating point: {operating:g} {'deg' if rotational else 'm'}, "
                   f"{f0:,.1f} {unit}")
     if stiffness is not None:
-        kk = float(np.asarray(stiffness, float)[k, k] if np.ndim(stiffness) == 2
-                   else stiffness)
+        K = np.asarray(stiffness, float)
+        if K.ndim == 2:
+            j = (six if K.shape == (6, 6) else planar).index(dof)
+            kk = float(K[j, j])
+        else:
+            kk = float(K)
         per = kk * (np.pi / 180 if rotational else 1.0) * scale
         span = np.array([offset.min(), offset.max()])
         ax.plot(span, f0 - per * (span - operating), "--", color="C3", lw=1,

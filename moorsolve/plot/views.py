@@ -180,7 +180,8 @@ def plot_3d(result, ax=None, *, elev: float = 24.0, azim: float = -60.0):
     height = max(0.0, hi[2]) - zlow
     horizontal = float(max(gx[1] - gx[0], gy[1] - gy[0]))
     gain = max(1.0, nice(0.3 * horizontal / height)) if height > 0 else 1.0
-    ax.set_box_aspect((gx[1] - gx[0], gy[1] - gy[0], height * gain))
+    # A little under full size: the tick labels of a 3-D box reach past its Axes.
+    ax.set_box_aspect((gx[1] - gx[0], gy[1] - gy[0], height * gain), zoom=0.9)
     from matplotlib.ticker import MaxNLocator
     ax.zaxis.set_major_locator(MaxNLocator(4))
     ax.set_zlim(zlow, max(0.0, hi[2]))

@@ -216,9 +216,9 @@ def _case_section(report: CheckReport, case) -> list:
         ["water density, gravity", f"{env.water_density:.1f} kg/m^3, {env.gravity:.5f} m/s^2"],
         ["seabed", seabed],
         ["environment", "; ".join(flows) or "none"],
-        ["body", "none (fairleads fixed)" if case.body is None
-         else "free: " + (", ".join(case.body.free) or "none (held)")],
-        ["legs", str(len(case.legs))],
+        ["bodies", "; ".join(f"{b.name}: free {', '.join(b.free) or 'none (held)'}"
+                             for b in case.bodies) or "none (fairleads fixed)"],
+        ["lines", str(len(case.lines))],
     ], left=2, cls="meta")]
     out.append(_table(
         ["line type", "w [N/m]", "EA [MN]", "MBL [kN]", "diameter [mm]", "source"],
@@ -236,9 +236,8 @@ def _case_section(report: CheckReport, case) -> list:
         anchor = _anchor_text(leg.anchor_type or checks.anchor)
         for k, seg in enumerate(leg.segments):
             first = k == 0
-            rows.append([leg.name if first else "",
-                         ", ".join(f"{v:.2f}" for v in leg.anchor) if first else "",
-                         ", ".join(f"{v:.2f}" for v in leg.fairlead) if first else "",
+            rows.append([leg.name if first else "", _end_text(leg.a) if first else "",
+                         _end_text(leg.b) if first else "",
                          f"{k + 1} of {len(leg.segments)}", seg.line_type.name,
                          f"{seg.length:.2f}", anchor if first else ""])
             clump = leg.joint_clumps[k] if k < len(leg.segments) - 1 else None
@@ -252,8 +251,8 @@ def _case_section(report: CheckReport, case) -> list:
         if leg.multi_segment:
             rows.append(["", "", "", "total", "", f"{leg.length:.2f}", ""])
     out.append("<h3>Every line, segment by segment (from the anchor up)</h3>")
-    out.append(_table(["leg", "anchor [m]", "fairlead [m] (body frame)", "segment", "line type",
-                       "length [m]", "anchor type"], rows, left=7))
+    out.append(_table(["line", "end A: anchor [m]", "end B: fairlead [m]", "segment",
+                       "line type", "length [m]", "anchor type"], rows, left=7))
     return out
 
 
@@ -302,6 +301,16 @@ def _css_string(text: str) -> str:
     """``text`` as a CSS string literal (inside a <style> element)."""
     safe = "".join(c if c.isprintable() and c not in "\\'<>" else " " for c in text)
     return f"'{safe}'"
+
+
+def _end_text(end) -> str:
+    """A line end in words: coordinates (fixed), a point's name, or a body and where on it."""
+    xyz = ", ".join(f"{v:.2f}" for v in end.position)
+    if end.body is not None:
+        return f"{end.body}: {xyz} (body frame)"
+    if end.point is not None:
+        return f"point {end.point}"
+    return xyz
 
 
 def _opt(value, unit: str) -> str:

@@ -80,15 +80,17 @@ class LabelledMatrix:
                 f"<tr><th></th>{head}</tr>{body}</table>")
 
 
-def stiffness_table(K, dofs=("surge", "sway", "yaw")) -> LabelledMatrix:
+def stiffness_table(K, dofs=None) -> LabelledMatrix:
     """The mooring stiffness ``K = -dF/dq`` labelled by degree of freedom and unit.
 
     Parameters
     ----------
     K : array (n, n)
         From :func:`moorsolve.stiffness`.
-    dofs : sequence of str
-        The degrees of freedom of its rows and columns, in order.
+    dofs : sequence of str, optional
+        The degrees of freedom of its rows and columns, in order; default all six
+        (surge, sway, heave, roll, pitch, yaw) for a 6x6 matrix, surge, sway and yaw for a
+        3x3 one.
 
     Returns
     -------
@@ -98,6 +100,8 @@ def stiffness_table(K, dofs=("surge", "sway", "yaw")) -> LabelledMatrix:
         column's (N/m, N/rad, N m/m, N m/rad).
     """
     K = np.asarray(K, dtype=float)
+    if dofs is None:
+        dofs = tuple(DOF_LABELS) if K.shape == (6, 6) else ("surge", "sway", "yaw")
     dofs = tuple(dofs)
     if K.shape != (len(dofs), len(dofs)):
         raise ValueError(f"K has shape {K.shape}; {len(dofs)} dofs need "

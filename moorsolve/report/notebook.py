@@ -29,7 +29,13 @@ def result_repr(result) -> str:
              f"{'certified' if result.converged else 'NOT certified'} "
              f"{c.force_N:.2g} N ({c.relative:.1e}) by {result.solver}, "
              f"{c.iterations} iterations"]
-    if result.body is not None:
+    bodies = getattr(result, "bodies", None) or ()
+    if len(bodies) > 1:
+        far = max(bodies, key=lambda b: math.hypot(b["offset"]["x_m"], b["offset"]["y_m"]))
+        parts.append(f"{len(bodies)} bodies, largest offset "
+                     f"{math.hypot(far['offset']['x_m'], far['offset']['y_m']):.3f} m "
+                     f"({far['name']})")
+    elif result.body is not None:
         b = result.body
         parts.append(f"body x {b['x_m']:+.3f} m y {b['y_m']:+.3f} m "
                      f"yaw {b['yaw_deg']:+.3f} deg")
@@ -37,7 +43,8 @@ def result_repr(result) -> str:
         worst = max(result.legs, key=lambda leg: max(leg.fairlead_tension_N,
                                                      leg.anchor_tension_N))
         util = "" if worst.utilisation is None else f", utilisation {worst.utilisation:.2f}"
-        parts.append(f"{len(result.legs)} legs, worst {worst.name} "
+        word = "legs" if getattr(result, "form", "legs") == "legs" else "lines"
+        parts.append(f"{len(result.legs)} {word}, worst {worst.name} "
                      f"{max(worst.fairlead_tension_N, worst.anchor_tension_N) / 1e3:,.1f} kN"
                      f"{util}")
     return "<" + "; ".join(parts) + ">"
@@ -78,10 +85,16 @@ def result_html(result) -> str:
                ["solver", f"{result.solver}: {c.status}, {c.iterations} iterations, "
                           f"{c.solve_time_s * 1e3:.1f} ms"],
                ["effects", ", ".join(result.effects)]]
-    if result.body is not None:
-        b = result.body
-        summary.insert(0, ["body offset", f"x {b['x_m']:+.4f} m, y {b['y_m']:+.4f} m, "
-                                          f"yaw {b['yaw_deg']:+.4f} deg"])
+    for pose in reversed(getattr(result, "bodies", None) or ()):
+        o = pose.get("offset", pose)
+        summary.insert(0, [f"{pose['name']} offset",
+                           f"x {o['x_m']:+.4f} m, y {o['y_m']:+.4f} m, z {o['z_m']:+.4f} m, "
+                           f"roll {o['roll_deg']:+.4f}, pitch {o['pitch_deg']:+.4f}, "
+                           f"yaw {o['yaw_deg']:+.4f} deg"])
+    for point in getattr(result, "points", None) or ():
+        summary.append([f"point {point['name']}", f"x {point['x_m']:+.3f} m, "
+                                                  f"y {point['y_m']:+.3f} m, "
+                                                  f"z {point['z_m']:+.3f} m"])
     for name, (fx, fy, mz) in result.loads.items():
         summary.append([f"load: {name}", f"Fx {fx / 1e3:,.2f} kN, Fy {fy / 1e3:,.2f} kN, "
                                          f"Mz {mz / 1e3:,.1f} kN m"])
