@@ -33,7 +33,7 @@ from .cache import get_problem
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
-from .stability import assess, find_stable
+from .stability import assess, find_stable, pseudo_transient
 from .start import end_positions, initial_point
 
 log = logging.getLogger(__name__)
@@ -158,6 +158,10 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         result = build_result(problem, case, x, p_full, cert, certified, used, notes,
                               assessment)
     if not certified:
+        if not math.isfinite(force_res):
+            # A line whose span cannot be closed by a finite force (an inextensible line
+            # pulled straight): report the largest unbalanced force on the bodies instead.
+            force_res = _unbalanced_force(problem, result.state, p_full)
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
@@ -251,9 +255,28 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         p_step = problem.parameters(case, factor)
         x_try, ok = run(x_step, p_step)
         if not ok:
-            return x_direct if x_direct is not None else x_try
+            if x_direct is not None:
+                return x_direct
+            return _drift(problem, x_rest, p_full, lb, ub, stats, tol, x_try)
         x_step = x_try
     return x_step
+
+
+def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback):
+    """The last resort: the scene's own overdamped motion under the full load from rest
+    (pseudo-transient continuation), then Newton polish. It passes through states where a
+    body has no stiffness (every line slack at rest), which Newton and IPOPT cannot start
+    from. Returns ``fallback`` when it does not certify."""
+    if not problem.n_q:
+        return fallback
+    x = pseudo_transient(problem, x_rest, p, steps=2000)
+    if x is None:
+        return fallback
+    x = polish(problem, x, p, lb, ub, stats, tol)
+    if problem.certify(x, p, tol)[0]:
+        stats["status"] = "pseudo-transient continuation, then Newton"
+        return x
+    return fallback
 
 
 #: A direct solve that turns a body further than this from its rest state is checked by
@@ -328,6 +351,18 @@ def polish(problem, x, p, lb, ub, stats, tol):
         if not improved:
             break
     return x
+
+
+def _unbalanced_force(problem, x, p) -> float:
+    """The largest unbalanced force [N] on a free translation of a body or a free point."""
+    unbalanced = np.asarray(problem.report(x, p)[1], dtype=float).ravel()
+    values, k = [], 0
+    for body_index, body in enumerate(problem.case.bodies):
+        values += [abs(v) for v in unbalanced[6 * body_index: 6 * body_index + 3]]
+        k = 6 * (body_index + 1)
+    values += [abs(v) for v in unbalanced[k:]]
+    finite = [v for v in values if math.isfinite(v)]
+    return max(finite, default=math.inf)
 
 
 def over_mbl(result: Result) -> list:
