@@ -180,7 +180,10 @@ def test_check_report_and_envelope_in_a_notebook():
     assert "\n" not in repr(report) and "FAIL" in repr(report)
     page = report._repr_html_()
     assert page.count("<tr") == 1 + len(report.conditions)
-    assert "no equilibrium" in page
+    # One verdict cell per condition, FAIL for each that fails.
+    assert page.count('">FAIL</td>') == sum(not c.passed for c in report.conditions) > 0
+    for c in report.conditions:
+        assert html.escape(c.name) in page
     assert all("\n" not in repr(c) for c in report.conditions)
     env = moorsolve.offset_envelope(moorsolve.load_case(CASES / "buoy_vida.yaml"), step_deg=90)
     page = env._repr_html_()
