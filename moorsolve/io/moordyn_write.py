@@ -514,7 +514,8 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
 
 
 def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool = False,
-                   tol: float | None = None, solver: str = "ipopt"):
+                   tol: float | None = None, solver: str = "ipopt",
+                   allow_overload: bool = False):
     """Write a case as a MoorDyn input file (atomically); returns the Result when solved.
 
     Parameters
@@ -527,6 +528,8 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
         See :func:`case_to_moordyn`.
     equilibrium : bool
         Solve the case first and write the equilibrium positions.
+    tol, solver, allow_overload
+        As for :func:`moorsolve.solve`, when ``equilibrium``.
 
     Raises
     ------
@@ -547,7 +550,7 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
     result = None
     if equilibrium:
         from ..solve import solve
-        result = solve(case, tol=tol, solver=solver)
+        result = solve(case, tol=tol, solver=solver, allow_overload=allow_overload)
     text = case_to_moordyn(case, version=version, result=result)
     write_text(out, text)
     return result

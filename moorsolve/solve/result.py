@@ -87,6 +87,10 @@ class LegResult:
     floating_length_m: float = 0.0
     touchup_from_anchor_m: float = 0.0
 
+    def __repr__(self) -> str:
+        from ..report.notebook import leg_repr
+        return leg_repr(self)
+
     @property
     def utilisation(self) -> Optional[float]:
         """Largest tension over the minimum breaking load, when the MBL is known."""
@@ -223,6 +227,14 @@ class Result:
             if b["name"] == name:
                 return b
         raise KeyError(name)
+
+    def __repr__(self) -> str:
+        from ..report.notebook import result_repr
+        return result_repr(self)
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import result_html
+        return result_html(self)
 
     @property
     def iterations(self) -> int:
