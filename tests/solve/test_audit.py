@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import pathlib
 
 import numpy as np
 import pytest
@@ -21,8 +20,9 @@ from moorsolve.cli import main
 from moorsolve.report.text import format_table
 from moorsolve.solve import outcome
 from moorsolve.solve.audit import AuditFailure, audit
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 
 
 def one_leg(w, anchor, fairlead, L, ea=1e8, depth=50.0, **line):
