@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from . import solve as _solve_package  # noqa: F401  (light; binds before solve() below)
 from ._lazy import lazy_exports
-from .errors import CaseError, ConvergenceError, MoorsolveError
+from .errors import (CaseError, ConvergenceError, MoorsolveError, MoorsolveWarning,
+                     UnusedInputWarning)
 
 __version__ = "0.1.0"
 
@@ -63,4 +64,5 @@ __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certif
            "restoring_curve", "natural_periods", "sensitivity", "optimise",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
-           "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]
+           "MoorsolveError", "CaseError", "ConvergenceError", "MoorsolveWarning",
+           "UnusedInputWarning", "__version__"]

@@ -13,12 +13,13 @@ import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 # The suite compares compiled kernels with the reference: each first solve waits for its
-# compile (the default compiles in the background; tests/test_compile.py checks that).
+# compile (the default compiles in the background; tests/solve/test_compile.py checks that).
 os.environ.setdefault("MOORSOLVE_COMPILE", "wait")
 
-ROOT = Path(__file__).resolve().parent.parent
+TESTS = Path(__file__).resolve().parent
+ROOT = TESTS.parent
 CASES = ROOT / "cases"
-DATA = Path(__file__).resolve().parent / "data"
+DATA = TESTS / "data"
 
 
 @pytest.fixture(scope="session")

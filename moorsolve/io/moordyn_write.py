@@ -253,8 +253,11 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
         diameter, a sloped seabed, line drag in a current.
     """
     if getattr(case, "form", "legs") == "network":
-        raise CaseError("", f"case {case.name!r} is in the network form (bodies, points, "
-                            "lines); export-moordyn writes the body + legs form only so far")
+        if version == 1:
+            raise CaseError("--version", "a network case (bodies, points, lines) is written "
+                                         "as MoorDyn v2 only; v1 has no bodies")
+        from .moordyn_network_write import network_to_moordyn
+        return network_to_moordyn(case, result)
     block = dict(case.moordyn or {})
     version = version or block.get("version", 2)
     if version not in (1, 2):
@@ -511,7 +514,8 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
 
 
 def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool = False,
-                   tol: float | None = None, solver: str = "ipopt"):
+                   tol: float | None = None, solver: str = "ipopt",
+                   allow_overload: bool = False):
     """Write a case as a MoorDyn input file (atomically); returns the Result when solved.
 
     Parameters
@@ -524,6 +528,8 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
         See :func:`case_to_moordyn`.
     equilibrium : bool
         Solve the case first and write the equilibrium positions.
+    tol, solver, allow_overload
+        As for :func:`moorsolve.solve`, when ``equilibrium``.
 
     Raises
     ------
@@ -544,7 +550,7 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
     result = None
     if equilibrium:
         from ..solve import solve
-        result = solve(case, tol=tol, solver=solver)
+        result = solve(case, tol=tol, solver=solver, allow_overload=allow_overload)
     text = case_to_moordyn(case, version=version, result=result)
     write_text(out, text)
     return result

@@ -21,6 +21,7 @@ found by :func:`_diagnose` and the best residual reached.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -30,14 +31,15 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
-from .newton import STATUS_TEXT
+from .audit import audit, audit_findings, result_warnings
+from .newton import CONVERGED, STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .prepared import geometry_key, per_case
 from .layout import LOAD_FACTOR_INDEX
 from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
-from .start import initial_point
+from .start import end_positions, initial_point
 
 log = logging.getLogger(__name__)
 
@@ -162,6 +164,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                 certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
         outside = hull_out_of_range(problem, x, p_full, post) if certified else []
         elapsed = time.perf_counter() - t0
+        stats["status"] = explain_status(stats["status"], certified,
+                                         stats.get("polish_steps", 0))
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
                            iterations=stats["iterations"], solve_time_s=elapsed)
@@ -182,14 +186,32 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     broken = over_mbl(result, problem, post)
     if broken and not allow_overload:
         raise ConvergenceError(
-            "overload: " + "; ".join(broken) + " (the mooring cannot hold this load; "
-            "pass allow_overload=True to inspect the equilibrium anyway)",
+            "overload: " + "; ".join(broken) + " (the mooring cannot hold this; to accept "
+            "the equilibrium anyway pass allow_overload=True, or --allow-overload)",
             residual_N=force_res, residual_Nm=moment_res, status=stats["status"],
             iterations=stats["iterations"], result=result)
     if assessment is not None and not assessment.stable:
         log.warning("%s: only an unstable equilibrium was found (unstable in %s)",
                     case.name, ", ".join(assessment.unstable_dofs) or "a coupled mode")
-    return result
+    # An independent check of what is reported (raises AuditFailure), and the warnings.
+    audit(result, case)
+    return dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))
+
+
+#: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
+SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
+                    STATUS_TEXT[CONVERGED])
+
+
+def explain_status(status: str, certified: bool, polish_steps: int) -> str:
+    """The solver status a result reports: the solver's own, explained when it is not a
+    success but the point certifies (a certified point is an equilibrium whatever the
+    solver's stopping reason: the certificate is recomputed from it)."""
+    if not certified or status in SUCCESS_STATUSES:
+        return status
+    how = (f"after {polish_steps} Newton polish step{'s' if polish_steps != 1 else ''}"
+           if polish_steps else "as the solver left it")
+    return f"{status}; the point reached is certified {how}"
 
 
 def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
@@ -280,6 +302,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         st = solver.stats()
         stats["iterations"] += int(st.get("iter_count", 0))
         stats["status"] = st.get("return_status", "unknown")
+        stats["polish_steps"] = 0
         x = np.asarray(sol["x"]).ravel()
         x = polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
@@ -406,10 +429,15 @@ def polish(problem, x, p, lb, ub, stats, tol):
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
         J = np.asarray(problem.jacobian(x, p))
+        if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
+            break           # absurd input (a 1e30 coefficient): nothing to polish
         try:
             step = np.linalg.solve(J, g)
         except np.linalg.LinAlgError:
-            step, *_ = np.linalg.lstsq(J, g, rcond=None)
+            try:
+                step, *_ = np.linalg.lstsq(J, g, rcond=None)
+            except np.linalg.LinAlgError:
+                break
         improved = False
         alpha = 1.0
         for _ in range(6):
@@ -421,6 +449,7 @@ def polish(problem, x, p, lb, ub, stats, tol):
                 break
             alpha *= 0.5
         stats["iterations"] += 1
+        stats["polish_steps"] = stats.get("polish_steps", 0) + 1
         if not improved:
             break
     return x
@@ -449,25 +478,51 @@ def _mbl(case) -> np.ndarray:
 
 
 def over_mbl(result: Result, problem=None, post=None) -> list:
-    """``"leg NAME would break ..."`` for every line above its minimum breaking load.
+    """``"leg NAME would break ..."`` for every line above its minimum breaking load; a line
+    whose unstretched length is shorter than the distance between its ends at the case-file
+    pose (neither end a free point) says it cannot reach, with the shortfall in metres.
 
     ``problem`` and ``post`` (the arrays the result was made from) let one-segment lines
     be judged from their end forces without making the legs.
     """
     if problem is not None and post is not None and all(k.single for k in problem.kinds):
-        lines = result.case.lines
         mbl = _mbl(result.case)
         if not np.isfinite(mbl).any():
             return []
         f = post["lines"]
         tension = np.maximum(np.sqrt(np.square(f[:, _FA]).sum(axis=1)),
                              np.sqrt(np.square(f[:, _FB]).sum(axis=1)))
-        ends = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
+        lines = result.case.lines
+        over = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
     else:
-        ends = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
+        over = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
                 for leg in result.legs if leg.utilisation is not None and leg.utilisation > 1]
-    return [f"leg {name} would break: tension {tension / 1e3:.1f} kN > MBL {mbl / 1e3:.1f} kN"
-            for name, tension, mbl in ends if mbl and tension / mbl > 1.0]
+    out = []
+    rest = _rest_chords(result.case) if (over and result.case is not None) else {}
+    for name, tension_N, mbl_N in over:
+        tension = f"{tension_N / 1e3:.1f} kN > MBL {mbl_N / 1e3:.1f} kN"
+        length, chord = rest.get(name, (math.inf, 0.0))
+        if chord > length:
+            out.append(f"leg {name} cannot reach its fairlead: it is "
+                       f"{chord - length:.2f} m short (unstretched length {length:.2f} m, "
+                       f"anchor to fairlead {chord:.2f} m at rest); stretched to reach, "
+                       f"it would break: tension {tension}")
+        else:
+            out.append(f"leg {name} would break: tension {tension}")
+    return out
+
+
+def _rest_chords(case: Case) -> dict:
+    """``name -> (unstretched length, end-to-end distance at the case-file pose)`` of every
+    line whose ends are both fixed in the scene or on a body."""
+    free = {p.name for p in case.points if p.free}
+    out = {}
+    for line in case.lines:
+        if line.a.point in free or line.b.point in free:
+            continue
+        a, b = end_positions(case, line)
+        out[line.name] = (line.length, math.dist(a, b))
+    return out
 
 
 def _diagnose(problem, case, result) -> str:
@@ -480,7 +535,8 @@ def _diagnose(problem, case, result) -> str:
         if fixed and all(s.line_type.ea is None for s in line.segments) \
                 and chord > line.length * (1 + 1e-9):
             reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
-                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m")
+                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
+                           f"by {chord - line.length:.2f} m")
         elif fixed and lt.ea is None and chord > line.length * (1 - 1e-4):
             reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
                            f"{line.length:.3f} m): an inextensible line would need an "
@@ -494,8 +550,27 @@ def _diagnose(problem, case, result) -> str:
                            f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
-        reasons.append(f"the solver stopped with status {result.certificate.status}")
+        found = audit_findings(result, case, boundaries_only=True)
+        reasons.append(f"the solver stopped with status {result.certificate.status}"
+                       + (f"; at the best point reached: {'; '.join(found)}" if found else "")
+                       + _along_a_boundary(case, result))
     return "; ".join(reasons)
+
+
+def _along_a_boundary(case, result) -> str:
+    """Name a segment lying along the seabed or the surface over its whole length between
+    two ends both on it: its height equation is degenerate there (``Z ~ V|V|`` at ``V = 0``),
+    which limits how closely its state can be certified."""
+    for line, lr in zip(case.lines, result.legs):
+        for k, seg in enumerate(lr.segments):
+            lying = max(seg.get("grounded_length_m", 0.0), seg.get("floating_length_m", 0.0))
+            if lying >= seg["length_m"] * (1 - 1e-9):
+                where = "surface" if seg.get("floating_length_m", 0.0) > 0 else "seabed"
+                return (f" (leg {line.name}: segment {k + 1} lies along the {where} over its "
+                        "whole length between two ends on it, where its height equation is "
+                        "degenerate: join it with the segment beside it, or move an end off "
+                        f"the {where})")
+    return ""
 
 
 __all__ = ["solve", "rest_point", "turn_jump", "polish", "over_mbl", "get_problem",

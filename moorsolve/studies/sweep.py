@@ -42,8 +42,10 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
+from ..model.paths import concrete_paths
+from ..model.units import KINDS, recording
 from ..solve.cache import get_problem
-from ..solve.equilibrium import rest_point, solve, turn_jump
+from ..solve.equilibrium import over_mbl, rest_point, solve, turn_jump
 from ..solve.stability import assess
 from ..solve.start import initial_point
 from ..solve.layout import parameter_vector
@@ -60,7 +62,7 @@ _SOLVE_LOCK = threading.RLock()
 def sweep(case: Case, grid: Mapping | None = None, *, table=None, solver: str = "newton",
           tol: float | None = None, workers: int | None = None, output=None,
           resume: bool = False, overwrite: bool = False, scheduler=None, progress=False,
-          chunk_size: int | None = None):
+          chunk_size: int | None = None, allow_overload: bool = False):
     """Solve ``case`` at every point of the cartesian product of ``grid``, or at every row
     of a load ``table``.
 
@@ -77,7 +79,8 @@ def sweep(case: Case, grid: Mapping | None = None, *, table=None, solver: str = 
     table : pandas.DataFrame or mapping, optional
         A load table instead of a grid (:mod:`moorsolve.studies.load_table`): each row a
         load case, each column a case path with an optional unit in brackets
-        (``environment.wind.speed [kn]``). Validated by column, not by row.
+        (``environment.wind.speed [kn]``). Validated by column, not by row; its columns
+        lead the result as given.
     solver : {"newton", "ipopt"}
         ``"newton"`` (default): the compiled fast path, IPOPT for points it cannot
         certify. ``"ipopt"``: every point by :func:`moorsolve.solve` with IPOPT.
@@ -103,20 +106,25 @@ def sweep(case: Case, grid: Mapping | None = None, *, table=None, solver: str = 
         Show a progress bar (tqdm) on stderr, or on the given file.
     chunk_size : int, optional
         Points per chunk (default: at least 64, at most 64 chunks).
+    allow_overload : bool
+        An equilibrium in which a line exceeds its MBL is a converged row (its ``reason``
+        still names the overload) instead of ``converged = False``.
 
     Returns
     -------
     pandas.DataFrame
-        One row per point in the product order of ``grid`` (or per table row), indexed by
-        ``point`` (the position in that order): the grid values (the table's columns as
-        given), then ``converged``, ``reason``,
+        One row per point in the product order of ``grid``, indexed by ``point`` (the
+        position in that order): the grid values, then ``converged``, ``reason``,
         ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
         ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
-        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. With ``output``
-        it is the finished file read back (grid values that are not plain numbers are
-        text there, lists as JSON).
+        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. Grid values are
+        SI numbers in columns named with their unit (``environment.wind.speed [m/s]``
+        for ``"20 kn"``; ``body.loads.force[0] [N]`` ... for a list); values that are
+        not quantities keep the path as name. With ``output`` it is the finished file
+        read back (those other values are text there, lists as JSON).
     """
-    plan = SweepPlan(case, grid, table=table, solver=solver, tol=tol, chunk_size=chunk_size)
+    plan = SweepPlan(case, grid, table=table, solver=solver, tol=tol, chunk_size=chunk_size,
+                     allow_overload=allow_overload)
     sink = None
     if output is not None:
         from ..io.sweep_output import open_sink
@@ -175,7 +183,7 @@ class SweepPlan:
 
     def __init__(self, case: Case, grid: Mapping | None = None, *, table=None,
                  solver: str = "newton", tol: float | None = None,
-                 chunk_size: int | None = None):
+                 chunk_size: int | None = None, allow_overload: bool = False):
         from ..io import load_case
         from ..model.paths import with_values
 
@@ -187,16 +195,15 @@ class SweepPlan:
         if (grid is None) == (table is None):
             raise CaseError("grid", "give a grid of case paths or a load table (not both)")
         self.case, self.solver = case, solver
+        self.allow_overload = bool(allow_overload)
         self.grid = grid
         self.table = None
         if table is not None:
             from .load_table import TableAxis
             self.table = TableAxis(table)
             self.axes = [(tuple(self.table.paths), self.table.rows)]
-            self.labels = [tuple(self.table.headers)]
         else:
             self.axes = _axes(grid)
-            self.labels = [paths for paths, _ in self.axes]
         self.tol = case.solver.tol if tol is None else float(tol)
         self.shape = tuple(len(values) for _, values in self.axes)
         self.n_points = math.prod(self.shape)
@@ -207,27 +214,34 @@ class SweepPlan:
         base_key = structure_key(case)
         base_vec = _point_vector(case)
         if self.table is not None:
-            # Validated by column (load_table), not row by row.
+            # Validated by column (load_table), not row by row; its columns as given.
             loads = np.concatenate([get_problem(case).load_mask,
                                     np.zeros(len(case.legs), dtype=bool)])
             vecs, same = self.table.vectors(case, _point_vector, structure_key, loads)
             axis_vectors, same = [vecs], [same]
+            self._grid = [[_GridColumn(header, [row[j] for row in self.table.rows],
+                                       all(_numeric(row[j]) for row in self.table.rows))
+                           for j, header in enumerate(self.table.headers)]]
         else:
-            # Each axis value validated once, as a case of its own.
-            axis_vectors, same = [], []
+            # Each axis value validated once, as a case of its own; what it converted to
+            # SI gives the grid's columns (numbers in SI, the unit in the name).
+            axis_vectors, same, self._grid = [], [], []
             for paths, values in self.axes:
-                vecs, keys = [], []
+                vecs, keys, quantities = [], [], []
                 for value in values:
                     try:
-                        c = load_case(with_values(case.source, _edits(paths, value)),
-                                      keep_source=False)
+                        with recording() as converted:
+                            c = load_case(with_values(case.source, _edits(paths, value)),
+                                          keep_source=False)
                     except CaseError as err:
                         raise CaseError(f"grid[{_label(paths)!r}]",
                                         f"value {value!r}: {err}") from None
+                    quantities.append(converted)
                     vecs.append(_point_vector(c))
                     keys.append(structure_key(c) == base_key)
                 axis_vectors.append(np.array(vecs))
                 same.append(all(keys))
+                self._grid.append(_grid_columns(case.source, paths, values, quantities))
 
         fast = solver == "newton" and all(same)
         masks = []
@@ -261,19 +275,19 @@ class SweepPlan:
         """Plain data from which a worker rebuilds this plan."""
         return {"source": self.case.source, "grid": self._plain_points(),
                 "table": self.table is not None, "solver": self.solver, "tol": self.tol,
-                "chunks": self.chunks}
+                "chunks": self.chunks, "allow_overload": self.allow_overload}
 
     @classmethod
     def from_spec(cls, spec: dict) -> "SweepPlan":
         from ..io import load_case
+        options = dict(solver=spec["solver"], tol=spec["tol"],
+                       allow_overload=spec["allow_overload"])
         if spec.get("table"):
             table = dict(zip(spec["grid"]["columns"], zip(*spec["grid"]["rows"])))
-            plan = cls(load_case(spec["source"]), table=table, solver=spec["solver"],
-                       tol=spec["tol"])
+            plan = cls(load_case(spec["source"]), table=table, **options)
         else:
             grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
-            plan = cls(load_case(spec["source"]), grid, solver=spec["solver"],
-                       tol=spec["tol"])
+            plan = cls(load_case(spec["source"]), grid, **options)
         plan.chunks = spec["chunks"]
         return plan
 
@@ -284,10 +298,11 @@ class SweepPlan:
         """What a resumed sweep must share with the one that wrote the file."""
         return {"case_sha256": _sha(self.case.source),
                 "grid_sha256": _sha(self._plain_points()),
-                "solver": self.solver, "tol": self.tol, "n_points": self.n_points}
+                "solver": self.solver, "tol": self.tol, "n_points": self.n_points,
+                "allow_overload": self.allow_overload}
 
     def grid_columns(self) -> list[str]:
-        return [label for labels in self.labels for label in labels]
+        return [col.name for columns in self._grid for col in columns]
 
     def result_columns(self) -> list[str]:
         return list(_Table(0, self.names, self.body_names).columns())
@@ -345,28 +360,31 @@ class SweepPlan:
             kernel = pool.acquire()
             try:
                 _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
-                            self.tol, self.case.body is not None, self.table is not None)
+                            self.tol, self.case.body is not None, self.allow_overload,
+                            self.table is not None)
             finally:
                 pool.release(kernel)
             retry = np.flatnonzero(~table.done).tolist()
         else:
             retry = list(range(len(points)))
-        _solve_each(retry, points, table, self.point_case, self.tol,
+        _solve_each(retry, points, table, self.point_case, self.tol, self.allow_overload,
                     self.table is not None and self.solver == "newton")
         return points, table.columns()
 
     # -- rows ---------------------------------------------------------------------------------
 
     def frame(self, points, columns: dict, for_file: bool = False):
-        """A DataFrame of solved ``points`` indexed by ``point``; ``for_file`` writes grid
-        values that are not plain numbers as text (lists as JSON), numbers as floats."""
+        """A DataFrame of solved ``points`` indexed by ``point``. Grid values that are
+        quantities are SI numbers in columns named with their unit (``environment.wind.speed
+        [m/s]``; a list gives one column per item, ``body.loads.force[2] [N m]``); other
+        values keep the path as name, and ``for_file`` writes them as text (lists as JSON)."""
         import pandas as pd
 
         data = {}
-        for k, (paths, values) in enumerate(self.axes):
-            for j, label in enumerate(self.labels[k]):
-                col = [_component(paths, values[self.indices[i][k]], j) for i in points]
-                data[label] = _file_values(label, self.axes[k], j, col) if for_file else col
+        for k, columns_k in enumerate(self._grid):
+            for col in columns_k:
+                cells = [col.values[self.indices[i][k]] for i in points]
+                data[col.name] = col.file_cells(cells) if for_file else cells
         data.update(columns)
         if for_file:
             data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
@@ -388,15 +406,63 @@ def _label(paths: tuple) -> str:
     return paths[0] if len(paths) == 1 else ",".join(paths)
 
 
+class _GridColumn:
+    """One grid column: its name and its value for each value of the axis."""
+
+    def __init__(self, name: str, values: list, numeric: bool):
+        self.name, self.values, self.numeric = name, values, numeric
+
+    def file_cells(self, cells: list) -> list:
+        if self.numeric:
+            return [float(v) for v in cells]
+        return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in cells]
+
+
+def _unit(kind: str) -> str:
+    return KINDS[kind][1] or "-"
+
+
+def _grid_columns(source, paths: tuple, values: list, quantities: list) -> list:
+    """The columns of one axis from the quantities each value converted to SI.
+
+    A path whose every value is one quantity is one column ``PATH [unit]``; a list of
+    quantities (``anchor``, ``body.loads.force``) one column per item, ``PATH[i] [unit]``
+    (NaN where a value is shorter); anything else (a name, a list of names) one text
+    column ``PATH`` with the values as given.
+    """
+    out = []
+    for j, path in enumerate(paths):
+        found = concrete_paths(source, path)
+        field = found[0] if found else path
+        scalars = [q.get(field) for q in quantities]
+        if all(item is not None for item in scalars):
+            out.append(_GridColumn(f"{path} [{_unit(scalars[0][1])}]",
+                                   [item[0] for item in scalars], True))
+            continue
+        items = [_items(q, field) for q in quantities]
+        width = max(len(row) for row in items)
+        if width and all(items):
+            for i in range(width):
+                kind = next(row[i][1] for row in items if len(row) > i)
+                out.append(_GridColumn(f"{path}[{i}] [{_unit(kind)}]",
+                                       [row[i][0] if len(row) > i else math.nan
+                                        for row in items], True))
+            continue
+        out.append(_GridColumn(path, [_component(paths, v, j) for v in values], all(
+            _numeric(_component(paths, v, j)) for v in values)))
+    return out
+
+
+def _items(quantities: dict, field: str) -> list:
+    """``[(value, kind), ...]`` of ``field[0]``, ``field[1]``, ... while recorded."""
+    out = []
+    while f"{field}[{len(out)}]" in quantities:
+        out.append(quantities[f"{field}[{len(out)}]"])
+    return out
+
+
 def _numeric(v) -> bool:
     return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
-
-
-def _file_values(path, axis, j, col):
-    paths, values = axis
-    if all(_numeric(_component(paths, v, j)) for v in values):
-        return [float(v) for v in col]
-    return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in col]
 
 
 def _plain(obj):
@@ -506,10 +572,10 @@ class _Table:
         self.t_fair = np.full((n, len(names)), np.nan)
         self.t_anchor = np.full((n, len(names)), np.nan)
 
-    def from_result(self, i: int, result, reason: str = "") -> None:
+    def from_result(self, i: int, result, reason: str = "", converged=None) -> None:
         c = result.certificate
         self.done[i] = True
-        self.converged[i] = not reason
+        self.converged[i] = not reason if converged is None else converged
         self.reason[i], self.solver[i] = reason, result.solver
         self.iterations[i] = c.iterations
         self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
@@ -539,7 +605,7 @@ def _kernel_pool(problem):
 
 
 def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
-                from_rest=False):
+                allow_overload=False, from_rest=False):
     """The kernel at every point: from the previous point's solution (a grid's snake), or
     with ``from_rest`` from the rest state as a single solve starts (a load table's rows,
     which need not be neighbours). A point that does not certify, is not clearly stable
@@ -561,7 +627,7 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
         mbl = vectors[i, n_p:]
         over = np.maximum(tf, ta) > mbl
         table.done[row] = True
-        table.converged[row] = not over.any()
+        table.converged[row] = allow_overload or not over.any()
         table.solver[row] = "newton"
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
@@ -579,6 +645,12 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
                 for k in np.flatnonzero(over))
 
 
+def _overload(result) -> str:
+    """The overload of an equilibrium accepted with ``allow_overload`` (else "")."""
+    over = over_mbl(result)
+    return "overload: " + "; ".join(over) if over else ""
+
+
 def _stable(problem, kernel, x, p) -> bool:
     """Whether the kernel's point is a stable equilibrium: the kernel's own test, else the
     full check (:func:`~moorsolve.solve.stability.assess`)."""
@@ -590,7 +662,8 @@ def _stable(problem, kernel, x, p) -> bool:
         return assess(problem, x, p).stable
 
 
-def _solve_each(rows, points, table, point_case, tol, from_rest=False):
+def _solve_each(rows, points, table, point_case, tol, allow_overload=False,
+                from_rest=False):
     """Full solves (IPOPT strategy), warm-started while the structure stays the same; with
     ``from_rest`` each point solved as on its own (Newton strategy, no warm start)."""
     previous = {}
@@ -599,7 +672,8 @@ def _solve_each(rows, points, table, point_case, tol, from_rest=False):
         key = id(get_problem(pc))        # a state is only meaningful to its own problem
         try:
             result = solve(pc, tol=tol, solver="newton" if from_rest else "ipopt",
-                           start=None if from_rest else previous.get(key))
+                           start=None if from_rest else previous.get(key),
+                           allow_overload=allow_overload)
         except ConvergenceError as err:
             if err.result is not None and err.result.converged:
                 table.from_result(row, err.result, reason=err.reason)   # e.g. overload
@@ -610,7 +684,7 @@ def _solve_each(rows, points, table, point_case, tol, from_rest=False):
                 table.residual[row, :2] = (err.residual_N, err.residual_Nm)
             continue
         previous[key] = result.state
-        table.from_result(row, result)
+        table.from_result(row, result, reason=_overload(result), converged=True)
 
 
 # ---- running the chunks ----------------------------------------------------------------------
