@@ -488,7 +488,9 @@ def result_warnings(result, case) -> list[dict]:
     "message"}`` (codes ``wall_compression``, ``floating``, ``end_in_air``)."""
     out = []
     for leg_case, leg in zip(case.lines, result.legs):
-        prof = leg.profile
+        # Only a sealed line's profile has a wall tension (and a profile costs its drawing).
+        sealed = any(seg.line_type.sealed for seg in leg_case.segments)
+        prof = leg.profile if sealed else {}
         wall = prof.get("wall_tension_N")
         if wall is not None and np.any(np.asarray(wall) < 0):
             k = int(np.argmin(wall))

@@ -31,7 +31,8 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
-from .audit import audit, audit_findings, result_warnings
+from .audit import audit as audit_result
+from .audit import audit_findings, result_warnings
 from .newton import CONVERGED, STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .prepared import geometry_key, per_case
@@ -89,7 +90,7 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
 
 def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
           allow_overload: bool = False, start: np.ndarray | None = None,
-          stability: bool = True) -> Result:
+          stability: bool = True, audit: bool = True) -> Result:
     """Static equilibrium of ``case``, certified.
 
     Parameters
@@ -112,6 +113,11 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         Examine the stability of the equilibrium and, where it is unstable, look for a
         stable one (the default). ``False`` returns the first certified point without that
         examination (``Result.stability`` is then None), for sweeps that only want numbers.
+    audit : bool
+        Check the reported quantities independently before returning
+        (:mod:`moorsolve.solve.audit`; the default). It draws every line's profile and
+        costs about ten times a compiled Newton solve: ``False`` skips it for loops that
+        need the speed (the certificate, the stability check and the warnings stay).
 
     Returns
     -------
@@ -194,8 +200,24 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         log.warning("%s: only an unstable equilibrium was found (unstable in %s)",
                     case.name, ", ".join(assessment.unstable_dofs) or "a coupled mode")
     # An independent check of what is reported (raises AuditFailure), and the warnings.
-    audit(result, case)
+    if audit:
+        audit_result(result, case)
+    if not _may_warn(problem, case, post):
+        return result
     return dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))
+
+
+_WARN_COLUMNS = [LINE_COLUMNS.index(c) for c in ("floating", "az", "bz")]
+
+
+def _may_warn(problem, case, post) -> bool:
+    """Whether :func:`~.audit.result_warnings` can find anything: False, from the arrays
+    alone, for one-segment lines of unsealed types that neither float nor have an end
+    above the water (so their legs and profiles need not be made to find nothing)."""
+    if not all(kind.single for kind in problem.kinds) or any(
+            line.line_type.sealed for line in case.lines):
+        return True
+    return bool(np.any(np.atleast_2d(post["lines"])[:, _WARN_COLUMNS] > 0))
 
 
 #: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).

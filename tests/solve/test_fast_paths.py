@@ -269,3 +269,33 @@ def test_newton_follows_a_large_turn_without_ipopt(moment):
     assert fast.solver == "newton" and not fast.notes
     assert abs(fast.bodies[0]["yaw_deg"]) > 20
     assert_same_answer(ref, fast, 1e-8)
+
+
+# ---- the audit, on by default, off on request -----------------------------------------------
+
+
+def test_audit_false_skips_only_the_audit(monkeypatch):
+    """``audit=False`` returns the audited answer without running the audit; the warnings
+    (here a hose floating on the surface) are there either way."""
+    import moorsolve.solve.equilibrium as equilibrium
+
+    hose = moorsolve.load_case({
+        "environment": {"depth": 50},
+        "line_types": {"hose": {"weight_in_water": -100.0, "ea": 1e8}},
+        "legs": [{"name": "H1", "anchor": [0, 0], "fairlead": [100, 0, 0],
+                  "segments": [{"type": "hose", "length": 120}]}]})
+    dock = with_force(moorsolve.load_case(DOCK), (2e6, -1e6, 5e6))
+    audited = {name: moorsolve.solve(case, solver="newton")
+               for name, case in (("hose", hose), ("dock", dock))}
+    assert [w["code"] for w in audited["hose"].warnings] == ["floating"]
+
+    def refuse(result, case):
+        raise AssertionError("the audit ran")
+
+    monkeypatch.setattr(equilibrium, "audit_result", refuse)
+    with pytest.raises(AssertionError, match="the audit ran"):
+        moorsolve.solve(dock, solver="newton")
+    for name, case in (("hose", hose), ("dock", dock)):
+        fast = moorsolve.solve(case, solver="newton", audit=False)
+        assert fast.warnings == audited[name].warnings
+        assert_same_answer(audited[name], fast, 0.0)
