@@ -277,7 +277,7 @@ def test_newton_follows_a_large_turn_without_ipopt(moment):
 def test_audit_false_skips_only_the_audit(monkeypatch):
     """``audit=False`` returns the audited answer without running the audit; the warnings
     (here a hose floating on the surface) are there either way."""
-    import moorsolve.solve.equilibrium as equilibrium
+    from moorsolve.solve import equilibrium
 
     hose = moorsolve.load_case({
         "environment": {"depth": 50},
