@@ -56,14 +56,16 @@ _FAILED_STATUSES = ("Infeasible_Problem_Detected", "Restoration_Failed",
                     "Insufficient_Memory", "Internal_Error")
 
 
-def rest_point(problem, case: Case, tol: float) -> np.ndarray:
+def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     """The unloaded (pretensioned) equilibrium, the start of every loaded solve.
 
     Loading from the solved rest state keeps the solve on the quasi-static branch: a
     direct solve from the closed-form state can land on another certified equilibrium
     (seen at 36.5 deg yaw instead of 20.8 deg under a large couple, issue 7). Solved once
-    with IPOPT per problem and parameters and remembered; the closed-form state when the
-    scene has nothing free or no loads, or when the rest state does not certify.
+    per problem and parameters and remembered: by the Newton ``kernel`` when the caller
+    has one and it certifies (building an IPOPT solver costs seconds for hundreds of
+    lines), else with IPOPT; the closed-form state when the scene has nothing free or no
+    loads, or when the rest state does not certify.
     """
     x0 = initial_point(problem, case)
     if not (problem.n_q and problem.load_names):
@@ -77,6 +79,11 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
         cached = problem.start_cache.get(key)
         if cached is not None:
             return cached.copy()
+        if kernel is not None:
+            out = kernel.solve(x0, p_rest, tol)
+            if _kernel_certified(problem, out, tol):
+                problem.start_cache[key] = out["x"]
+                return out["x"].copy()
         lb, ub = problem.bounds()
         opts = case.solver
         solver = problem.ipopt(min(max(tol, 1e-12), 1e-4), opts.max_iter, opts.max_time_s)
@@ -240,7 +247,8 @@ def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
     """The compiled kernel from the warm start or the rest state, then from the closed-form
     state; ``(x or None, notes)``."""
     notes = []
-    x0 = np.asarray(start, float) if start is not None else rest_point(problem, case, tol)
+    x0 = np.asarray(start, float) if start is not None else rest_point(problem, case, tol,
+                                                                        kernel)
     out = kernel.solve(x0, p_full, tol)
     stats["iterations"] += out["iterations"]
     certified = _kernel_certified(problem, out, tol)
@@ -285,7 +293,7 @@ def _newton_continuation(problem, case, kernel, p_full, tol, stats):
     turns of at most ``YAW_JUMP`` each. Returns the point at load factor 1, or None.
     """
     largest, smallest = _CONTINUATION_STEP
-    x = rest_point(problem, case, tol)
+    x = rest_point(problem, case, tol, kernel)
     p = p_full.copy()
     factor, step = 0.0, largest
     while factor < 1.0:

@@ -344,7 +344,8 @@ class SweepPlan:
                     self._problem = problem = get_problem(self.case)
                     _kernel_pool(problem)
                     # A table's rows start as single solves do: from the rest state.
-                    self._x_rest = (rest_point(problem, self.case, self.tol)
+                    self._x_rest = (rest_point(problem, self.case, self.tol,
+                                               problem.newton())
                                     if self.table is not None
                                     else initial_point(problem, self.case))
             self.vectors()
