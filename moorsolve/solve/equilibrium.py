@@ -221,10 +221,18 @@ def _may_warn(problem, case, post) -> bool:
     """Whether :func:`~.audit.result_warnings` can find anything: False, from the arrays
     alone, for one-segment lines of unsealed types that neither float nor have an end
     above the water (so their legs and profiles need not be made to find nothing)."""
-    if not all(kind.single for kind in problem.kinds) or any(
-            line.line_type.sealed for line in case.lines):
+    single = problem.derived.get("all_single")
+    if single is None:
+        single = problem.derived["all_single"] = all(k.single for k in problem.kinds)
+    if not single or _sealed(case):
         return True
-    return bool(np.any(np.atleast_2d(post["lines"])[:, _WARN_COLUMNS] > 0))
+    return bool((np.atleast_2d(post["lines"])[:, _WARN_COLUMNS] > 0).any())
+
+
+@per_case
+def _sealed(case) -> bool:
+    """Whether a line type of ``case`` is sealed."""
+    return any(seg.line_type.sealed for line in case.lines for seg in line.segments)
 
 
 #: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
