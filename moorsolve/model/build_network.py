@@ -47,7 +47,7 @@ from .bodies import DOFS, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, Hydrost
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
 from .environment import Environment
-from .fields import (FAIRLEAD_Z_MAX, MAX_AREA, check_list, check_mapping, check_name,
+from .fields import (check_choices, FAIRLEAD_Z_MAX, MAX_AREA, check_list, check_mapping, check_name,
                      check_point, field_path, nullable_quantity, optional_quantity, quantity)
 from .lines import End, Line
 from .loads import BodyLoads
@@ -83,16 +83,7 @@ def _matrix6(raw, path: str) -> tuple:
 
 
 def _free_dofs(raw, path: str) -> tuple:
-    items = check_list(raw, path, f"a list drawn from {', '.join(DOFS)}")
-    seen = set()
-    for i, item in enumerate(items):
-        if not isinstance(item, str) or item not in DOFS:
-            raise CaseError(field_path(path, i), f"unknown degree of freedom {show_value(item)}; "
-                                                 f"allowed: {', '.join(DOFS)}")
-        if item in seen:
-            raise CaseError(field_path(path, i), f"{item!r} is listed twice")
-        seen.add(item)
-    return tuple(d for d in DOFS if d in seen)
+    return check_choices(raw, path, DOFS)
 
 
 def _hydrostatics(raw, path: str) -> Hydrostatics:
