@@ -71,7 +71,7 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
         lb, ub = problem.bounds()
         opts = case.solver
         solver = problem.ipopt(min(max(tol, 1e-12), 1e-4), opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=p_rest, lbx=lb, ubx=ub, lbg=0, ubg=0)
+        sol = solver(x0=x0, p=problem.nlp_parameters(p_rest), lbx=lb, ubx=ub, lbg=0, ubg=0)
         x = polish(problem, np.asarray(sol["x"]).ravel(), p_rest, lb, ub,
                    {"iterations": 0}, tol)
         x = x if problem.certify(x, p_rest, tol)[0] else x0
@@ -215,7 +215,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         # Each IPOPT run is capped at the whole budget; the deadline check above stops
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=p, lbx=lb, ubx=ub, lbg=0, ubg=0)
+        sol = solver(x0=x0, p=problem.nlp_parameters(p), lbx=lb, ubx=ub, lbg=0, ubg=0)
         st = solver.stats()
         stats["iterations"] += int(st.get("iter_count", 0))
         stats["status"] = st.get("return_status", "unknown")
@@ -303,7 +303,7 @@ def polish(problem, x, p, lb, ub, stats, tol):
         # the tension's error per step while the residual is already below 1e-15.
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
-        J = np.asarray(problem.jacobian(x, p))
+        J = problem.step_jacobian(x, p, g)
         try:
             step = np.linalg.solve(J, g)
         except np.linalg.LinAlgError:

@@ -60,7 +60,8 @@ import casadi as ca
 from ..model import Case, Line
 from ..model.build_network import end_position
 from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
-                                sloped_leg_function, straight_segment_function)
+                                sloped_leg_function, straight_segment_function,
+                                weightless_line_function)
 
 #: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment line
 #: (from its lower end), its tensions [N] (top H and V, pull on its lower end HA and signed
@@ -370,6 +371,10 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     if kind.lifted:
         h = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
         out = lifted_segment_function(block.elastic, False).call(dict(args, h=h))
+    elif block.neutral:
+        out = weightless_line_function(block.elastic).call(dict(
+            X=X, Z=Z, u=u, V=V, L=P["length"], ea_inv=P["ea_inv"],
+            k=problem.contact_stiffness, eps=problem.smoothing_symbol))
     elif block.sloped:
         # The seabed's rise per metre along the line, lower end toward upper end.
         args["t"] = seabed["gradient_x"] * ux + seabed["gradient_y"] * uy

@@ -53,13 +53,16 @@ def newton_step_function(problem) -> ca.Function:
     search, so the caller falls back to IPOPT) uses CasADi's sparse QR.
     """
     n, n_q, n_legs = problem.n_x, problem.n_q, problem.n_legs
-    sp = problem.jacobian.sparsity_out(0)
+    sp = problem.step_sparsity()
     g = ca.SX.sym("g", n)
     J = ca.SX.sym("J", sp)
     rows, cols = sp.get_triplet()
     # Multi-segment legs (issue 4) have more unknowns per leg: no arrow structure then.
-    arrow = problem.n_x == n_q + 2 * n_legs and n_q <= _ARROW_NODES and all(
-        c < n_q or r >= 2 * n_legs or (c - n_q) // 2 == r // 2 for r, c in zip(rows, cols))
+    # Complementarities (hawsers, contacts) take the regularised sparse QR step.
+    arrow = (not problem.smoothed and problem.n_x == n_q + 2 * n_legs
+             and n_q <= _ARROW_NODES and all(c < n_q or r >= 2 * n_legs
+                                             or (c - n_q) // 2 == r // 2
+                                             for r, c in zip(rows, cols)))
     if not arrow:
         Jm, gm = ca.MX.sym("J", sp), ca.MX.sym("g", n)
         return ca.Function("newton_qr", [gm, Jm], [ca.solve(Jm, gm, "qr")])
@@ -100,11 +103,19 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     p = ca.MX.sym("p", problem.n_p)
     tol = ca.MX.sym("tol")
     g_sym = ca.MX.sym("g", n)
-    J_sym = ca.MX.sym("J", problem.jacobian.sparsity_out(0))
+    J_sym = ca.MX.sym("J", problem.step_sparsity())
 
     # -- the certificate estimate from g and J -----------------------------------------
-    g, J = problem.residual_jacobian(x, p)
-    if problem.n_x == n_q + 2 * n_legs:
+    if problem.smoothed:
+        # Jacobian smoothing: the exact residual, the Jacobian of the smoothed
+        # complementarities with eps tied to it (EquilibriumProblem.step_jacobian).
+        g = problem.residual(x, p)
+        eps = problem.SMOOTHING * problem.length_scale * ca.fmin(1, ca.mmax(ca.fabs(g)))
+        J = ca.project(problem.smoothed_jacobian(x, p, eps) - problem.regularisation(),
+                       problem.step_sparsity())
+    else:
+        g, J = problem.residual_jacobian(x, p)
+    if problem.n_x == n_q + 2 * n_legs and not problem.smoothed:
         forces, moment = [], ca.MX(0)
         for i in range(n_legs):
             r, c = 2 * i, n_q + 2 * i

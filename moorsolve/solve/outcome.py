@@ -45,7 +45,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                     for r in seg_table if int(r[0]) == i]
             legs.append(_multi_result(case, line, kind, row, rows, u))
         else:
-            legs.append(_single_result(case, line, kind, row, u))
+            legs.append(_single_result(case, line, kind, row, u, problem.contact_stiffness))
     poses = np.asarray(poses, dtype=float).ravel()
     bodies = []
     for bi, body in enumerate(case.bodies):
@@ -161,9 +161,23 @@ def _add_wall_tension(profile: dict, line, env) -> None:
         profile["compression"] = bool(np.any(tw < 0))
 
 
-def _single_result(case, line, kind, row, u) -> LegResult:
+def _weightless_slack(line, row, u, stiffness) -> bool:
+    """Whether a weightless line is slack: its opening (stretched length minus chord)
+    exceeds its tension as a length at the contact stiffness (the side of its
+    complementarity that holds, :mod:`moorsolve.physics.contact`)."""
+    lt = line.line_type
+    stretched = line.length * (1 + u / lt.ea) if lt.ea else line.length
+    return stretched - math.hypot(row["X"], row["Z"]) > u / stiffness
+
+
+def _single_result(case, line, kind, row, u, stiffness) -> LegResult:
     env = case.environment
     lt = line.line_type
+    if kind.neutral and _weightless_slack(line, row, u, stiffness):
+        # Slack: it carries nothing (the solution's tension is below 1e-15 N).
+        row = dict(row, **{k: 0.0 for k in ("H", "VF", "HA", "VA", "FAx", "FAy", "FAz",
+                                            "FBx", "FBy", "FBz", "fx", "fy")})
+        u = -1.0
     a, b, fa, fb = _ends(row)
     lower, upper = (b, a) if kind.flipped else (a, b)
     H, VF, HA, VA = row["H"], row["VF"], row["HA"], row["VA"]

@@ -100,6 +100,11 @@ class EquilibriumProblem:
         self.force_scale = force_scale
         self.length_scale = length_scale
         self.moment_scale = force_scale * max(length_scale, _body_radius(case))
+        #: The stiffness [N/m] at which complementarities weigh a force against a length
+        #: (hawsers, contacts; :mod:`moorsolve.physics.contact`), and the symbol of their
+        #: Jacobian smoothing [m] (:meth:`step_jacobian`).
+        self.contact_stiffness = force_scale / length_scale
+        self.smoothing_symbol = ca.SX.sym("eps")
         self.nodes, scale = [], []
         for bi, body in enumerate(case.bodies):
             for dof in DOFS:
@@ -367,12 +372,18 @@ class EquilibriumProblem:
             else:
                 node_res.append(value / self.force_scale)
                 node_force.append(ca.fabs(value))
-        g_all = ca.vertcat(*line_res, *node_res)
+        g_smooth = ca.vertcat(*line_res, *node_res)
+        eps = self.smoothing_symbol
+        #: Whether a complementarity (a hawser, a contact) is smoothed in the step Jacobian.
+        self.smoothed = bool(ca.depends_on(g_smooth, eps))
+        g_all = ca.substitute(g_smooth, eps, 0) if self.smoothed else g_smooth
         self.residual = ca.Function("residual", [xs, p], [g_all])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g_all, xs)])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
                                              [g_all, ca.jacobian(g_all, xs)])
+        self.smoothed_jacobian = ca.Function("smoothed_jacobian", [xs, p, eps],
+                                             [ca.jacobian(g_smooth, xs)])
 
         unbalanced = ca.vertcat(*generalized, *point_forces) if (generalized or point_forces) \
             else ca.SX(0, 1)
@@ -380,16 +391,19 @@ class EquilibriumProblem:
         point_vec = ca.vertcat(*[pt["position"] for pt in points]) if points else ca.SX(0, 1)
         load_vec = ca.vertcat(*load_vectors) if load_vectors else ca.SX(0, 1)
         wrench_vec = ca.vertcat(*wrenches) if wrenches else ca.SX(0, 1)
+        table = ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS))
+        if self.smoothed:
+            table = ca.substitute(table, eps, 0)
         self.report = ca.Function(
-            "report", [xs, p],
-            [ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS)),
-             unbalanced, load_vec, pose_vec, point_vec, wrench_vec])
+            "report", [xs, p], [table, unbalanced, load_vec, pose_vec, point_vec, wrench_vec])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.node_report = ca.Function(
             "node_report", [xs, p], [ca.horzcat(*node_rows).T if node_rows else ca.DM()])
 
         # -- certificate ----------------------------------------------------------------------
+        if self.smoothed:
+            closing = [ca.substitute(c, eps, 0) for c in closing]
         forces = node_force + closing
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.SX(0)
         moment = ca.mmax(ca.vertcat(*node_moment)) if node_moment else ca.SX(0)
@@ -404,7 +418,7 @@ class EquilibriumProblem:
         self.summary = ca.Function(
             "summary", [xs, p], [first, T[:, 0], T[:, 1]],
             ["x", "p"], ["body", "fairlead_tension", "anchor_tension"])
-        self._xs, self._p, self._g = xs, p, g_all
+        self._xs, self._p, self._g, self._g_smooth = xs, p, g_all, g_smooth
 
     def _first_body_summary(self, poses, p):
         """``[x, y, yaw]`` of the first body: displacement from its case pose."""
@@ -433,6 +447,49 @@ class EquilibriumProblem:
             profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
         return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
                     factor=E["load_factor"])
+
+    #: Jacobian smoothing relative to the residual: ``eps = SMOOTHING * L * min(1, |g|)``
+    #: [m], with ``L`` the length scale and ``|g|`` the largest scaled residual.
+    SMOOTHING = 0.1
+
+    def smoothing(self, g) -> float:
+        """The Jacobian smoothing ``eps`` [m] for a (scaled) residual vector ``g``."""
+        size = float(np.max(np.abs(g))) if np.size(g) else 0.0
+        if not np.isfinite(size):
+            size = 1.0
+        return self.SMOOTHING * self.length_scale * min(1.0, size)
+
+    #: A weak spring on every node unknown in the step Jacobian (scaled units), where
+    #: the scene has complementarities: a body that nothing holds in some direction at
+    #: the current point (slack hawsers, open contacts, a hawser's sideways stiffness
+    #: T/D at zero tension) moves with its unbalanced force instead of making the step
+    #: singular; elsewhere it changes the step by parts in 1e9.
+    REGULARISATION = 1e-9
+
+    def regularisation(self) -> ca.DM:
+        """The sparse matrix subtracted from the step Jacobian (:data:`REGULARISATION` on
+        the balance row of every node unknown); zero without complementarities."""
+        n_lines = self.n_x - self.n_q
+        rows = [n_lines + j for j in range(self.n_q)] if self.smoothed else []
+        sp = ca.Sparsity.triplet(self.n_x, self.n_x, rows, list(range(len(rows))))
+        return ca.DM(sp, self.REGULARISATION)
+
+    def step_sparsity(self) -> ca.Sparsity:
+        """The sparsity of the step Jacobian (the Jacobian's and the regularisation's)."""
+        sp = self.jacobian.sparsity_out(0)
+        if self.smoothed:
+            sp = sp + self.smoothed_jacobian.sparsity_out(0) + self.regularisation().sparsity()
+        return sp
+
+    def step_jacobian(self, x, p, g) -> np.ndarray:
+        """The Jacobian a Newton step uses at ``x`` with residual ``g``: the exact one, or,
+        where the scene has complementarities, that of their smoothed form with ``eps``
+        tied to ``|g|`` (Jacobian smoothing; :mod:`moorsolve.physics.contact`) less the
+        weak spring of :meth:`regularisation`."""
+        if not self.smoothed:
+            return np.asarray(self.jacobian(x, p))
+        J = self.smoothed_jacobian(x, p, self.smoothing(g)) - self.regularisation()
+        return np.asarray(ca.densify(J))
 
     # -- certificate ------------------------------------------------------------------
     def certify(self, x, p, tol: float) -> tuple:
@@ -466,6 +523,11 @@ class EquilibriumProblem:
         with self._lock:
             if key not in self._nlp_solvers:
                 nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
+                if self.smoothed:
+                    # IPOPT solves the smoothed complementarities (a smoothing parameter
+                    # appended to p, nlp_parameters); the polish makes them exact.
+                    nlp["p"] = ca.vertcat(self._p, self.smoothing_symbol)
+                    nlp["g"] = self._g_smooth
                 opts = {
                     "print_time": False,
                     "error_on_fail": False,
@@ -483,6 +545,16 @@ class EquilibriumProblem:
                 with SYMBOLIC_LOCK:
                     self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
             return self._nlp_solvers[key]
+
+    #: The smoothing IPOPT solves with, relative to the length scale (the polish that
+    #: follows makes the complementarities exact).
+    IPOPT_SMOOTHING = 1e-3
+
+    def nlp_parameters(self, p) -> np.ndarray:
+        """The parameters of the IPOPT problem for the problem's parameters ``p``."""
+        if not self.smoothed:
+            return p
+        return np.append(p, self.IPOPT_SMOOTHING * self.length_scale)
 
     def newton(self):
         """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
