@@ -36,6 +36,7 @@ inextensible line between fixed ends is long enough to reach.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 
@@ -280,7 +281,9 @@ def _line(raw, path: str, environment: Environment, line_types: dict, bodies: di
     a = _end(m["from"], field_path(path, "from"), environment, bodies, points)
     b = _end(m["to"], field_path(path, "to"), environment, bodies, points)
     spath = field_path(path, "segments")
-    segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    segments, clumps = _segments(m["segments"], spath, environment, line_types,
+                                 pretension=True)
+    segments = _pretensioned_length(segments, spath, a, b, bodies)
     anchor_type = (None if m.get("anchor_type") is None
                    else _anchor_type(m["anchor_type"], field_path(path, "anchor_type")))
     if a.fixed and b.fixed and all(seg.line_type.ea is None for seg in segments):
@@ -295,6 +298,24 @@ def _line(raw, path: str, environment: Environment, line_types: dict, bodies: di
     return Line(name=name, a=a, b=b, segments=segments,
                 clumps=clumps if any(c is not None for c in clumps) else (),
                 anchor_type=anchor_type)
+
+
+def _pretensioned_length(segments: tuple, path: str, a: End, b: End, bodies: dict) -> tuple:
+    """Segments with the length a pretension gives at the case-file pose:
+    ``L = D / (1 + T0 / EA)``, ``D`` the distance between the line's ends there."""
+    if not any(seg.pretension is not None for seg in segments):
+        return segments
+    if len(segments) != 1:
+        raise CaseError(field_path(path, 0), "a pretension gives the length of a one-segment "
+                                             "line; give the segments of this line lengths")
+    seg = segments[0]
+    distance = float(np.linalg.norm(end_position(a, bodies) - end_position(b, bodies)))
+    if not distance > 0:
+        raise CaseError(field_path(field_path(path, 0), "pretension"),
+                        "the line's ends coincide at the case-file pose; a pretension cannot "
+                        "give its length")
+    length = distance / (1 + seg.pretension / seg.line_type.ea)
+    return (dataclasses.replace(seg, length=length),)
 
 
 def _unique(items, path: str, what: str) -> dict:

@@ -22,7 +22,7 @@ Why an unknown reaction and Fischer-Burmeister
 The leg block writes its slack complementarity with one signed unknown whose two halves are
 tension and slack (``H = max(u, 0)``): every iterate is exactly complementary. That cannot
 work for a support that is the only thing holding a body in some direction (a ship on slack
-hawsers under an offshore wind, a pontoon centred between guide rollers): while the support
+hawsers under an offshore wind, a pontoon centred in its pile guides): while the support
 is open the body's balance depends on nothing at all, the Jacobian has a zero row and every
 local method stops where it starts. Here the reaction itself is the one unknown of each
 complementarity, and the law is imposed by the Fischer-Burmeister function (REFERENCE.md
@@ -41,21 +41,28 @@ answer is exactly complementary (to ``1e-150``: the floor under the square root)
 
 Coulomb friction
 ----------------
-The tangential force ``f`` (two components in the surface) and the tangential slip ``s`` of
-the contact point since the case-file pose obey stick (``s = 0``, ``|f| <= mu lam``) or slip
-(``|f| = mu lam``, ``f`` against ``s``). One residual per component writes both (Alart and
-Curnier 1991)::
+The tangential force on a contact is Coulomb's, mobilised over a small slip ``delta``::
 
-    f - proj(f - k s)  = 0,     proj(y) = y min(1, mu lam / |y|)
+    f = -mu lam s / max(|s|, delta)
 
-(the projection onto the disc of radius ``mu lam``). The case-file pose is the reference: a
-contact sticks where the case places it. Every function here works on floats and on CasADi
-symbols.
+with ``s`` the tangential displacement of the contact point since the case-file pose (the
+reference: a contact sticks where the case places it). Below ``delta`` the contact sticks
+elastically (``|f| < mu lam``, the body held within ``delta`` of where it was placed); beyond
+it the contact slips with ``|f| = mu lam`` against the slip. Rigid stick (``delta = 0``) is
+not used because it leaves the friction statically indeterminate as soon as two contacts of
+one rigid body stick (a body on two fenders pushed along the quay: only the sum of their
+friction forces is fixed by equilibrium); the elastic stick shares it in proportion to the
+reactions (the stick stiffness ``mu lam / delta`` grows with the reaction) and makes the
+answer unique, path-independent and explicit (no unknowns). ``delta`` defaults to a
+millimetre (:data:`FRICTION_SLIP`), far below the accuracy a berth's geometry is known to.
+Every function here works on floats and on CasADi symbols.
 """
 
 from __future__ import annotations
 
 import casadi as ca
+
+from ..constants import FRICTION_SLIP
 
 #: Floor under the square roots [m^2 or N^2]: derivatives exist at (0, 0); the answer is
 #: complementary to 1e-150.
@@ -104,7 +111,7 @@ def table_slopes(deflections, reactions):
     return slopes
 
 
-def fender_reaction(compression, deflections, reactions):
+def fender_reaction(compression, deflections, reactions, smoothing=0.0):
     """Reaction [N] of a fender compressed by ``compression`` [m] (0 when not compressed).
 
     Parameters
@@ -114,6 +121,9 @@ def fender_reaction(compression, deflections, reactions):
     deflections, reactions : sequences of float or symbols
         The maker's curve [m, N], rows after the origin, deflection ascending and reaction
         strictly increasing; one row is a linear fender of stiffness ``R/d``.
+    smoothing : float or symbol
+        ``eps`` [m] smoothing the contact switch at zero compression (for the solvers'
+        Jacobian); 0 is exact.
 
     Notes
     -----
@@ -124,12 +134,18 @@ def fender_reaction(compression, deflections, reactions):
     section 7).
     """
     slopes = table_slopes(deflections, reactions)
-    starts = [0.0] + list(deflections[:-1])
-    out, previous = 0, 0
-    for k, d in zip(slopes, starts):
-        out = out + (k - previous) * ca.fmax(compression - d, 0)
-        previous = k
+    out = slopes[0] * smooth_max(compression, 0, smoothing)
+    for i in range(1, len(slopes)):
+        out = out + (slopes[i] - slopes[i - 1]) * ca.fmax(compression - deflections[i - 1], 0)
     return out
+
+
+def smooth_max(a, b, smoothing=0.0):
+    """``max(a, b)``; with ``eps > 0`` the smooth ``(a + b + sqrt((a - b)^2 + 4 eps^2)) / 2``
+    (for the solvers' Jacobian smoothing)."""
+    if isinstance(smoothing, (int, float)) and smoothing == 0:
+        return ca.fmax(a, b)
+    return (a + b + ca.sqrt((a - b) ** 2 + 4 * smoothing**2 + _FLOOR)) / 2
 
 
 def fender_compression(reaction, deflections, reactions):
@@ -166,55 +182,34 @@ def fender_energy(compression, deflections, reactions):
     return out
 
 
-def smooth_max(a, b, smoothing=0.0):
-    """``max(a, b)``, smoothed by ``eps``: ``(a + b + sqrt((a - b)^2 + 4 eps^2)) / 2``."""
-    return (a + b + ca.sqrt((a - b) ** 2 + 4 * smoothing**2 + _FLOOR)) / 2
-
-
-def friction_residual(force, slip, limit, stiffness, smoothing=0.0):
-    """Coulomb stick/slip residual (2-vector, N): ``f - proj_{|y| <= limit}(f - k s)``.
+def friction_force(slip, reaction, coefficient, mobilisation=None):
+    """Coulomb friction with an elastic stick, on floats or symbols [N].
 
     Parameters
     ----------
-    force : 2-vector
-        Tangential force on the body [N], in the contact's tangent basis.
-    slip : 2-vector
-        Tangential displacement of the contact since the case-file pose [m].
-    limit : float or symbol
-        ``mu lam``: the largest friction force the reaction allows [N] (0 out of contact).
-    stiffness : float
-        The contact stiffness scale ``k`` [N/m] weighing slip against force.
-    smoothing : float or symbol
-        ``eps`` [N] for the solvers' Jacobian; 0 is exact.
+    slip : 3-vector
+        Tangential displacement of the contact point since the case-file pose [m].
+    reaction : float or symbol
+        The contact's reaction [N] (friction needs a positive one).
+    coefficient : float or symbol
+        Coulomb coefficient ``mu``.
+    mobilisation : float or symbol, optional
+        The slip ``delta`` [m] over which friction is mobilised (default
+        :data:`FRICTION_SLIP`).
+
+    Returns
+    -------
+    3-vector
+        ``-mu max(lam, 0) s / max(|s|, delta)``: against the slip, at most ``mu lam``.
 
     Notes
     -----
-    Zero exactly in stick (``s = 0``, ``|f| <= limit``) or slip (``|f| = limit`` and ``f``
-    opposite to ``s``); Alart and Curnier (1991), the augmented-Lagrangian form of Coulomb's
-    law.
+    Coulomb's law (REFERENCE.md section 7: ``|F_t| <= mu lam``, sliding opposite to the
+    slip) with the stick regularised as in the module notes.
     """
-    y0, y1 = force[0] - stiffness * slip[0], force[1] - stiffness * slip[1]
-    size = ca.sqrt(y0**2 + y1**2 + _FLOOR)
-    bound = ca.fmax(limit, 0)
-    scale = bound / smooth_max(size, bound, smoothing)
-    return ca.vertcat(force[0] - y0 * scale, force[1] - y1 * scale)
-
-
-def tangent_basis(normal):
-    """Two unit vectors spanning the plane normal to ``normal`` (unit 3-vector).
-
-    ``t1`` is horizontal (``e_z x n`` normalised; ``e_x`` direction for a horizontal
-    surface) and ``t2 = n x t1`` (upward on a vertical wall).
-    """
-    hx, hy = -normal[1], normal[0]
-    size = ca.sqrt(hx**2 + hy**2)
-    level = size > 1e-9
-    safe = ca.if_else(level, size, 1)
-    t1 = ca.vertcat(ca.if_else(level, hx / safe, 1), ca.if_else(level, hy / safe, 0), 0)
-    t2 = ca.vertcat(normal[1] * t1[2] - normal[2] * t1[1],
-                    normal[2] * t1[0] - normal[0] * t1[2],
-                    normal[0] * t1[1] - normal[1] * t1[0])
-    return t1, t2
+    delta = FRICTION_SLIP if mobilisation is None else mobilisation
+    size = ca.sqrt(slip[0]**2 + slip[1]**2 + slip[2]**2 + _FLOOR)
+    return -coefficient * ca.fmax(reaction, 0) * slip / ca.fmax(size, delta)
 
 
 def plane_gap(point, plane_point, normal):
@@ -244,5 +239,5 @@ def cylinder_gap(point, centre, radius):
 
 
 __all__ = ["fischer_burmeister", "natural_residual", "table_slopes", "fender_reaction",
-           "fender_compression", "fender_energy", "smooth_max", "friction_residual",
-           "tangent_basis", "plane_gap", "cylinder_gap"]
+           "fender_compression", "fender_energy", "smooth_max", "friction_force",
+           "plane_gap", "cylinder_gap", "FRICTION_SLIP"]

@@ -50,6 +50,23 @@ _FAILED_STATUSES = ("Infeasible_Problem_Detected", "Restoration_Failed",
                     "Insufficient_Memory", "Internal_Error")
 
 
+def run_ipopt(problem, solver, x0, p, lb, ub, stats) -> np.ndarray:
+    """IPOPT from ``x0``; where the scene has complementarities, once per smoothing of
+    :meth:`EquilibriumProblem.ipopt_smoothings`, each from the last (a continuation toward
+    the exact problem, which the polish then solves)."""
+    x = np.asarray(x0, dtype=float)
+    for eps in problem.ipopt_smoothings():
+        sol = solver(x0=x, p=problem.nlp_parameters(p, x, eps), lbx=lb, ubx=ub, lbg=0,
+                     ubg=0)
+        st = solver.stats()
+        stats["iterations"] = stats.get("iterations", 0) + int(st.get("iter_count", 0))
+        stats["status"] = st.get("return_status", "unknown")
+        x_new = np.asarray(sol["x"]).ravel()
+        if np.all(np.isfinite(x_new)):
+            x = x_new
+    return x
+
+
 def rest_point(problem, case: Case, tol: float) -> np.ndarray:
     """The unloaded (pretensioned) equilibrium, the start of every loaded solve.
 
@@ -71,9 +88,8 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
         lb, ub = problem.bounds()
         opts = case.solver
         solver = problem.ipopt(min(max(tol, 1e-12), 1e-4), opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=problem.nlp_parameters(p_rest), lbx=lb, ubx=ub, lbg=0, ubg=0)
-        x = polish(problem, np.asarray(sol["x"]).ravel(), p_rest, lb, ub,
-                   {"iterations": 0}, tol)
+        x = run_ipopt(problem, solver, x0, p_rest, lb, ub, {"iterations": 0})
+        x = polish(problem, x, p_rest, lb, ub, {"iterations": 0}, tol)
         x = x if problem.certify(x, p_rest, tol)[0] else x0
         problem.start_cache[key] = x
     return x.copy()
@@ -152,7 +168,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         elapsed = time.perf_counter() - t0
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
-                           iterations=stats["iterations"], solve_time_s=elapsed)
+                           iterations=stats["iterations"], solve_time_s=elapsed,
+                           **problem.contact_certificate(x, p_full))
         result = build_result(problem, case, x, p_full, cert, certified, used, notes,
                               assessment)
     if not certified:
@@ -215,11 +232,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         # Each IPOPT run is capped at the whole budget; the deadline check above stops
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=problem.nlp_parameters(p), lbx=lb, ubx=ub, lbg=0, ubg=0)
-        st = solver.stats()
-        stats["iterations"] += int(st.get("iter_count", 0))
-        stats["status"] = st.get("return_status", "unknown")
-        x = np.asarray(sol["x"]).ravel()
+        x = run_ipopt(problem, solver, x0, p, lb, ub, stats)
         x = polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
 
@@ -314,7 +327,10 @@ def polish(problem, x, p, lb, ub, stats, tol):
             x_new = np.clip(x - alpha * step, lb, ub)
             g_new = np.asarray(problem.residual(x_new, p)).ravel()
             n_new = np.max(np.abs(g_new))
-            if np.isfinite(n_new) and n_new < norm:
+            # With complementarities a step that does not grow the residual is progress
+            # (a body crossing free space toward a support; see newton.py).
+            if np.isfinite(n_new) and (n_new < norm or (problem.smoothed and n_new <= norm
+                                                         and np.any(x_new != x))):
                 x, g, norm, improved = x_new, g_new, n_new, True
                 break
             alpha *= 0.5

@@ -16,7 +16,9 @@ Iteration, on the scaled unknowns of :class:`~.problem.EquilibriumProblem`:
    :data:`STEP_LIMIT` (one depth in position, one typical tension, one radian).
 3. Backtrack ``x - a d``, ``a = 1, 1/2, ...``, projected onto the bounds (hanging lines
    keep ``u >= 0`` so ``H >= 0``), until the squared residual norm
-   drops by the Armijo factor ``1 - 2e-4 a``. No acceptable step: the method has stalled.
+   drops by the Armijo factor ``1 - 2e-4 a`` (with complementarities: or does not grow,
+   which is progress while a body crosses free space toward a support). No acceptable
+   step: the method has stalled.
 
 The exact certificate of the final point (:meth:`EquilibriumProblem.certify`) is part of
 the outputs, and so are the body position and the leg tensions a sweep records.
@@ -94,7 +96,8 @@ def newton_step_function(problem) -> ca.Function:
 def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Function:
     """``newton(x0, p, tol) -> (x, status, iterations, certificate, body, t_fair, t_anchor)``.
 
-    ``certificate`` is ``[force_N, moment_Nm, t_max_N]``; ``body`` is ``[x_m, y_m, yaw]``.
+    ``certificate`` is ``[force_N, moment_Nm, t_max_N, penetration_m, complementarity_N]``;
+    ``body`` is ``[x_m, y_m, yaw]``.
     """
     n, n_q, n_legs = problem.n_x, problem.n_q, problem.n_legs
     fs = problem.force_scale
@@ -136,9 +139,12 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
         t_est = ca.fmax(ca.mmax(ca.vertcat(*fair_t)), fs * 1e-12) if fair_t else ca.MX(fs)
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.MX(0)
     else:
-        # Multi-segment legs: the exact certificate (its per-leg layout differs).
-        force, moment, t_max = problem.certificate(x, p)
+        # Multi-segment legs, contacts: the exact certificate (its layout differs).
+        force, moment, t_max, penetration, complementarity = problem.certificate(x, p)
         t_est = ca.fmax(t_max, fs * 1e-12)
+        force = ca.fmax(force, complementarity)
+        # A penetration beyond tol x the length scale counts as an unbalanced force.
+        force = ca.if_else(penetration <= tol * problem.length_scale, force, ca.inf)
     converged = ca.logic_and(force <= tol * t_est,
                              moment <= tol * t_est * problem.moment_scale / fs)
     # NaN compares false, so a NaN state is never "converged".
@@ -153,6 +159,11 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
         xa = ca.fmin(ca.fmax(x - a * d_sym, lb), ub)
         ma = ca.sumsqr(problem.residual(xa, p))
         accept = ma <= (1 - 2 * _ARMIJO * a) * m0
+        if problem.smoothed:
+            # A body crossing free space toward a support it does not yet touch (a collar
+            # within its clearance, a slack hawser) leaves the residual unchanged: a step
+            # that does not increase it is progress there.
+            accept = ca.logic_or(accept, ma <= m0)
         xa_sym = ca.MX.sym("xa", n)
         take = ca.Function(f"newton_take{j}", [x, d_sym, p, m0, xa_sym], [xa_sym, 0])
         if j + 1 < _BACKTRACKS:

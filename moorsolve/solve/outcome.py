@@ -16,6 +16,7 @@ import numpy as np
 from ..model import Case
 from ..physics.catenary import (LegKind, leg_profile, segment_profile, sloped_leg_profile)
 from ..physics.wall_tension import wall_tension
+from .contact_results import contact_results, hawser_results
 from .lines import SEGMENT_COLUMNS
 from .problem import LINE_COLUMNS, ROTATIONS
 from .result import LegResult, Result
@@ -86,10 +87,15 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     clumps = [c.weight for line in case.lines for c in line.joint_clumps if c is not None]
     effects += (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
         ["buoy"] if any(w < 0 for w in clumps) else [])
+    fenders, guides = contact_results(problem, case, x, p, poses)
+    notes += [f"guide {g['name']}: the collar is {g['height_m'] - g['pile_top_m']:.2f} m "
+              f"above the top of pile {g['pile']} (it would come off the pile)"
+              for g in guides if not g["on_pile"]]
     return Result(converged=certified, solver=solver, certificate=cert, effects=effects,
                   body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
-                  points=tuple(points), stability=stability, form=case.form)
+                  points=tuple(points), stability=stability, form=case.form,
+                  fenders=fenders, guides=guides, hawsers=hawser_results(case, legs))
 
 
 def _line_notes(case, problem, legs) -> list:

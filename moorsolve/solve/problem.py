@@ -40,6 +40,7 @@ from .concurrency import SYMBOLIC_LOCK
 from .discrete import discrete_leg
 from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
+from .contact import add_contacts, contact_points
 from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
                     seabed_height, single_block)
 
@@ -105,6 +106,10 @@ class EquilibriumProblem:
         #: Jacobian smoothing [m] (:meth:`step_jacobian`).
         self.contact_stiffness = force_scale / length_scale
         self.smoothing_symbol = ca.SX.sym("eps")
+        #: The smoothing of compliant fenders' contact switch: in the step Jacobian only
+        #: (smoothing it in IPOPT's residual would push touching fenders apart by their
+        #: stiffness times the smoothing).
+        self.hinge_symbol = ca.SX.sym("eps_hinge")
         self.nodes, scale = [], []
         for bi, body in enumerate(case.bodies):
             for dof in DOFS:
@@ -123,6 +128,13 @@ class EquilibriumProblem:
             self.line_offsets.append(len(scale))
             scale += kind.scales(force_scale, length_scale)
         self.leg_offsets = self.line_offsets
+        #: Every contact (fenders, guide pads; :mod:`.contact`), its unknowns after the
+        #: lines'.
+        self.contacts = contact_points(case)
+        self.contact_offsets = []
+        for point in self.contacts:
+            self.contact_offsets.append(len(scale))
+            scale += [force_scale] * point.n_unknowns
         self.n_x = len(scale)
         self.x_scale = np.array(scale, dtype=float)
         self.n_p = self.layout.size
@@ -287,6 +299,15 @@ class EquilibriumProblem:
                 pos_b[0], pos_b[1], fb[0], fb[1], J,
                 pos_a, pos_b[2], fa, fb))
 
+        # -- contacts ---------------------------------------------------------------------
+        def apply_body(bi, where, force):
+            r = ca.vertcat(*poses[bi][:3])
+            body_force[bi] = body_force[bi] + force
+            body_moment[bi] = body_moment[bi] + cross(where - r, force)
+
+        contact_res, contact_rows, contact_terms = add_contacts(
+            self, x, par, poses, rotations, body_index, apply_body)
+
         # -- body loads -------------------------------------------------------------------
         load_vectors, self.load_names = [], []
         rho, g = env.water_density, env.gravity
@@ -372,18 +393,28 @@ class EquilibriumProblem:
             else:
                 node_res.append(value / self.force_scale)
                 node_force.append(ca.fabs(value))
-        g_smooth = ca.vertcat(*line_res, *node_res)
-        eps = self.smoothing_symbol
+        g_both = ca.vertcat(*line_res, *contact_res, *node_res)
+        eps, hinge = self.smoothing_symbol, self.hinge_symbol
         #: Whether a complementarity (a hawser, a contact) is smoothed in the step Jacobian.
-        self.smoothed = bool(ca.depends_on(g_smooth, eps))
-        g_all = ca.substitute(g_smooth, eps, 0) if self.smoothed else g_smooth
+        self.smoothed = bool(ca.depends_on(g_both, ca.vertcat(eps, hinge)))
+        # g_smooth: the complementarities smoothed (IPOPT's residual); g_step: the hinges too
+        # (the step Jacobian's); g_all: exact.
+        g_smooth = ca.substitute(g_both, hinge, 0)
+        g_step = ca.substitute(g_both, hinge, eps)
+        g_all = ca.substitute(g_smooth, eps, 0) if self.smoothed else g_both
         self.residual = ca.Function("residual", [xs, p], [g_all])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g_all, xs)])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
                                              [g_all, ca.jacobian(g_all, xs)])
         self.smoothed_jacobian = ca.Function("smoothed_jacobian", [xs, p, eps],
-                                             [ca.jacobian(g_smooth, xs)])
+                                             [ca.jacobian(g_step, xs)])
+
+        def exact(expr):
+            """``expr`` with the complementarities exact (no smoothing)."""
+            if not self.smoothed:
+                return expr
+            return ca.substitute(ca.substitute(expr, hinge, 0), eps, 0)
 
         unbalanced = ca.vertcat(*generalized, *point_forces) if (generalized or point_forces) \
             else ca.SX(0, 1)
@@ -392,18 +423,17 @@ class EquilibriumProblem:
         load_vec = ca.vertcat(*load_vectors) if load_vectors else ca.SX(0, 1)
         wrench_vec = ca.vertcat(*wrenches) if wrenches else ca.SX(0, 1)
         table = ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS))
-        if self.smoothed:
-            table = ca.substitute(table, eps, 0)
         self.report = ca.Function(
-            "report", [xs, p], [table, unbalanced, load_vec, pose_vec, point_vec, wrench_vec])
+            "report", [xs, p], [exact(v) for v in (table, unbalanced, load_vec, pose_vec,
+                                                   point_vec, wrench_vec)])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.node_report = ca.Function(
             "node_report", [xs, p], [ca.horzcat(*node_rows).T if node_rows else ca.DM()])
+        contact_table = exact(ca.horzcat(*contact_rows).T) if contact_rows else ca.DM()
+        self.contact_report = ca.Function("contact_report", [xs, p], [contact_table])
 
         # -- certificate ----------------------------------------------------------------------
-        if self.smoothed:
-            closing = [ca.substitute(c, eps, 0) for c in closing]
         forces = node_force + closing
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.SX(0)
         moment = ca.mmax(ca.vertcat(*node_moment)) if node_moment else ca.SX(0)
@@ -411,8 +441,21 @@ class EquilibriumProblem:
         t_max = ca.mmax(all_t) if tensions else ca.SX(0)
         if line_weights:
             t_max = ca.fmax(t_max, 1e-3 * ca.mmax(ca.vertcat(*line_weights)))
-        self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
-                                       ["x", "p"], ["force", "moment", "t_max"])
+        penetration, complementarity = ca.SX(0), ca.SX(0)
+        if contact_terms:
+            t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*[t["reaction"] for t in contact_terms])))
+            rigid = [t for t in contact_terms if "penetration" in t]
+            if rigid:
+                penetration = ca.mmax(ca.vertcat(*[t["penetration"] for t in rigid]))
+                complementarity = ca.mmax(ca.vertcat(*[t["complementarity"] for t in rigid]))
+        if self.smoothed:
+            # Nothing loaded at all (a pontoon in calm water): judge against a millionth of
+            # the force scale, not against round-off.
+            t_max = ca.fmax(t_max, 1e-6 * self.force_scale)
+        self.certificate = ca.Function(
+            "certificate", [xs, p],
+            [exact(v) for v in (force, moment, t_max, penetration, complementarity)],
+            ["x", "p"], ["force", "moment", "t_max", "penetration", "complementarity"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
         first = self._first_body_summary(poses, p)
         self.summary = ca.Function(
@@ -450,7 +493,7 @@ class EquilibriumProblem:
 
     #: Jacobian smoothing relative to the residual: ``eps = SMOOTHING * L * min(1, |g|)``
     #: [m], with ``L`` the length scale and ``|g|`` the largest scaled residual.
-    SMOOTHING = 0.1
+    SMOOTHING = 0.01
 
     def smoothing(self, g) -> float:
         """The Jacobian smoothing ``eps`` [m] for a (scaled) residual vector ``g``."""
@@ -496,20 +539,30 @@ class EquilibriumProblem:
         """``(certified, force_N, moment_Nm, relative)`` of the scaled point ``x``."""
         if not np.all(np.isfinite(x)):
             return False, math.inf, math.inf, math.inf
-        force, moment, t_max = (float(v) for v in self.certificate(x, p))
-        return self.judge(force, moment, t_max, tol)
+        return self.judge(*(float(v) for v in self.certificate(x, p)), tol=tol)
 
-    def judge(self, force: float, moment: float, t_max: float, tol: float):
-        """``(certified, force, moment, relative)`` from the certificate's three numbers.
+    def contact_certificate(self, x, p) -> dict:
+        """``penetration_m`` and ``complementarity_N`` of the certificate at ``x`` (None
+        each in a scene without contacts)."""
+        if not self.contacts:
+            return dict(penetration_m=None, complementarity_N=None)
+        values = [float(v) for v in self.certificate(x, p)]
+        return dict(penetration_m=values[3], complementarity_N=values[4])
 
-        The force must be within ``tol`` of the largest tension, and the moment within
-        ``tol`` of that tension times the scene's moment arm.
+    def judge(self, force: float, moment: float, t_max: float, penetration: float = 0.0,
+              complementarity: float = 0.0, *, tol: float):
+        """``(certified, force, moment, relative)`` from the certificate's numbers.
+
+        The force (and a contact's complementarity residual, a reaction across an open gap)
+        must be within ``tol`` of the largest tension or reaction, the moment within ``tol``
+        of that times the scene's moment arm, and the largest penetration of a contact within
+        ``tol`` of the length scale.
         """
         scale = t_max if t_max > 0 else self.force_scale
-        relative = force / scale
+        relative = max(force, complementarity) / scale
         moment_ok = moment <= tol * scale * self.moment_scale / self.force_scale
         ok = bool(np.isfinite(relative) and np.isfinite(moment) and relative <= tol
-                  and moment_ok)
+                  and moment_ok and penetration <= tol * self.length_scale)
         return ok, force, moment, relative
 
     # -- solvers --------------------------------------------------------------------
@@ -525,9 +578,14 @@ class EquilibriumProblem:
                 nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
                 if self.smoothed:
                     # IPOPT solves the smoothed complementarities (a smoothing parameter
-                    # appended to p, nlp_parameters); the polish makes them exact.
-                    nlp["p"] = ca.vertcat(self._p, self.smoothing_symbol)
+                    # appended to p, nlp_parameters); the polish makes them exact. Among
+                    # the equilibria it takes the one nearest its start (also appended),
+                    # which keeps it from wandering through open contacts and slack
+                    # hawsers, and pins a degree of freedom nothing holds.
+                    start = ca.SX.sym("start", self.n_x)
+                    nlp["p"] = ca.vertcat(self._p, self.smoothing_symbol, start)
                     nlp["g"] = self._g_smooth
+                    nlp["f"] = self.IPOPT_PROXIMITY * ca.sumsqr(self._xs - start)
                 opts = {
                     "print_time": False,
                     "error_on_fail": False,
@@ -546,15 +604,26 @@ class EquilibriumProblem:
                     self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
             return self._nlp_solvers[key]
 
-    #: The smoothing IPOPT solves with, relative to the length scale (the polish that
-    #: follows makes the complementarities exact).
-    IPOPT_SMOOTHING = 1e-3
+    #: The smoothings IPOPT solves with in turn, relative to the length scale (the polish
+    #: that follows makes the complementarities exact).
+    IPOPT_SMOOTHING = (1e-3, 1e-5)
 
-    def nlp_parameters(self, p) -> np.ndarray:
-        """The parameters of the IPOPT problem for the problem's parameters ``p``."""
+    #: Weight of the distance from the start in IPOPT's objective (scaled unknowns).
+    IPOPT_PROXIMITY = 1e-6
+
+    def ipopt_smoothings(self) -> tuple:
+        """The smoothings [m] IPOPT solves with in turn (one run, unsmoothed-free, without
+        complementarities)."""
+        if not self.smoothed:
+            return (None,)
+        return tuple(s * self.length_scale for s in self.IPOPT_SMOOTHING)
+
+    def nlp_parameters(self, p, start, smoothing=None) -> np.ndarray:
+        """The parameters of the IPOPT problem for the problem's parameters ``p``, the
+        (scaled) start ``start`` and a smoothing [m]."""
         if not self.smoothed:
             return p
-        return np.append(p, self.IPOPT_SMOOTHING * self.length_scale)
+        return np.concatenate([p, [smoothing], start])
 
     def newton(self):
         """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
@@ -581,8 +650,12 @@ class EquilibriumProblem:
                 # z-y-x angles are singular at +-90 deg of pitch.
                 lb[j], ub[j] = -0.49 * math.pi, 0.49 * math.pi
         for i, kind in enumerate(self.kinds):
-            if kind.single and not kind.contact and not kind.neutral:
-                lb[self.line_offsets[i]] = 0.0   # a hanging catenary cannot go slack
+            if kind.single and not kind.contact:
+                # A hanging catenary cannot go slack; a hawser's tension is not negative.
+                lb[self.line_offsets[i]] = 0.0
+        for point, io in zip(self.contacts, self.contact_offsets):
+            if point.n_unknowns:
+                lb[io] = 0.0                     # a contact pushes, never pulls
         return lb, ub
 
     def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:
@@ -600,9 +673,11 @@ def structure_key(case: Case) -> tuple:
     ends = tuple((line.a.kind, line.a.on_seabed, line.a.point, line.a.body,
                   line.b.kind, line.b.on_seabed, line.b.point, line.b.body)
                  for line in case.lines)
+    berth = (tuple(w.name for w in case.contacts.walls),
+             tuple(p.name for p in case.contacts.piles), tuple(contact_points(case)))
     return (
         tuple(line_kinds(case)), ends, bodies, tuple(p.name for p in case.free_points),
-        case.form,
+        case.form, berth,
         case.environment.wind is not None, case.environment.current is not None,
         case.environment.waves is not None,
         case.environment.air_density, case.environment.water_density,

@@ -487,7 +487,7 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
         x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
-        ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
+        ok, force, moment, relative = problem.judge(*cert, tol=tol)
         if not ok:
             continue            # left for the IPOPT pass
         if check_stability:
