@@ -3,38 +3,39 @@
 The model
 ---------
 A contact joins a point and a surface, one of them on a body. Its *gap* ``g`` [m] is the
-signed distance of the point from the surface (positive: apart), its *reaction* ``lam`` [N]
-pushes the two apart along the surface's normal, and a compliant contact (a fender) has a
-*compression* ``c(lam)`` [m] under that reaction: 0 for a rigid contact, ``lam / k`` for a
-linear fender, the inverse of the maker's curve for a cell or cone fender. The contact law is
-the complementarity (REFERENCE.md section 7)::
+signed distance of the point from the surface (positive: apart), and its *reaction* ``lam``
+[N] pushes the two apart along the surface's normal.
 
-    lam >= 0,    g + c(lam) >= 0,    lam (g + c(lam)) = 0
+A compliant contact (a fender) reacts to its compression by its maker's curve: the curve is
+the constitutive law (REFERENCE.md section 7), so ``lam = R(max(-g, 0))`` is an explicit
+function of the geometry (:func:`fender_reaction`, linear between the maker's rows), zero
+out of contact. A rigid contact (a rigid fender, a rubbing strip, a pile guide's pad on a
+rigid pile) needs the complementarity::
 
-out of contact no reaction; in contact the fender is compressed by exactly ``-g`` (so
-``lam = R(-g)`` with ``R`` the reaction curve); a rigid contact cannot be penetrated. A
-weightless line (a hawser) obeys the same law with its tension for ``lam``, its slack
-``L - D`` (unstretched length minus chord) for ``g`` and its stretch ``lam L / EA`` for ``c``:
-slack lines carry nothing, taut ones stretch.
+    lam >= 0,    g >= 0,    lam g = 0
 
-Why an unknown reaction and Fischer-Burmeister
-----------------------------------------------
+and so does a weightless line (a hawser), with its tension for ``lam`` and its slack, the
+stretched length less the chord, ``L (1 + lam / EA) - D``, for ``g``: slack lines carry
+nothing, taut ones stretch.
+
+Why the reaction is the unknown, with Fischer-Burmeister
+--------------------------------------------------------
 The leg block writes its slack complementarity with one signed unknown whose two halves are
 tension and slack (``H = max(u, 0)``): every iterate is exactly complementary. That cannot
 work for a support that is the only thing holding a body in some direction (a ship on slack
-hawsers under an offshore wind, a pontoon centred in its pile guides): while the support
-is open the body's balance depends on nothing at all, the Jacobian has a zero row and every
-local method stops where it starts. Here the reaction itself is the one unknown of each
-complementarity, and the law is imposed by the Fischer-Burmeister function (REFERENCE.md
-section 7)::
+hawsers under an offshore wind): while the support is open the body's balance depends on
+none of the unknowns, the Jacobian has a zero row and every local method stops where it
+starts. Here the reaction itself is the one unknown of each complementarity, and the law is
+imposed by the Fischer-Burmeister function (REFERENCE.md section 7)::
 
     phi(a, b) = a + b - sqrt(a^2 + b^2),    phi = 0  <=>  a >= 0, b >= 0, a b = 0
 
-with ``a = lam / k`` (the reaction as a length at the scene's contact stiffness ``k``) and
-``b = g + c(lam)``. The body always feels its supports' reactions, so a load can draw a slack
-hawser taut; ``phi^2`` is continuously differentiable, so Newton's Armijo search on the
-squared residual keeps working across contact changes. At an open contact with no reaction
-``d phi / d b = 0``: the solvers use the Jacobian of the *smoothed* function
+with ``a = lam / k`` (the reaction as a length at the scene's contact stiffness ``k``, the
+force scale over the length scale, the same weighing as the rest of the scaled residual)
+and ``b`` the gap. The body always feels its supports' reactions, so a load can draw a
+slack hawser taut; ``phi^2`` is continuously differentiable, so Newton's Armijo search on
+the squared residual keeps working across contact changes. At an open contact with no
+reaction ``d phi / d b = 0``: the solvers use the Jacobian of the *smoothed* function
 ``a + b - sqrt(a^2 + b^2 + 2 eps^2)`` with ``eps`` tied to the current residual (the Jacobian
 smoothing method of Chen, Qi and Sun 1998), and the exact residual for every decision, so the
 answer is exactly complementary (to ``1e-150``: the floor under the square root).
@@ -123,7 +124,7 @@ def fender_reaction(compression, deflections, reactions, smoothing=0.0):
         strictly increasing; one row is a linear fender of stiffness ``R/d``.
     smoothing : float or symbol
         ``eps`` [m] smoothing the contact switch at zero compression (for the solvers'
-        Jacobian); 0 is exact.
+        Jacobian, :func:`smooth_max`); 0 is exact.
 
     Notes
     -----
@@ -146,23 +147,6 @@ def smooth_max(a, b, smoothing=0.0):
     if isinstance(smoothing, (int, float)) and smoothing == 0:
         return ca.fmax(a, b)
     return (a + b + ca.sqrt((a - b) ** 2 + 4 * smoothing**2 + _FLOOR)) / 2
-
-
-def fender_compression(reaction, deflections, reactions):
-    """Compression [m] of a fender under ``reaction`` [N]: the inverse of
-    :func:`fender_reaction` (negative reactions map linearly, with the first slope).
-
-    Notes
-    -----
-    The inverse of a strictly increasing piecewise-linear curve is piecewise linear through
-    the swapped rows: ``c = lam / k_0 + sum_{i>0} (1/k_i - 1/k_{i-1}) max(lam - R_{i-1}, 0)``.
-    """
-    slopes = table_slopes(deflections, reactions)
-    out = reaction / slopes[0]
-    for i in range(1, len(slopes)):
-        out = out + (1 / slopes[i] - 1 / slopes[i - 1]) * ca.fmax(reaction - reactions[i - 1],
-                                                                  0)
-    return out
 
 
 def fender_energy(compression, deflections, reactions):
@@ -223,21 +207,5 @@ def plane_gap(point, plane_point, normal):
     return gap, point - gap * normal
 
 
-def cylinder_gap(point, centre, radius):
-    """A point against a fixed vertical cylinder (a pile): ``(gap, unit normal, contact
-    point)``.
-
-    ``gap = |p_xy - c| - r`` [m]; the normal is horizontal, from the axis toward the point;
-    the contact point is on the cylinder's surface at the point's height.
-    """
-    dx, dy = point[0] - centre[0], point[1] - centre[1]
-    rho = ca.sqrt(dx**2 + dy**2 + _FLOOR)
-    nx, ny = dx / rho, dy / rho
-    normal = ca.vertcat(nx, ny, 0)
-    contact = ca.vertcat(centre[0] + radius * nx, centre[1] + radius * ny, point[2])
-    return rho - radius, normal, contact
-
-
 __all__ = ["fischer_burmeister", "natural_residual", "table_slopes", "fender_reaction",
-           "fender_compression", "fender_energy", "smooth_max", "friction_force",
-           "plane_gap", "cylinder_gap", "FRICTION_SLIP"]
+           "fender_energy", "smooth_max", "friction_force", "plane_gap", "FRICTION_SLIP"]

@@ -2,8 +2,9 @@
 
 Every contact is one point against one surface (:mod:`moorsolve.physics.contact` gives the
 law and the geometry). A compliant fender's reaction is an explicit function of its
-compression, ``lam = R(max(-g, 0))``: no unknown (its contact switch is smoothed in the
-step Jacobian only). A rigid contact (a rigid fender, a guide's pad) needs the
+compression, ``lam = R(max(-g, 0))``: no unknown (its switch at ``g = 0`` is smoothed in the
+step Jacobian only, which anticipates its reaction and the friction it will carry). A rigid
+contact (a rigid fender, a guide's pad) needs the
 complementarity: one unknown after the lines' in ``x``, its reaction ``lam`` [N], and one
 residual after the lines' residuals, the Fischer-Burmeister residual [m, scaled by the
 length scale] with the reaction weighed at the scene's contact stiffness. Friction, where
@@ -241,6 +242,26 @@ def contact_block(problem, point: ContactPoint, x, io, par, body):
     return residuals, force, contact, row, terms
 
 
+def element_reactions(problem, rows) -> list:
+    """The reaction [N] of every fender (zero when open) and the horizontal force of every
+    guide (its bearing pads together), in the case's order, from the contacts' report rows
+    (:data:`CONTACT_COLUMNS`)."""
+    col = {name: k for k, name in enumerate(CONTACT_COLUMNS)}
+    by_element: dict = {}
+    for point, row in zip(problem.contacts, rows):
+        by_element.setdefault((point.owner, point.element), []).append(row)
+    out = []
+    for fender in problem.case.contacts.fenders:
+        row = by_element[("fender", fender.name)][0]
+        out.append(row[col["closed"]] * row[col["reaction"]])
+    for guide in problem.case.contacts.guides:
+        rows_g = by_element[("guide", guide.name)]
+        fx = sum(r[col["closed"]] * r[col["Fx"]] for r in rows_g)
+        fy = sum(r[col["closed"]] * r[col["Fy"]] for r in rows_g)
+        out.append(ca.sqrt(fx**2 + fy**2))
+    return out
+
+
 def add_contacts(problem, x, par, poses, rotations, body_index, apply):
     """Build every contact of ``problem``: returns ``(residuals, rows, terms)`` and applies
     each contact's force to its body through ``apply(body_index, point, force)``."""
@@ -259,4 +280,4 @@ def add_contacts(problem, x, par, poses, rotations, body_index, apply):
 
 
 __all__ = ["ContactPoint", "contact_points", "contact_block", "add_contacts",
-           "CONTACT_COLUMNS"]
+           "element_reactions", "CONTACT_COLUMNS"]

@@ -25,12 +25,13 @@ import logging
 import math
 import time
 
+import casadi as ca
 import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
-from .newton import STATUS_TEXT
+from .newton import FLAT, STATUS_TEXT, STEP_LIMIT
 from .outcome import build_result
 from .result import Certificate, Result
 from .stability import assess, find_stable
@@ -305,7 +306,9 @@ def _stable_point(problem, case, x, p, tol, stats):
 
 def polish(problem, x, p, lb, ub, stats, tol):
     """Newton steps on the square residual system until the point certifies at ``tol``,
-    kept only while they reduce the residual."""
+    kept only while they reduce the residual (with complementarities, as the compiled
+    kernel: a step along the exact direction that does not grow it where the smoothed one
+    finds no descent; :mod:`.newton`)."""
     if not np.all(np.isfinite(x)):
         return x
     g = np.asarray(problem.residual(x, p)).ravel()
@@ -316,28 +319,39 @@ def polish(problem, x, p, lb, ub, stats, tol):
         # the tension's error per step while the residual is already below 1e-15.
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
-        J = problem.step_jacobian(x, p, g)
-        try:
-            step = np.linalg.solve(J, g)
-        except np.linalg.LinAlgError:
-            step, *_ = np.linalg.lstsq(J, g, rcond=None)
-        improved = False
-        alpha = 1.0
-        for _ in range(6):
-            x_new = np.clip(x - alpha * step, lb, ub)
-            g_new = np.asarray(problem.residual(x_new, p)).ravel()
-            n_new = np.max(np.abs(g_new))
-            # With complementarities a step that does not grow the residual is progress
-            # (a body crossing free space toward a support; see newton.py).
-            if np.isfinite(n_new) and (n_new < norm or (problem.smoothed and n_new <= norm
-                                                         and np.any(x_new != x))):
-                x, g, norm, improved = x_new, g_new, n_new, True
-                break
-            alpha *= 0.5
+        found = _search(problem, x, p, g, norm, lb, ub, problem.step_jacobian(x, p, g),
+                        flat=False, tries=6)
+        if found is None and problem.smoothed:
+            spring = max(problem.REGULARISATION, float(np.max(np.abs(g))))
+            J = np.asarray(problem.jacobian(x, p)) - np.asarray(
+                ca.densify(problem.regularisation(spring)))
+            found = _search(problem, x, p, g, norm, lb, ub, J, flat=True, tries=24)
         stats["iterations"] += 1
-        if not improved:
+        if found is None:
             break
+        x, g, norm = found
     return x
+
+
+def _search(problem, x, p, g, norm, lb, ub, J, *, flat: bool, tries: int):
+    """Backtracking along the Newton step of ``J``: ``(x, g, |g|)`` where the residual
+    fell (or, with ``flat``, did not grow), else None."""
+    try:
+        step = np.linalg.solve(J, g)
+    except np.linalg.LinAlgError:
+        step, *_ = np.linalg.lstsq(J, g, rcond=None)
+    if flat:
+        step = step * min(1.0, STEP_LIMIT / max(float(np.max(np.abs(step))), 1e-300))
+    alpha = 1.0
+    for _ in range(tries):
+        x_new = np.clip(x - alpha * step, lb, ub)
+        g_new = np.asarray(problem.residual(x_new, p)).ravel()
+        n_new = np.max(np.abs(g_new))
+        if np.isfinite(n_new) and (n_new < norm or (flat and n_new <= (1 + FLAT) * norm
+                                                    and np.any(x_new != x))):
+            return x_new, g_new, n_new
+        alpha *= 0.5
+    return None
 
 
 def over_mbl(result: Result) -> list:

@@ -36,7 +36,11 @@ STEP_LIMIT = 1.0
 #: Unrolled iterations; a point still unconverged after them reports status 2.
 MAX_ITERATIONS = 40
 _BACKTRACKS = 12
+_FREE_BACKTRACKS = 24
 _ARMIJO = 1e-4
+#: A step that leaves the squared residual within this fraction of where it was counts as
+#: not growing it (round-off in a body's balance as it crosses free space).
+FLAT = 1e-10
 
 #: Status codes of the kernel.
 CONVERGED, STALLED, MAX_ITER = 0, 1, 2
@@ -94,7 +98,8 @@ def newton_step_function(problem) -> ca.Function:
 
 
 def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Function:
-    """``newton(x0, p, tol) -> (x, status, iterations, certificate, body, t_fair, t_anchor)``.
+    """``newton(x0, p, tol) -> (x, status, iterations, certificate, body, t_fair, t_anchor,
+    reactions)``.
 
     ``certificate`` is ``[force_N, moment_Nm, t_max_N, penetration_m, complementarity_N]``;
     ``body`` is ``[x_m, y_m, yaw]``.
@@ -154,34 +159,53 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     d_sym = ca.MX.sym("d", n)
     m0 = ca.MX.sym("m0")
 
-    def trial(j: int) -> ca.Function:
+    def trial(j: int, flat: bool, tag: str, tries: int = _BACKTRACKS) -> ca.Function:
         a = 0.5 ** j
         xa = ca.fmin(ca.fmax(x - a * d_sym, lb), ub)
         ma = ca.sumsqr(problem.residual(xa, p))
         accept = ma <= (1 - 2 * _ARMIJO * a) * m0
-        if problem.smoothed:
-            # A body crossing free space toward a support it does not yet touch (a collar
-            # within its clearance, a slack hawser) leaves the residual unchanged: a step
-            # that does not increase it is progress there.
-            accept = ca.logic_or(accept, ma <= m0)
+        if flat:
+            accept = ca.logic_or(accept, ma <= (1 + FLAT) * m0)
         xa_sym = ca.MX.sym("xa", n)
-        take = ca.Function(f"newton_take{j}", [x, d_sym, p, m0, xa_sym], [xa_sym, 0])
-        if j + 1 < _BACKTRACKS:
-            nxt = trial(j + 1)
-            more = ca.Function(f"newton_more{j}", [x, d_sym, p, m0, xa_sym],
+        take = ca.Function(f"newton_take{tag}{j}", [x, d_sym, p, m0, xa_sym], [xa_sym, 0])
+        if j + 1 < tries:
+            nxt = trial(j + 1, flat, tag, tries)
+            more = ca.Function(f"newton_more{tag}{j}", [x, d_sym, p, m0, xa_sym],
                                nxt(x, d_sym, p, m0))
         else:
-            more = ca.Function(f"newton_stall{j}", [x, d_sym, p, m0, xa_sym], [x, 1])
-        branch = ca.Function.if_else(f"newton_ls{j}", take, more)
-        return ca.Function(f"newton_trial{j}", [x, d_sym, p, m0],
+            more = ca.Function(f"newton_stall{tag}{j}", [x, d_sym, p, m0, xa_sym], [x, 1])
+        branch = ca.Function.if_else(f"newton_ls{tag}{j}", take, more)
+        return ca.Function(f"newton_trial{tag}{j}", [x, d_sym, p, m0],
                            branch(accept, x, d_sym, p, m0, xa))
 
-    search = trial(0)
+    search = trial(0, False, "")
 
     # -- one iteration: converged -> done, else step ------------------------------------
-    step = newton_step_function(problem)(g_sym, J_sym)
+    step_fn = newton_step_function(problem)
+    step = step_fn(g_sym, J_sym)
     step = step * ca.fmin(1, STEP_LIMIT / ca.mmax(ca.fabs(step)))
     x_new, stalled = search(x, step, p, ca.sumsqr(g_sym))
+    if problem.smoothed:
+        # No descent along the smoothed Newton step: a body crossing free space toward a
+        # support it does not yet touch (a collar within its clearance, a slack hawser)
+        # leaves the residual unchanged, and the smoothing may hold it back. Step along the
+        # exact Newton direction instead, with a spring on the node unknowns as strong as
+        # the residual is large (a pseudo-time step): it moves what nothing holds with its
+        # unbalanced force, and a step that does not grow the residual is accepted.
+        spring = ca.fmax(problem.REGULARISATION, ca.mmax(ca.fabs(g_sym)))
+        J_exact = ca.project(problem.jacobian(x, p) - spring * problem.regularisation(1.0),
+                             problem.step_sparsity())
+        free_step = step_fn(g_sym, J_exact)
+        free_step = free_step * ca.fmin(1, STEP_LIMIT / ca.mmax(ca.fabs(free_step)))
+        # Down to a few micrometres: the next support may be that close.
+        x_free, stalled_free = trial(0, True, "free", _FREE_BACKTRACKS)(
+            x, free_step, p, ca.sumsqr(g_sym))
+        xn_sym, st_sym = ca.MX.sym("xn", n), ca.MX.sym("st")
+        free = ca.Function("newton_free", [x, p, g_sym, xn_sym, st_sym],
+                           [x_free, stalled_free])
+        keep = ca.Function("newton_keep", [x, p, g_sym, xn_sym, st_sym], [xn_sym, st_sym])
+        x_new, stalled = ca.Function.if_else("newton_fallback", free, keep)(
+            stalled, x, p, g_sym, x_new, stalled)
     it = ca.MX.sym("it")
     do_step = ca.Function("newton_step", [x, p, g_sym, J_sym, it],
                           [x_new, 0, stalled, it + 1 - stalled])
@@ -203,12 +227,12 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
         xk, done, stall, count = guard(active, xk, p, tol, done, stall, count)
     status = ca.if_else(done, CONVERGED, ca.if_else(stall, STALLED, MAX_ITER))
     cert = ca.vertcat(*problem.certificate(xk, p))
-    body, t_fair, t_anchor = problem.summary(xk, p)
+    body, t_fair, t_anchor, reactions = problem.summary(xk, p)
     return ca.Function("moorsolve_newton", [x, p, tol],
-                       [xk, status, count, cert, body, t_fair, t_anchor],
+                       [xk, status, count, cert, body, t_fair, t_anchor, reactions],
                        ["x0", "p", "tol"],
                        ["x", "status", "iterations", "certificate", "body",
-                        "fairlead_tension", "anchor_tension"])
+                        "fairlead_tension", "anchor_tension", "reactions"])
 
 
 class NewtonKernel:

@@ -160,7 +160,7 @@ def _orient(profile: dict, lower, upper, flipped: bool) -> dict:
 def _add_wall_tension(profile: dict, line, env) -> None:
     lt = line.line_type
     if lt.sealed and lt.diameter:
-        depth_below = np.maximum(-profile["z_m"], 0.0)
+        depth_below = np.maximum(env.water_level - profile["z_m"], 0.0)
         tw = wall_tension(profile["tension_N"], depth_below, lt.diameter, env.water_density,
                           env.gravity)
         profile["wall_tension_N"] = tw

@@ -40,7 +40,7 @@ from .concurrency import SYMBOLIC_LOCK
 from .discrete import discrete_leg
 from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
-from .contact import add_contacts, contact_points
+from .contact import add_contacts, contact_points, element_reactions
 from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
                     seabed_height, single_block)
 
@@ -106,9 +106,10 @@ class EquilibriumProblem:
         #: Jacobian smoothing [m] (:meth:`step_jacobian`).
         self.contact_stiffness = force_scale / length_scale
         self.smoothing_symbol = ca.SX.sym("eps")
-        #: The smoothing of compliant fenders' contact switch: in the step Jacobian only
-        #: (smoothing it in IPOPT's residual would push touching fenders apart by their
-        #: stiffness times the smoothing).
+        #: The smoothing of compliant fenders' contact switch, in the step Jacobian only
+        #: (in IPOPT's residual it would push touching fenders apart by their stiffness times
+        #: the smoothing). It anticipates a closing contact's reaction, and the friction
+        #: that reaction will carry.
         self.hinge_symbol = ca.SX.sym("eps_hinge")
         self.nodes, scale = [], []
         for bi, body in enumerate(case.bodies):
@@ -325,9 +326,11 @@ class EquilibriumProblem:
                                 gravity=g)
                 F, M = F + wf, M + wm
                 body_scale.append(par(name + ".mass") * g)
+            # Hydrostatics act about the still-water level: the origin's height above it.
+            r_water = r - ca.vertcat(0, 0, E["water_level"])
             if body.hydrostatics is not None:
                 bf, bm = linear_buoyancy(
-                    r, R, displaced_volume=par(name + ".displaced_volume"),
+                    r_water, R, displaced_volume=par(name + ".displaced_volume"),
                     metacentre=ca.vertsplit(par(name + ".metacentre")),
                     waterplane_area=par(name + ".waterplane_area"),
                     water_density=rho, gravity=g)
@@ -335,7 +338,7 @@ class EquilibriumProblem:
                 body_scale.append(rho * g * par(name + ".displaced_volume"))
             for j, member in enumerate(body.hull):
                 mp = dict(zip(MEMBER_PARAMS, ca.vertsplit(par(f"{name}.hull[{j}]"))))
-                out = member_buoyancy(r, R, shape=member.shape, bottom=mp["bottom"],
+                out = member_buoyancy(r_water, R, shape=member.shape, bottom=mp["bottom"],
                                       top=mp["top"], radius=mp["radius"],
                                       length=mp["length"], width=mp["width"],
                                       centre=(mp["centre_x"], mp["centre_y"]),
@@ -395,13 +398,15 @@ class EquilibriumProblem:
                 node_force.append(ca.fabs(value))
         g_both = ca.vertcat(*line_res, *contact_res, *node_res)
         eps, hinge = self.smoothing_symbol, self.hinge_symbol
-        #: Whether a complementarity (a hawser, a contact) is smoothed in the step Jacobian.
+        #: Whether the scene has one-sided elements (hawsers, contacts): then the Newton
+        #: steps smooth them in the Jacobian, carry a weak spring on the node unknowns and
+        #: accept steps that do not grow the residual.
         self.smoothed = bool(ca.depends_on(g_both, ca.vertcat(eps, hinge)))
-        # g_smooth: the complementarities smoothed (IPOPT's residual); g_step: the hinges too
-        # (the step Jacobian's); g_all: exact.
+        # g_smooth: the complementarities smoothed (IPOPT's residual); g_step: the compliant
+        # fenders' switches too (the step Jacobian's); g_all: exact.
         g_smooth = ca.substitute(g_both, hinge, 0)
         g_step = ca.substitute(g_both, hinge, eps)
-        g_all = ca.substitute(g_smooth, eps, 0) if self.smoothed else g_both
+        g_all = ca.substitute(g_smooth, eps, 0)
         self.residual = ca.Function("residual", [xs, p], [g_all])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g_all, xs)])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
@@ -458,9 +463,11 @@ class EquilibriumProblem:
             ["x", "p"], ["force", "moment", "t_max", "penetration", "complementarity"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
         first = self._first_body_summary(poses, p)
+        reactions = element_reactions(self, contact_rows)
+        reactions = exact(ca.vertcat(*reactions)) if reactions else ca.SX(0, 1)
         self.summary = ca.Function(
-            "summary", [xs, p], [first, T[:, 0], T[:, 1]],
-            ["x", "p"], ["body", "fairlead_tension", "anchor_tension"])
+            "summary", [xs, p], [first, T[:, 0], T[:, 1], reactions],
+            ["x", "p"], ["body", "fairlead_tension", "anchor_tension", "reactions"])
         self._xs, self._p, self._g, self._g_smooth = xs, p, g_all, g_smooth
 
     def _first_body_summary(self, poses, p):
@@ -509,13 +516,14 @@ class EquilibriumProblem:
     #: singular; elsewhere it changes the step by parts in 1e9.
     REGULARISATION = 1e-9
 
-    def regularisation(self) -> ca.DM:
-        """The sparse matrix subtracted from the step Jacobian (:data:`REGULARISATION` on
-        the balance row of every node unknown); zero without complementarities."""
+    def regularisation(self, value: float | None = None) -> ca.DM:
+        """The sparse matrix subtracted from the step Jacobian (``value``, default
+        :data:`REGULARISATION`, on the balance row of every node unknown); empty without
+        complementarities."""
         n_lines = self.n_x - self.n_q
         rows = [n_lines + j for j in range(self.n_q)] if self.smoothed else []
         sp = ca.Sparsity.triplet(self.n_x, self.n_x, rows, list(range(len(rows))))
-        return ca.DM(sp, self.REGULARISATION)
+        return ca.DM(sp, self.REGULARISATION if value is None else value)
 
     def step_sparsity(self) -> ca.Sparsity:
         """The sparsity of the step Jacobian (the Jacobian's and the regularisation's)."""

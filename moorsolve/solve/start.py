@@ -247,6 +247,10 @@ def initial_point(problem, case: Case) -> np.ndarray:
         if owner == "body":
             body = case.bodies[index]
             value = dict(zip(("surge", "sway", "heave"), body.position))
+            if body.buoyant:
+                # A floating body free in heave starts at the still-water level's height
+                # above the datum (a tide), where it floats as placed.
+                value["heave"] += case.environment.water_level
             value.update(zip(("roll", "pitch", "yaw"),
                              (math.radians(a) for a in body.orientation_deg)))
             x[j] = value[dof]

@@ -106,7 +106,8 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         position in that order): the grid values, then ``converged``, ``reason``,
         ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
         ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
-        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. With ``output``
+        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``, per fender and pile
+        guide ``<name>.reaction_N`` (0 out of contact). With ``output``
         it is the finished file read back (grid values that are not plain numbers are
         text there, lists as JSON).
     """
@@ -145,7 +146,7 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
     if sink is not None:
         return sink.finish()
     if not frames:
-        return plan.frame(np.zeros(0, int), _Table(0, plan.names).columns())
+        return plan.frame(np.zeros(0, int), _Table(0, plan.names, plan.contacts).columns())
     points = np.concatenate([p for p, _ in frames])
     order = np.argsort(points, kind="stable")
     columns = {}
@@ -184,6 +185,8 @@ class SweepPlan:
         self.shape = tuple(len(values) for _, values in self.axes)
         self.n_points = math.prod(self.shape)
         self.names = [leg.name for leg in case.legs]
+        self.contacts = ([f.name for f in case.contacts.fenders]
+                         + [g.name for g in case.contacts.guides])
         self._with_values, self._load_case = with_values, load_case
 
         # Each axis value validated once, as a case of its own.
@@ -252,7 +255,7 @@ class SweepPlan:
         return [p for paths, _ in self.axes for p in paths]
 
     def result_columns(self) -> list[str]:
-        return list(_Table(0, self.names).columns())
+        return list(_Table(0, self.names, self.contacts).columns())
 
     def grid_record(self) -> dict:
         """The grid as plain data, for the record beside an output file."""
@@ -291,7 +294,7 @@ class SweepPlan:
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
         """Solve ``points`` (snake order) and return them with their result columns."""
         points = np.asarray(points, dtype=int)
-        table = _Table(len(points), self.names)
+        table = _Table(len(points), self.names, self.contacts)
         if self.fast:
             self.prepare()
             problem = self._problem
@@ -441,8 +444,11 @@ def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
 class _Table:
     """Results of ``n`` points, one array per column, filled by row."""
 
-    def __init__(self, n: int, names: list[str]):
+    def __init__(self, n: int, names: list[str], contacts: list[str] = ()):
         self.names = names
+        #: Fenders and guides: their reaction [N] per point.
+        self.contacts = list(contacts)
+        self.reactions = np.full((n, len(self.contacts)), np.nan)
         self.done = np.zeros(n, bool)
         self.converged = np.zeros(n, bool)
         self.reason = [""] * n
@@ -464,6 +470,8 @@ class _Table:
             self.body[i] = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
         self.t_fair[i] = [leg.fairlead_tension_N for leg in result.legs]
         self.t_anchor[i] = [leg.anchor_tension_N for leg in result.legs]
+        self.reactions[i] = ([f["reaction_N"] for f in result.fenders]
+                             + [g["reaction_N"] for g in result.guides])
 
     def columns(self) -> dict:
         out = {"converged": self.converged, "reason": self.reason, "solver": self.solver,
@@ -473,6 +481,8 @@ class _Table:
         for k, name in enumerate(self.names):
             out[f"{name}.fairlead_tension_N"] = self.t_fair[:, k]
             out[f"{name}.anchor_tension_N"] = self.t_anchor[:, k]
+        for k, name in enumerate(self.contacts):
+            out[f"{name}.reaction_N"] = self.reactions[:, k]
         return out
 
 
@@ -486,7 +496,8 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
     check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
-        x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
+        x, _, iterations, cert, body, tf, ta, reactions = kernel.raw(x_prev, vectors[i, :n_p],
+                                                                     tol)
         ok, force, moment, relative = problem.judge(*cert, tol=tol)
         if not ok:
             continue            # left for the IPOPT pass
@@ -506,6 +517,7 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
         if has_body:
             table.body[row] = (body[0], body[1], math.degrees(body[2]))
         table.t_fair[row], table.t_anchor[row] = tf, ta
+        table.reactions[row] = reactions
         if over.any():
             table.reason[row] = "overload: " + "; ".join(
                 f"leg {table.names[k]} would break: tension "
