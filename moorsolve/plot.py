@@ -82,6 +82,8 @@ def plot_equilibrium(result: Result, depth: float | None = None):
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(13, 5.5),
                                  gridspec_kw={"width_ratios": [1.2, 1]})
     plot_plan(result, a1)
+    if result.fenders or result.guides:
+        plot_berth(result, a1)
     plot_elevation(result, a2, depth=depth)
     fig.suptitle(result.case_name or "equilibrium")
     fig.tight_layout()
@@ -375,3 +377,99 @@ def _utilisation(c) -> float:
     if c.kind in ("safety_factor", "grounded_length"):
         return c.limit / c.value if c.value > 0 else np.inf
     return c.value / c.limit if c.limit > 0 else (0.0 if c.value <= 0 else np.inf)
+
+
+# ---- berths: walls, piles, fenders, guides, hawsers (issue 15) ---------------------------
+
+
+def _utilisation_colour(value):
+    """Green to red over utilisation 0..1 (dark red beyond); grey where unknown."""
+    import matplotlib.pyplot as plt
+    if value is None:
+        return "0.5"
+    return plt.get_cmap("RdYlGn_r")(min(max(value, 0.0), 1.0))
+
+
+def _hull_footprints(result: Result, ax) -> None:
+    """Each body's exact hull members (boxes, cylinders) in plan at the solved pose."""
+    from matplotlib.patches import Circle, Polygon
+    for body, pose in zip(result.case.bodies, result.bodies):
+        yaw = np.radians(pose["yaw_deg"])
+        c, s = np.cos(yaw), np.sin(yaw)
+        origin = np.array([pose["x_m"], pose["y_m"]])
+        for m in body.hull:
+            centre = origin + np.array([[c, -s], [s, c]]) @ np.array(m.centre)
+            if m.shape == "cylinder":
+                ax.add_patch(Circle(centre, m.radius, color="0.8", alpha=0.6, zorder=1))
+                continue
+            half = np.array([[1, 1], [-1, 1], [-1, -1], [1, -1]]) * [m.length / 2, m.width / 2]
+            corners = centre + half @ np.array([[c, s], [-s, c]])
+            ax.add_patch(Polygon(corners, color="0.8", alpha=0.6, zorder=1))
+
+
+def plot_berth(result: Result, ax=None):
+    """Plan view of a berth: quay walls, piles, fenders coloured by utilisation (compression
+    over rated deflection, with their reactions), pile guides and hawsers coloured by
+    utilisation (tension over MBL; dashed when slack).
+
+    Draws on ``ax`` (for instance over :func:`plot_plan`) or on new Axes; returns the Axes.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+    if ax is None:
+        _, ax = plt.subplots()
+    case = result.case
+    contacts = case.contacts if case is not None else None
+    points = [f["contact_point_m"][:2] for f in result.fenders]
+    points += [leg.anchor[:2] for leg in result.legs] + [leg.fairlead[:2] for leg in result.legs]
+    points = np.array(points) if points else np.zeros((1, 2))
+    if contacts is not None:
+        for wall in contacts.walls:
+            n = np.array(wall.normal[:2])
+            if np.linalg.norm(n) < 1e-9:
+                continue          # a horizontal wall has no trace in plan
+            n = n / np.linalg.norm(n)
+            t = np.array([-n[1], n[0]])
+            p0 = np.array(wall.point[:2])
+            # Along the wall as far as the scene reaches, and a little beyond.
+            along = (points - p0) @ t
+            reach = 0.1 * max(np.ptp(along), 1.0)
+            ends = p0 + np.outer([along.min() - reach, along.max() + reach], t)
+            foot = ends.mean(axis=0)
+            ax.plot(ends[:, 0], ends[:, 1], color="0.25", lw=3, solid_capstyle="butt")
+            back = ends + 0.02 * np.ptp(along) * (-n)
+            ax.fill(np.r_[ends[:, 0], back[::-1, 0]], np.r_[ends[:, 1], back[::-1, 1]],
+                    color="0.75", zorder=0)
+            ax.annotate(wall.name, foot, fontsize=7, color="0.25", xytext=(4, 4),
+                        textcoords="offset points")
+        for pile in contacts.piles:
+            ax.add_patch(Circle(pile.position, pile.radius, color="0.3", zorder=3))
+        _hull_footprints(result, ax)
+    for f in result.fenders:
+        colour = _utilisation_colour(f["utilisation"])
+        x, y = f["contact_point_m"][:2]
+        ax.plot(x, y, "s", ms=6, mfc=colour, mec="k", zorder=4)
+        text = f"{f['name']}\n{f['reaction_N'] / 1e3:.0f} kN" if f["in_contact"] \
+            else f"{f['name']}\nopen"
+        ax.annotate(text, (x, y), fontsize=6, ha="center", va="bottom", xytext=(0, 6),
+                    textcoords="offset points")
+    for g in result.guides:
+        pile = contacts.pile_named(g["pile"]) if contacts is not None else None
+        if pile is not None:
+            ax.add_patch(Circle(pile.position, pile.radius + g["clearance_m"], fill=False,
+                                ec=_utilisation_colour(1.0 if g["in_contact"] else 0.0),
+                                lw=1.5, zorder=4))
+            ax.annotate(f"{g['name']} {g['reaction_N'] / 1e3:.0f} kN", pile.position,
+                        fontsize=6, xytext=(6, -10), textcoords="offset points")
+    names = {h["name"]: h for h in result.hawsers}
+    for leg in result.legs:
+        h = names.get(leg.name)
+        if h is None:
+            continue
+        p = leg.profile
+        ax.plot(p["x_m"], p["y_m"], color=_utilisation_colour(h["utilisation"]), lw=2,
+                ls="--" if h["slack"] else "-", zorder=2)
+    sm = plt.cm.ScalarMappable(cmap="RdYlGn_r", norm=plt.Normalize(0, 1))
+    ax.figure.colorbar(sm, ax=ax, label="fender / hawser utilisation", shrink=0.8)
+    ax.set_aspect("equal")
+    return ax

@@ -6,6 +6,7 @@ import json
 import math
 
 from ..solve.result import Result
+from .berth import berth_lines
 
 
 def to_json(result: Result, profiles: bool = True) -> str:
@@ -66,9 +67,11 @@ def format_table(result: Result) -> str:
     header = (f"{word:<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
               f"{'V_anch kN':>11}{'grounded m':>12}{'util':>7}  state")
     lines += ["", header, "-" * len(header)]
+    hawsers = {h["name"] for h in result.hawsers}
     for leg in result.legs:
         state = "slack" if leg.slack else ("uplift" if leg.uplift else
                                            ("touchdown" if leg.grounded_length_m > 0
+                                            else "taut" if leg.name in hawsers
                                             else "suspended"))
         util = f"{leg.utilisation:.2f}" if leg.utilisation is not None else "-"
         lines.append(
@@ -76,6 +79,7 @@ def format_table(result: Result) -> str:
             f"{leg.horizontal_tension_N / 1e3:10.2f}{leg.fairlead_vertical_N / 1e3:10.2f}"
             f"{leg.anchor_tension_N / 1e3:11.2f}{leg.anchor_vertical_N / 1e3:11.2f}"
             f"{leg.grounded_length_m:12.2f}{util:>7}  {state}")
+    lines += berth_lines(result)
     for note in result.notes:
         lines.append(f"note: {note}")
     return "\n".join(lines)

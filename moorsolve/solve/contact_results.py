@@ -77,7 +77,7 @@ def _guide(case: Case, guide, rows: list, pose: np.ndarray) -> dict:
         "offset_m": offset, "clearance_m": guide.clearance,
         "height_m": float(centre[2]),
         "on_pile": pile.top is None or float(centre[2]) <= pile.top,
-        "pile_top_m": pile.top,
+        "pile_top_m": pile.top, "seabed_z_m": bed,
         # The pile as a cantilever from the seabed: the guide's horizontal force at the
         # collar's height.
         "pile_moment_Nm": horizontal * max(float(centre[2]) - bed, 0.0),

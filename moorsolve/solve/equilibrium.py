@@ -156,6 +156,15 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             used = "newton" if x is not None else "ipopt"
         if x is None:
             x = _ipopt_strategy(problem, case, p_full, tol, start, stats, t0)
+            if problem.smoothed and kernel is None and not problem.certify(x, p_full, tol)[0]:
+                # Contacts and hawsers: where IPOPT (a smooth NLP solver) does not certify,
+                # the semismooth Newton path built for them gets its turn.
+                x_newton, extra = _newton_strategy(problem, case, problem.newton(), p_full,
+                                                   tol, start, stats)
+                if x_newton is not None:
+                    x, used = x_newton, "newton"
+                    notes.append("IPOPT did not certify this point; the Newton path did "
+                                 "(semismooth Newton on the contacts' complementarities)")
         certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
         failed_status = stats["status"] in _FAILED_STATUSES
         if certified and failed_status:

@@ -208,7 +208,8 @@ def _single_result(case, line, kind, row, u, stiffness) -> LegResult:
     anchored = kind.block.contact
     td = max(X - susp_x, 0.0) if (anchored and grounded > 0) else 0.0
     lower_pull = fb if kind.flipped else fa
-    uplift = lower_pull[2] > 0 and not (kind.contact and grounded > 0)
+    # A weightless line (a hawser) has no anchor to lift.
+    uplift = lower_pull[2] > 0 and not (kind.contact and grounded > 0) and not kind.neutral
     if kind.sloped:
         # On a slope the anchor is pulled along it: the upward part is reported (0 when
         # it pulls down-slope), the tension is the whole pull.

@@ -1,0 +1,42 @@
+"""The berth's rows of the text table: fenders, pile guides and the contacts' certificate
+(issue 15). Kept apart from :mod:`.text` so that the table's layout and the berth's rows
+change independently."""
+
+from __future__ import annotations
+
+from ..solve.result import Result
+
+
+def berth_lines(result: Result) -> list:
+    """Text rows for the fenders and pile guides of ``result`` (none without them)."""
+    c = result.certificate
+    lines = []
+    if c.penetration_m is not None:
+        lines.append(f"contacts     largest penetration {c.penetration_m:.2e} m, "
+                     f"complementarity residual {c.complementarity_N:.2e} N")
+    if result.fenders:
+        header = (f"{'fender':<10}{'contact':>8}{'compr. m':>10}{'R kN':>10}{'friction kN':>13}"
+                  f"{'energy kJ':>11}{'util':>7}  state")
+        lines += ["", header, "-" * len(header)]
+        for f in result.fenders:
+            util = "-" if f["utilisation"] is None else f"{f['utilisation']:.2f}"
+            state = ("open" if not f["in_contact"] else
+                     "stick" if f["stick"] else "slip" if f["stick"] is False else "closed")
+            lines.append(f"{f['name']:<10}{'yes' if f['in_contact'] else 'no':>8}"
+                         f"{f['compression_m']:10.4f}{f['reaction_N'] / 1e3:10.2f}"
+                         f"{f['friction_N'] / 1e3:13.2f}{f['energy_J'] / 1e3:11.2f}{util:>7}  "
+                         f"{state}")
+    if result.guides:
+        header = (f"{'guide':<10}{'contact':>8}{'R kN':>10}{'offset m':>10}{'height m':>10}"
+                  f"{'pile M kN m':>13}  pile")
+        lines += ["", header, "-" * len(header)]
+        for g in result.guides:
+            on = "on" if g["on_pile"] else "OFF the top of"
+            lines.append(f"{g['name']:<10}{'yes' if g['in_contact'] else 'no':>8}"
+                         f"{g['reaction_N'] / 1e3:10.2f}{g['offset_m']:10.4f}"
+                         f"{g['height_m']:10.3f}{g['pile_moment_Nm'] / 1e3:13.1f}  {on} "
+                         f"{g['pile']}")
+    return lines
+
+
+__all__ = ["berth_lines"]
