@@ -34,6 +34,9 @@ Schema (SI units, ``[...]`` lists)::
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
               current: {model: drag | hu_tang, ...},
               wave_drift: {model: hu_tang | coefficient, ...}}
+    bodies, points, lines, walls, piles, fenders, guides:
+                                               the network form instead of body + legs
+                                               (:mod:`.build_network`, :mod:`.build_contact`)
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
          segments: [{type: NAME, length: > 0}, {clump: CLUMP}, {type: NAME, length}, ...],

@@ -24,8 +24,12 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
       - name: str
         from: END                             end A
         to: END                               end B
-        segments: [...]                       as in a leg, from end A
+        segments: [...]                       as in a leg, from end A; a one-segment line of
+                                              a weightless elastic type (a hawser) may give
+                                              {type, pretension: N} instead of a length: the
+                                              tension at the case-file pose sets the length
         anchor_type: ANCHOR                   optional, for an end A on the seabed
+    walls, piles, fenders, guides:            the berth (:mod:`.build_contact`)
     END: a point name | [x, y] (on the seabed) | [x, y, z] fixed | {body: NAME, at: [x, y, z]}
 
 Beyond the schema: names are unique; every end names a known body or point; a free point or
