@@ -174,7 +174,8 @@ def test_berth_pictures_draw_headless(tmp_path):
     for path in (SHIP, PONTOON):
         result = solve(load_case(path), solver="newton")
         ax = plot.plot_berth(result)
-        assert ax.lines and ax.patches
+        assert ax.patches                       # piles, hull footprints, collars, walls
+        assert len(ax.lines) == len(result.fenders) + (1 if result.fenders else 0)
         fig = plot.plot_equilibrium(result)
         fig.savefig(tmp_path / f"{path.stem}.png")
         assert (tmp_path / f"{path.stem}.png").stat().st_size > 10_000

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import moorsolve
+import moorsolve.checks
 from moorsolve import CaseError, load_case, solve
 from moorsolve.model import BodyLoads
 from moorsolve.model.build_network import rotation
@@ -433,3 +434,141 @@ def test_eight_threads_give_the_serial_answers(solver):
         assert a.state.tolist() == b.state.tolist()
         assert [leg.fairlead_tension_N for leg in a.legs] == \
             [leg.fairlead_tension_N for leg in b.legs]
+
+
+# ---- studies and checks on the network -----------------------------------------------------
+
+
+def test_damaged_conditions_remove_every_line_of_a_network():
+    data = copy.deepcopy(BRIDLE)
+    data["checks"] = {"offset_limit": 40.0}
+    for lt in data["line_types"].values():
+        lt["mbl"] = 2e6
+    report = moorsolve.checks.run_checks(load_case(data))
+    removed = [c.removed for c in report.conditions]
+    assert removed == [None] + [line["name"] for line in BRIDLE["lines"]]
+    assert all(c.solved for c in report.conditions)
+    # Uplift is checked at anchors only (end A on the seabed), not on the bridle legs.
+    intact = report.conditions[0]
+    uplift = {i.leg for i in intact.items if i.check.startswith("anchor uplift")}
+    assert uplift == {"M1", "M2", "M3"}
+
+
+def test_removing_a_line_drops_the_free_points_it_alone_held():
+    from moorsolve.model.edit import without_line
+    data = copy.deepcopy(BRIDLE)
+    data["points"].append({"name": "float", "position": [-100.0, 0.0, -10.0], "free": True,
+                           "volume": 1.0})
+    data["lines"].append({"name": "F", "from": "apex", "to": "float",
+                          "segments": [{"type": "rope", "length": 75.0}]})
+    case = load_case(data)
+    damaged = without_line(case, "F")
+    assert [p.name for p in damaged.points if p.free] == ["apex"]
+    assert "F" not in [line.name for line in damaged.lines]
+
+
+def test_sweep_reports_every_body_and_envelope_names_its_body():
+    data = copy.deepcopy(TWO_PONTOONS)
+    data["environment"]["wind"] = {"speed": 20.0, "toward_deg": 0.0}
+    for body in data["bodies"]:
+        body["loads"]["wind"] = {"model": "drag", "area_x": 100.0, "area_y": 300.0}
+    case = load_case(data)
+    table = moorsolve.sweep(case, {"environment.wind.toward_deg": [0.0, 90.0]})
+    for name in ("west", "east"):
+        for field in ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg"):
+            assert f"{name}.{field}" in table.columns
+    for k, toward in enumerate((0.0, 90.0)):
+        single = solve(load_case({**copy.deepcopy(data), "environment": {
+            **data["environment"], "wind": {"speed": 20.0, "toward_deg": toward}}}))
+        east = single.body_named("east")
+        assert table["east.x_m"].iloc[k] == pytest.approx(east["x_m"], abs=1e-6)
+        assert table["east.yaw_deg"].iloc[k] == pytest.approx(east["yaw_deg"], abs=1e-6)
+    with pytest.raises(CaseError, match="name the one"):
+        moorsolve.offset_envelope(case, step_deg=90)
+    env = moorsolve.offset_envelope(case, step_deg=90, body="east")
+    assert np.all(np.isfinite(env.offset_m)) and len(env.offset_m) == 4
+
+
+def test_box_hull_heave_and_a_hull_pushed_out_of_its_exact_range():
+    """A floating box: its exact buoyancy balances the weight at the draft m / (rho L W);
+    pushed down and heeled until its deck edge goes under, the solve refuses with the
+    reason."""
+    data = {
+        "environment": {"depth": 100.0},
+        "line_types": {"rope": {"weight_in_water": 0.0, "ea": 1e8}},
+        "bodies": [{"name": "barge", "mass": 1.0e6, "free": ["heave", "roll", "pitch"],
+                    "centre_of_gravity": [0, 0, -1.0],
+                    "hull": [{"shape": "box", "length": 40.0, "width": 10.0,
+                              "bottom": -5.0, "top": 3.0}]}],
+        "lines": [{"name": "L", "from": [0, 0, -100], "to": {"body": "barge",
+                                                              "at": [0, 0, -5]},
+                   "segments": [{"type": "rope", "length": 200.0}]}]}
+    result = solve(load_case(data), tol=1e-12)
+    draft = 1.0e6 / (1025.0 * 400.0)
+    # The bottom (body z = -5) sits at the draft below the water: origin at 5 - draft.
+    assert result.bodies[0]["z_m"] == pytest.approx(5.0 - draft, rel=1e-9)
+    data["bodies"][0]["loads"] = {"force": [0, 0, -2.0e7, 4.0e7, 0, 0]}
+    with pytest.raises(moorsolve.ConvergenceError, match="hull member 0"):
+        solve(load_case(data))
+
+
+def test_three_platforms_with_bridles_and_shared_lines_agree_with_moorpy():
+    """The shipped multi-body case (15 lines, three bridles, six-DOF bodies on linear
+    hydrostatics) against MoorPy."""
+    result = _compare_with_moorpy(load_case(CASES / "three_platforms.yaml"))
+    assert len(result.bodies) == 3 and len(result.points) == 3
+    assert result.stability.stable
+
+
+# ---- MoorDyn export of a network, and back ------------------------------------------------
+
+
+def _roundtrip(case, tmp_path):
+    path = tmp_path / "scene.dat"
+    path.write_text(moorsolve.case_to_moordyn(case))
+    back = load_case(moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(path)))
+    return solve(case, tol=1e-12), solve(back, tol=1e-12)
+
+
+def test_network_export_to_moordyn_and_back_keeps_the_equilibrium(tmp_path):
+    """A held body on a bridle with a free apex: MoorDyn v2 out, our reader in, the same
+    apex position and tensions."""
+    data = copy.deepcopy(BRIDLE)
+    data["bodies"][0]["free"] = []
+    ours, back = _roundtrip(load_case(data), tmp_path)
+    apex, again = ours.points[0], back.points[0]
+    for key in ("x_m", "y_m", "z_m"):
+        assert again[key] == pytest.approx(apex[key], abs=1e-9)
+    for a, b in zip(ours.legs, back.legs):
+        assert b.fairlead_tension_N == pytest.approx(a.fairlead_tension_N, rel=1e-9)
+
+
+def test_network_export_of_a_free_six_dof_buoy_and_back(tmp_path):
+    """A submerged buoy free in six DOFs on three taut lines: mass and buoyancy at its centre
+    of gravity (MoorDyn's convention, no waterplane), so the file holds the whole model."""
+    data = {
+        "environment": {"depth": 100.0},
+        "line_types": {"rope": {"weight_in_water": 20.0, "ea": 5e7, "diameter": 0.05}},
+        "bodies": [{"name": "buoy", "position": [0, 0, -30], "mass": 5000.0,
+                    "centre_of_gravity": [0, 0, -0.5], "inertia": [8e3, 8e3, 6e3],
+                    "hydrostatics": {"displaced_volume": 12.0,
+                                     "metacentre": [0, 0, -0.5]}}],
+        "lines": [{"name": f"T{k}", "from": [40 * math.cos(a), 40 * math.sin(a)],
+                   "to": {"body": "buoy", "at": [1.5 * math.cos(a), 1.5 * math.sin(a), -1.5]},
+                   "segments": [{"type": "rope", "length": 80.0}]}
+                  for k, a in enumerate((0.0, 2.0944, 4.1888))]}
+    case = load_case(data)
+    text = moorsolve.case_to_moordyn(case)
+    assert "Free" in text.split("BODIES")[1].splitlines()[3]
+    ours, back = _roundtrip(case, tmp_path)
+    for key in ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg"):
+        assert back.bodies[0][key] == pytest.approx(ours.bodies[0][key], abs=1e-8)
+    for a, b in zip(ours.legs, back.legs):
+        assert b.fairlead_tension_N == pytest.approx(a.fairlead_tension_N, rel=1e-8)
+
+
+def test_network_export_says_what_moordyn_cannot_hold():
+    text = moorsolve.case_to_moordyn(load_case(SPAR))
+    assert "metacentre and heave restoring" in text and "extra springs" in text
+    with pytest.raises(CaseError, match="v2 only"):
+        moorsolve.case_to_moordyn(load_case(SPAR), version=1)

@@ -1,7 +1,8 @@
 """Run the mooring checks: the intact condition and each damaged condition.
 
-A damaged condition removes one leg (``dataclasses.replace`` on the case) and solves the
-body again from scratch with :func:`moorsolve.solve`. A condition without a certified
+A damaged condition removes one line, any line of a network (a bridle leg, a shared line)
+included (:func:`moorsolve.model.edit.without_line`), and solves the scene again from scratch
+with :func:`moorsolve.solve`. A condition without a certified
 equilibrium is a failed check that carries the solver's reason; it never raises.
 
 Per leg and condition:
@@ -27,6 +28,7 @@ from dataclasses import dataclass, field
 
 from ..errors import ConvergenceError
 from ..model import AnchorType, Case, Checks
+from ..model.edit import without_line
 from ..solve import Result, solve
 from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
@@ -93,6 +95,15 @@ class ConditionResult:
     def passed(self) -> bool:
         return self.solved and all(item.passed for item in self.items)
 
+    def __repr__(self) -> str:
+        if not self.solved:
+            return f"<ConditionResult {self.name!r}: FAIL, no equilibrium: {self.reason}>"
+        worst = self.worst()
+        tension = "" if worst is None else (f", worst tension {worst.leg} utilisation "
+                                             f"{worst.utilisation:.2f}")
+        return (f"<ConditionResult {self.name!r}: {'PASS' if self.passed else 'FAIL'}"
+                f"{tension}>")
+
     @property
     def offset_m(self) -> float | None:
         if self.result is None or self.result.body is None:
@@ -128,6 +139,18 @@ class CheckReport:
     conditions: list
     criteria: list = field(default_factory=list)
     time_s: float = 0.0
+    #: The certified relative force residual every condition was solved to.
+    tolerance: float = math.nan
+
+    def __repr__(self) -> str:
+        verdict = "PASS" if self.passed else "FAIL"
+        return (f"<CheckReport {self.case_name!r} {self.standard}: {verdict}, "
+                f"{sum(c.passed for c in self.conditions)} of {len(self.conditions)} "
+                f"conditions pass>")
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import check_html_table
+        return check_html_table(self)
 
     @property
     def passed(self) -> bool:
@@ -147,11 +170,18 @@ class CheckReport:
                     for i in c.items if not i.passed]
         return out
 
+    @property
+    def warnings(self) -> list[dict]:
+        """Every solved condition's warnings (:attr:`moorsolve.Result.warnings`), each with
+        its ``condition``: what no engineer may miss, pass or fail."""
+        return [dict(w, condition=c.name) for c in self.conditions if c.result is not None
+                for w in c.result.warnings]
+
     def to_dict(self) -> dict:
         return {
             "case": self.case_name, "standard": self.standard,
             "consequence_class": self.consequence_class, "passed": self.passed,
-            "time_s": self.time_s,
+            "time_s": self.time_s, "tolerance": self.tolerance,
             "limits": {"offset_limit_m": self.checks.offset_limit,
                        "offset_limit_damaged_m": _damaged(self.checks.offset_limit_damaged,
                                                           self.checks.offset_limit),
@@ -162,6 +192,7 @@ class CheckReport:
             "criteria": [dataclasses.asdict(c) for c in self.criteria],
             "conditions": [c.to_dict() for c in self.conditions],
             "failures": self.failures,
+            "warnings": self.warnings,
         }
 
 
@@ -177,7 +208,7 @@ def _damaged(value, fallback):
 
 def run_checks(case: Case, *, standard: str | None = None, tol: float | None = None,
                damaged: bool | None = None) -> CheckReport:
-    """Check ``case`` intact and with each leg removed in turn.
+    """Check ``case`` intact and with each line removed in turn.
 
     Parameters
     ----------
@@ -199,28 +230,24 @@ def run_checks(case: Case, *, standard: str | None = None, tol: float | None = N
     run_damaged = checks.damaged if damaged is None else damaged
     t0 = time.perf_counter()
     conditions = [_condition(case, checks, None, tol)]
-    if run_damaged and case.body is not None and len(case.legs) > 1:
-        # Without a body each leg ends at a fixed point: removing one leaves the others
+    movable = any(b.free for b in case.bodies) or bool(case.free_points)
+    if run_damaged and movable and len(case.legs) > 1:
+        # With nothing free each line ends at fixed points: removing one leaves the others
         # unchanged, so there is no damaged condition to solve.
         for leg in case.legs:
             conditions.append(_condition(case, checks, leg.name, tol))
     return CheckReport(case_name=case.name, standard=checks.standard,
                        consequence_class=checks.consequence_class, checks=checks,
                        conditions=conditions, criteria=standard_rows(checks.standard),
-                       time_s=time.perf_counter() - t0)
+                       time_s=time.perf_counter() - t0,
+                       tolerance=case.solver.tol if tol is None else float(tol))
 
 
 def _condition(case: Case, checks: Checks, removed: str | None, tol) -> ConditionResult:
     kind = "intact" if removed is None else "damaged"
     name = "intact" if removed is None else f"damaged: {removed} removed"
     crit = criterion(checks.standard, kind, checks.consequence_class)
-    scene = case
-    if removed is not None:
-        scene = dataclasses.replace(
-            case, lines=tuple(leg for leg in case.legs if leg.name != removed))
-        if "source" in {f.name for f in dataclasses.fields(case)}:
-            # The case-file data still lists the removed leg: drop it, not mislead.
-            scene = dataclasses.replace(scene, source=None)
+    scene = case if removed is None else without_line(case, removed)
     try:
         result = solve(scene, tol=tol, allow_overload=True)
     except ConvergenceError as exc:
@@ -232,6 +259,8 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
             items.append(_hawser(name, lr, leg))
             continue
         items.append(_tension(name, lr, crit))
+        if not leg.a.on_seabed:
+            continue        # end A is not an anchor (a bridle leg, a shared line)
         anchor = leg.anchor_type or checks.anchor
         items.append(_uplift(name, lr, anchor))
         minimum = (checks.min_grounded_length if kind == "intact"
@@ -249,12 +278,17 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
                 passed=g >= minimum, criterion=f"grounded length >= {minimum:.1f} m"))
     limit = (checks.offset_limit if kind == "intact"
              else _damaged(checks.offset_limit_damaged, checks.offset_limit))
-    if limit is not None and result.body is not None:
-        offset = math.hypot(result.body["x_m"], result.body["y_m"])
-        items.append(CheckItem(condition=name, leg=None, check="offset", value=offset,
-                               limit=limit, unit="m", utilisation=offset / limit,
-                               passed=offset <= limit,
-                               criterion=f"horizontal offset <= {limit:.2f} m"))
+    if limit is not None:
+        for body, entry in zip(scene.bodies, result.bodies):
+            if not body.free:
+                continue
+            off = entry["offset"]
+            offset = math.hypot(off["x_m"], off["y_m"])
+            label = "offset" if len(scene.bodies) == 1 else f"offset of {body.name}"
+            items.append(CheckItem(condition=name, leg=None, check=label, value=offset,
+                                   limit=limit, unit="m", utilisation=offset / limit,
+                                   passed=offset <= limit,
+                                   criterion=f"horizontal offset <= {limit:.2f} m"))
     items += [_fender(name, f) for f in result.fenders if f["rated_deflection_m"]]
     items += [_guide(name, g) for g in result.guides if g["pile_top_m"] is not None]
     return ConditionResult(name=name, kind=kind, removed=removed, solved=True, reason="",

@@ -19,12 +19,20 @@ Schema (SI units, ``[...]`` lists)::
       gravity: > 0 [m/s^2]                     default 9.80665
       seabed: {friction: >= 0,                 default 0
                gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
-      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise, plus an optional
+      directions: mathematical | nautical      default mathematical (ccw from +x); nautical:
+      north_deg: [deg]                         clockwise from north, north at north_deg
+                                               (ccw from +x, default 90); see directions.py
+      wind: {speed: >= 0 [m/s], toward_deg     optional; toward_deg or from_deg (one);
+             | from_deg}                       current likewise, plus an optional
                                                profile: [[z <= 0, speed], ...] z ascending
-      waves: {hs: >= 0 [m], toward_deg}        optional
+                                               (speed signed along toward_deg), or
+                                               [[z, speed >= 0, toward_deg], ...]
+      waves: {hs: >= 0 [m], toward_deg | from_deg}   optional
       water_level: [m]                         still water above the datum (tide); default 0
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
+             weight_in_air >= weight_in_water [N/m or mass/m] (for a line end above
+             the water; a catalogue line has it from its mass),
              sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
                                                drag needs a diameter
       NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
@@ -63,6 +71,7 @@ import numbers
 from collections.abc import Mapping
 
 from ..errors import CaseError
+from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
@@ -84,39 +93,58 @@ __all__ = ["build_case"]
 # ---- environment ------------------------------------------------------------------------
 
 
-def _flow(raw, path: str, profile: bool = False) -> Flow:
+def _angle(raw, path: str) -> float:
+    return quantity(raw, path, "angle")
+
+
+def _flow(raw, path: str, compass: Compass, profile: bool = False) -> Flow:
     m = check_mapping(raw, path, required=("speed",),
-                 optional=("toward_deg", "profile") if profile else ("toward_deg",))
+                      optional=DIRECTION_KEYS + (("profile",) if profile else ()))
     speed = quantity(m["speed"], field_path(path, "speed"), "speed", ge=0, le=MAX_SPEED)
-    toward = optional_quantity(m, path, "toward_deg", "angle", 0.0)
+    toward = flow_direction(m, path, compass, _angle)
     rows = None
     if m.get("profile") is not None:
-        ppath = field_path(path, "profile")
-        rows = []
-        for rpath, row in check_rows(m["profile"], ppath, "[z, speed]", width=2, min_rows=1,
-                                empty="a current profile (z <= 0, ascending)"):
-            z = quantity(row[0], field_path(rpath, 0), "length", le=0)
-            v = quantity(row[1], field_path(rpath, 1), "speed", ge=0)
-            if rows and not z > rows[-1][0]:
-                raise CaseError(field_path(rpath, 0), f"z = {format_si(z, 'length')} must be above "
-                                                 "the previous row's (z ascending, from the "
-                                                 "seabed up to the surface)")
-            rows.append((z, v))
-        rows = tuple(rows)
+        rows = _current_profile(m["profile"], field_path(path, "profile"), compass)
     return Flow(speed=speed, toward_deg=toward, profile=rows)
 
 
-def _waves(raw, path: str) -> Waves:
-    m = check_mapping(raw, path, required=("hs",), optional=("toward_deg",))
+def _current_profile(raw, ppath: str, compass: Compass) -> tuple:
+    """Rows ``[z, speed]`` (a signed speed along the current's ``toward_deg``: negative
+    flows the other way) or ``[z, speed, toward_deg]`` (a speed >= 0 and its own heading),
+    all of one form, z ascending from the seabed to the surface."""
+    first = check_list(raw, ppath, "a list of rows [z, speed] or [z, speed, toward_deg]")
+    width = 3 if first and isinstance(first[0], (list, tuple)) and len(first[0]) == 3 else 2
+    shape = "[z, speed, toward_deg]" if width == 3 else "[z, speed]"
+    rows = []
+    for rpath, row in check_rows(raw, ppath, shape, width=width, min_rows=1,
+                                 empty="a current profile (z <= 0, ascending)"):
+        z = quantity(row[0], field_path(rpath, 0), "length", le=0)
+        if width == 3:
+            v = quantity(row[1], field_path(rpath, 1), "speed", ge=0, le=MAX_SPEED)
+            # A row's heading is the direction it travels toward, in the case's convention.
+            heading = compass.toward_deg(quantity(row[2], field_path(rpath, 2), "angle"),
+                                         "toward_deg")
+        else:
+            v = quantity(row[1], field_path(rpath, 1), "speed", ge=-MAX_SPEED, le=MAX_SPEED)
+        if rows and not z > rows[-1][0]:
+            raise CaseError(field_path(rpath, 0), f"z = {format_si(z, 'length')} must be above "
+                                                  "the previous row's (z ascending, from the "
+                                                  "seabed up to the surface)")
+        rows.append((z, v, heading) if width == 3 else (z, v))
+    return tuple(rows)
+
+
+def _waves(raw, path: str, compass: Compass) -> Waves:
+    m = check_mapping(raw, path, required=("hs",), optional=DIRECTION_KEYS)
     hs = quantity(m["hs"], field_path(path, "hs"), "length", ge=0, le=MAX_HS)
-    toward = optional_quantity(m, path, "toward_deg", "angle", 0.0)
+    toward = flow_direction(m, path, compass, _angle)
     return Waves(hs=hs, toward_deg=toward)
 
 
 def _environment(raw, path: str) -> Environment:
     m = check_mapping(raw, path, required=("depth",),
                  optional=("water_density", "air_density", "gravity", "seabed", "wind",
-                           "current", "waves", "water_level"))
+                           "current", "waves", "directions", "north_deg", "water_level"))
     defaults = Environment(depth=1.0)
     dpath = field_path(path, "depth")
     depth = quantity(m["depth"], dpath, "length", gt=0, le=MAX_DEPTH)
@@ -148,10 +176,12 @@ def _environment(raw, path: str) -> Environment:
                                        f"{MAX_GRADIENT} (45 deg)")
         seabed = Seabed(friction=optional_quantity(s, sub, "friction", "dimensionless", 0.0, ge=0),
                         gradient=gradient)
-    wind = None if m.get("wind") is None else _flow(m["wind"], field_path(path, "wind"))
+    compass = _compass(m, path)
+    wind = None if m.get("wind") is None else _flow(m["wind"], field_path(path, "wind"), compass)
     current = (None if m.get("current") is None
-               else _flow(m["current"], field_path(path, "current"), profile=True))
-    waves = None if m.get("waves") is None else _waves(m["waves"], field_path(path, "waves"))
+               else _flow(m["current"], field_path(path, "current"), compass, profile=True))
+    waves = (None if m.get("waves") is None
+             else _waves(m["waves"], field_path(path, "waves"), compass))
     level = optional_quantity(m, path, "water_level", "length", 0.0, ge=-MAX_TIDE,
                               le=MAX_TIDE)
     if level <= -depth:
@@ -160,7 +190,22 @@ def _environment(raw, path: str) -> Environment:
                         f"(depth {format_si(depth, 'length')} at the datum)")
     return Environment(depth=depth, water_density=water_density, air_density=air_density,
                        gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves,
-                       water_level=level)
+                       compass=compass, water_level=level)
+
+
+def _compass(m: dict, path: str) -> Compass:
+    """``directions`` (mathematical or nautical) and ``north_deg`` (nautical only)."""
+    convention = m.get("directions", "mathematical")
+    if not isinstance(convention, str) or convention not in CONVENTIONS:
+        raise CaseError(field_path(path, "directions"),
+                        f"{show_value(convention)} must be one of {', '.join(CONVENTIONS)} "
+                        "(mathematical: counter-clockwise from +x; nautical: clockwise from "
+                        "north)")
+    if "north_deg" in m and convention != "nautical":
+        raise CaseError(field_path(path, "north_deg"), "applies to compass bearings only; "
+                                                       "give directions: nautical with it")
+    north = optional_quantity(m, path, "north_deg", "angle", 90.0)
+    return Compass(convention=convention, north_deg=north)
 
 
 def _checks(raw, path: str, legs: tuple) -> Checks:

@@ -61,6 +61,10 @@ class LineType:
     catalog: Optional[str] = None
     corrosion_allowance: float = 0.0
     source: Optional[str] = None
+    #: Weight per unit length in air [N/m], for the part of a line above the water (a
+    #: fairlead in air); None when the case gives none (that part then takes the weight in
+    #: water, with a warning).
+    weight_in_air: Optional[float] = None
 
     @property
     def elastic(self) -> bool:

@@ -20,6 +20,22 @@ tension on the seabed falls off as ``H - mu w s`` from the touchdown point, reac
 anchor as ``H_A = max(H - mu w L_B, 0)``. It changes the anchor load and the elastic
 stretch of the grounded part; an inextensible line's shape does not depend on it. The
 opposite "as laid" assumption (no friction relief) is ``mu = 0``.
+
+The free surface
+----------------
+The still-water level ``z = 0`` bounds a buoyant line as the seabed bounds a sinking one
+(REFERENCE.md section 7): where the catenary of a buoyant line would rise above the surface,
+the line reaches it tangentially (vertical tension zero: the vertex of the suspended part is
+at ``z = 0``), floats along it with constant tension (its buoyancy taken by the surface, no
+drag along it) and, if its far end is below the surface, leaves it tangentially again. That
+is exactly the seabed model mirrored in ``z`` (``w -> -w``, ``z -> -z``, vertical forces
+change sign), so :func:`surface_segment_equations` *is* :func:`lifted_segment_equations`
+called on the mirrored arguments: one model, one set of regimes (suspended, a two-sided
+contact, slack with loose line floating), the same signed unknown ``u``. A leg whose
+fairlead is at the surface is solved from the fairlead end (``LegKind.from_fairlead``), so
+the floating length sits at the block's lower end as the grounded length does in the leg
+block, where the equations stay well conditioned (a line arriving along a boundary at the
+end whose vertical tension is the unknown has a span insensitive to it: ``Z ~ V|V|``).
 """
 
 from __future__ import annotations
@@ -28,7 +44,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import casadi as ca
-import numpy as np
 
 from .contact import fischer_burmeister
 
@@ -52,6 +67,18 @@ class LegKind:
         Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
     sloped : bool
         The anchor rests on a sloped seabed (:func:`sloped_leg_equations`; needs ``contact``).
+    lifted : bool
+        A sinking line whose anchor is above a flat seabed: the seabed still bounds it
+        (:func:`lifted_segment_equations` with the anchor's height above the seabed).
+    air : bool
+        The upper end is above the water and the line type gives its weight in air: the
+        part above the surface is the catenary of :func:`air_part`.
+    surface : bool
+        A buoyant line bounded by the free surface (:func:`surface_leg_equations`).
+    from_fairlead : bool
+        With ``surface``: the fairlead is at (or above) the surface, so the block is solved
+        from the fairlead end and the unknown ``V`` is the vertical force at the anchor end
+        (see the module notes).
     """
 
     elastic: bool
@@ -59,6 +86,15 @@ class LegKind:
     friction: bool = False
     neutral: bool = False
     sloped: bool = False
+    lifted: bool = False
+    surface: bool = False
+    from_fairlead: bool = False
+    air: bool = False
+
+    @property
+    def bounded(self) -> bool:
+        """The line can lie on a boundary (seabed or surface): ``u < 0`` is a loose line."""
+        return self.contact or self.lifted or self.surface
 
     @property
     def tag(self) -> str:
@@ -71,9 +107,35 @@ class LegKind:
                 parts.append("friction")
             if self.sloped:
                 parts.append("sloped")
+        elif self.lifted:
+            parts.append("lifted")
+        elif self.surface:
+            parts.append("surface_from_fairlead" if self.from_fairlead else "surface")
         else:
             parts.append("suspended")
+        if self.air:
+            parts.append("air")
         return "_".join(parts)
+
+
+def _suspended_spans(H, Hg, V, VA, w, L, c):
+    """Spans ``(X, Z)`` of a fully suspended elastic catenary, free of cancellation.
+
+    ``[asinh(V/H) - asinh(V_A/H)]`` loses ``eps asinh(V/H)`` to cancellation when ``V`` and
+    ``V_A`` have the same sign (a nearly taut line: ``H/w`` times that can exceed the span
+    tolerance); there it equals ``asinh(w L (V + V_A) / (V T_A + V_A T_F))``, which has
+    none. ``[sqrt(H^2+V^2) - sqrt(H^2+V_A^2)]/w`` is written as ``L (V + V_A)/(T_F + T_A)``
+    (the denominator is at least ``|w| L``). Square roots carry a 1e-9 N floor so that
+    derivatives exist at ``H = V = 0``; it cancels exactly from the difference.
+    """
+    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
+    same_side = V * VA > 0
+    dasinh = ca.if_else(same_side,
+                        ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
+                        ca.asinh(V / Hg) - ca.asinh(VA / Hg))
+    Xs = (H / w) * dasinh + H * L * c
+    Zs = L * (V + VA) / (_hyp(H, V) + _hyp(H, VA)) + L * c * (V - w * L / 2)
+    return Xs, Zs
 
 
 def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
@@ -130,25 +192,15 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     Hg = ca.fmax(H, _H_FLOOR)
     VA = V - w * L
     stretch = H * L * ea_inv if kind.elastic else 0
-
-    # asinh(V/H) - asinh(VA/H) loses eps*asinh(V/H) to cancellation when V and VA have the
-    # same sign (a nearly taut line: H/w times that can exceed the span tolerance); there
-    # it equals asinh(w L (V + VA) / (V T_A + VA T_F)), which has none.
-    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
-    same_side = V * VA > 0
-    dasinh = ca.if_else(same_side,
-                        ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
-                        ca.asinh(V / Hg) - ca.asinh(VA / Hg))
-    Xs = (H / w) * dasinh + stretch
-    # [sqrt(H^2+V^2) - sqrt(H^2+VA^2)]/w without the cancellation that loses eps*H/w
-    # on a nearly taut line (V - VA = w L); the denominator is at least |w| L.
-    Zs = L * (V + VA) / (ca.sqrt(H**2 + V**2) + ca.sqrt(H**2 + VA**2))
-    if kind.elastic:
-        Zs = Zs + L * ea_inv * (V - w * L / 2)
+    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, ea_inv if kind.elastic else 0)
 
     if not kind.contact:
-        # No seabed under the line: one catenary whatever the sign of V_A.
-        return dict(rX=Xs - X, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
+        # No seabed under the line: one catenary whatever the sign of V_A. ``u < 0`` (no
+        # physical state of a line with nothing to lie on) continues the span monotonically,
+        # so that a line folded straight down (H = 0, X = 0) is an interior root, not a
+        # bound the solver must reach.
+        loose = ca.fmax(-u, 0) / ca.fabs(w)
+        return dict(rX=Xs - X - loose, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
                     grounded=0 * H, suspended_x=Xs)
 
     loose = ca.fmax(-u, 0) / w
@@ -250,148 +302,36 @@ def weightless_line_function(elastic: bool) -> ca.Function:
                        list(LEG_OUTPUTS))
 
 
-# ---- starting point of a leg (floats) ---------------------------------------------------
+# ---- a line end above the water -------------------------------------------------------
 
 
-def _bisect(f, lo, hi, iters=200):
-    """Root of an increasing function on [lo, hi] by bisection in log space."""
-    flo = f(lo)
-    if flo > 0:
-        return lo
-    for _ in range(iters):
-        mid = np.sqrt(lo * hi)
-        if f(mid) > 0:
-            hi = mid
-        else:
-            lo = mid
-        if hi / lo < 1 + 1e-10:
-            break
-    return np.sqrt(lo * hi)
+def air_part(H, V, z_top, w_air, ea_inv):
+    """The part of a line between the surface and an upper end ``z_top > 0`` above it.
 
-
-def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
-                  ea: float | None) -> tuple[float, float]:
-    """A starting ``(u, V)`` for one leg from the inextensible closed forms.
-
-    Slack when the line is long enough to hang straight down and reach the anchor along the
-    seabed; touchdown when a grounded length remains; suspended otherwise; a straight
-    stretched line when the chord exceeds the length.
-    """
-    D = float(np.hypot(X, Z))
-    if kind.neutral:
-        # The tension of a straight line: stretched when the chord exceeds the length,
-        # otherwise slack (zero; an inextensible line just reaching starts at D - L).
-        if D >= L and ea:
-            T = ea * (D / L - 1)
-            return T, T * Z / max(D, 1e-12)
-        return max(D - L, 0.0), 0.0
-    aw = abs(w)
-    if D >= L * (1 - 1e-9):
-        # Taut: straight stretched line carrying half its weight at each end.
-        T = (ea * (D / L - 1) if ea else 0.0) + aw * L
-        return T * X / max(D, 1e-12), T * Z / max(D, 1e-12) + w * L / 2
-    if kind.contact and X <= L - Z:
-        return -w * (L - Z - X), w * Z
-    if kind.contact:
-        # Touchdown: find H with L_B + suspended span = X, while the suspended part fits in L.
-        def span(H):
-            Ls = np.sqrt(Z**2 + 2 * Z * H / w)
-            return L - Ls + (H / w) * np.arcsinh(w * Ls / H) - X
-        H_max = w * (L**2 - Z**2) / (2 * Z)
-        if span(H_max) >= 0:
-            H = _bisect(span, 1e-9 * w * L, H_max)
-            return H, w * np.sqrt(Z**2 + 2 * Z * H / w)
-    # Suspended: sqrt(L^2 - Z^2) = 2 (H/|w|) sinh(|w| X / (2 H)) for the chord's sag.
-    target = np.sqrt(max(L**2 - Z**2, 0.0))
-    if X <= 0:
-        return 0.0, w * L if w > 0 else 0.0
-
-    def chord(H):
-        return target - 2 * (H / aw) * np.sinh(min(aw * X / (2 * H), 700))
-    H = _bisect(chord, 1e-12 * aw * L + 1e-12, 1e3 * aw * L + aw * X)
-    V = (w / 2) * (Z / np.tanh(w * X / (2 * H)) + L)
-    return H, V
-
-
-# ---- profile along the line (floats) ----------------------------------------------------
-
-
-def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
-                ea: float | None, mu: float, X: float, Z: float = 0.0,
-                n: int = 101) -> dict:
-    """Points and tension along a solved leg, in its vertical plane, from the anchor.
-
-    Parameters
-    ----------
-    kind : LegKind
-    H, V : float
-        Horizontal and vertical tension at the fairlead [N] (the solved state).
-    L, w, ea, mu : float
-        Length [m], submerged weight [N/m], stiffness [N] (None: inextensible), friction.
-    X, Z : float
-        Horizontal and vertical span [m]: where a slack line's loose part ends, and the
-        chord of a weightless line.
-    n : int
-        Number of points.
+    Above the water the line weighs ``w_air`` per metre (no buoyancy). From the upper end's
+    vertical tension ``V`` down to the crossing of the surface, the vertical tension falls
+    by ``w_air`` per metre; the rise is ``f(T) - f(T_c) = w_air z_top`` with
+    ``f(T) = T + T^2/(2 EA)`` (the elastic catenary's height, Merkin 1980, seed 004, sections
+    2.1 and 2.3, written in the tensions ``T``, ``T_c`` at the two ends), so the tension at
+    the crossing is closed form: ``T_c = 2 r / (1 + sqrt(1 + 2 r/EA))``, ``r = f(T) - w_air
+    z_top``, and ``V_c = sqrt(T_c^2 - H^2)`` (continued as ``-sqrt(H^2 - T_c^2)`` where the
+    line could not reach the surface: no root there).
 
     Returns
     -------
-    dict of numpy arrays
-        ``s`` unstretched arc length from the anchor [m], ``x`` horizontal distance from the
-        anchor [m], ``z`` height above the anchor [m], ``tension`` effective tension [N].
-
-    Notes
-    -----
-    With ``T_v(s)`` the vertical tension at arc length s, the suspended part follows
-    ``x = (H/w)[asinh(T_v/H) - asinh(T_v0/H)] + H s/EA`` and
-    ``z = [sqrt(H^2+T_v^2) - sqrt(H^2+T_v0^2)]/w + (T_v0 s + w s^2/2)/EA``
-    (Merkin 1980, seed 004, section 2.3, integrated from the lowest suspended point).
+    dict
+        ``V`` the vertical tension at the crossing [N], ``length`` the unstretched length in
+        air [m], ``x`` its horizontal extent [m].
     """
-    c = 1.0 / ea if ea else 0.0
-    s = np.linspace(0.0, L, n)
-    if kind.neutral:
-        # Straight along the chord when taut; a loose weightless line has no definite
-        # shape, so it is drawn along the chord as well.
-        frac = s / L
-        return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
-    VA = V - w * L
-    if not kind.contact or VA >= 0:
-        return _hanging_profile(s, H, VA, w, c)
-    LB = L - V / w
-    grounded = s <= LB
-    Tv = np.where(grounded, 0.0, w * (s - LB))
-    sg = np.minimum(s, LB)
-    # Tension on the seabed: H at touchdown, decaying by friction toward the anchor.
-    Tg = np.maximum(H - mu * w * (LB - sg), 0.0) if mu > 0 else np.full_like(s, H)
-    if H > 0:
-        stretch_g = _grounded_stretch(H, w, mu, LB, sg, c)
-        x_td = sg + stretch_g
-        xs = (H / w) * np.arcsinh(Tv / H) + H * (s - sg) * c
-        zs = (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
-        x_touch = LB + _grounded_stretch(H, w, mu, LB, np.array([LB]), c)[0]
-        x = np.where(grounded, x_td, x_touch + xs)
-        z = np.where(grounded, 0.0, zs)
-        tension = np.where(grounded, Tg, np.hypot(H, Tv))
-    else:
-        # Slack: the hanging part is vertical under the fairlead, the rest lies loose
-        # (buckled) between anchor and the fairlead's foot: shown straight along the seabed.
-        x = np.where(grounded, np.minimum(sg, X), X)
-        z = np.where(grounded, 0.0, Tv / w + Tv**2 / (2 * w) * c)
-        tension = np.where(grounded, 0.0, Tv)
-    return dict(s=s, x=x, z=z, tension=tension)
-
-
-def _grounded_stretch(H, w, mu, LB, sg, c):
-    """Elastic stretch accumulated from the anchor to arc length ``sg`` on the seabed."""
-    if c == 0:
-        return np.zeros_like(sg)
-    if mu <= 0:
-        return H * sg * c
-    # T(s) = max(H - mu w (LB - s), 0); integrate T/EA from 0 to sg.
-    s0 = max(LB - H / (mu * w), 0.0)            # where the tension starts to rise
-    a = np.clip(sg, s0, None)
-    integral = np.where(sg > s0, (H - mu * w * LB) * (a - s0) + mu * w * (a**2 - s0**2) / 2, 0.0)
-    return integral * c
+    T = _hyp(H, V)
+    r = ca.fmax(T + ea_inv * T**2 / 2 - w_air * z_top, 0)
+    Tc = 2 * r / (1 + ca.sqrt(1 + 2 * ea_inv * r))
+    q = Tc**2 - H**2
+    Vc = ca.sign(q) * ca.sqrt(ca.fabs(q) + _H_FLOOR**2) - ca.sign(q) * _H_FLOOR
+    Hg = ca.fmax(H, _H_FLOOR)
+    length = (V - Vc) / w_air
+    x = (H / w_air) * (ca.asinh(V / Hg) - ca.asinh(Vc / Hg)) + H * length * ea_inv
+    return dict(V=Vc, length=length, x=x)
 
 
 # ---- segments of a multi-segment leg ----------------------------------------------------
@@ -438,15 +378,16 @@ def _hyp(a, b):
 
 
 def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
-                             friction: bool = False):
+                             friction: bool = False, between_joints: bool = False):
     """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
 
     The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
     that need not rest on the seabed: a joint lifted by a buoy, an anchor on a pile. Three
     regimes, chosen in the graph:
 
-    - suspended (``V_A >= V1(h)``): one catenary, which may dip below its lower end without
-      reaching the seabed (the S between a buoy and a fairlead);
+    - suspended (``V_A >= V1(h)``, or ``V < 0``: no vertex inside the segment): one
+      catenary, which may dip below its lower end without reaching the seabed (the S
+      between a buoy and a fairlead);
     - two-sided touchdown (``V_A < V1``): the line runs down from the lower end to the seabed
       (vertical force ``V1`` from :func:`descent_force`), lies on it for ``L_B`` and rises to the
       upper end (the U under a buoyed joint, or a line between two points on the seabed);
@@ -455,7 +396,9 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
     1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
     ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
-    decays toward the lower end as in :func:`leg_equations`.
+    decays toward the lower end as in :func:`leg_equations`. ``between_joints``: the segment
+    joins two free joints of a multi-segment leg, whose span may be negative: loose line is
+    then counted only where the line lies, at most all of it.
 
     Returns
     -------
@@ -470,8 +413,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     c = ea_inv if elastic else 0
     VA = V - w * L
     V1 = descent_force(H, h, w, c)
-    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
-    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
+    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
     s1 = -V1 / w
     x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
     LB = L - s1 - V / w
@@ -485,9 +427,19 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
             Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
         HA_t = ca.fmax(H - mu * w * LB, 0)
     loose = ca.fmax(-u, 0) / w
-    suspended = VA >= V1
+    if between_joints:
+        # Between two free joints the span may be negative: loose line is then only where
+        # the line lies, and at most all of that, or a slack segment folded back past its
+        # upper end (a negative span made of loose line) would be a false root.
+        loose = ca.fmin(loose, ca.fmax(LB, 0))
+    # Suspended when the line leaves the lower end less steeply than one that just touches
+    # the seabed at its vertex, or when it has no vertex inside (still descending at the
+    # upper end, V < 0: its lowest point is that end, which the caller puts on or above
+    # the seabed). V = 0 with a steep start is a line arriving along the seabed.
+    suspended = ca.logic_or(VA >= V1, V < 0)
     return dict(
-        rX=ca.if_else(suspended, Xs, Xt) - X - loose,
+        rX=(ca.if_else(suspended, Xs, Xt - loose) - X if between_joints
+            else ca.if_else(suspended, Xs, Xt) - X - loose),
         rZ=ca.if_else(suspended, Zs, Zt) - Z,
         H=H, VF=V, HA=ca.if_else(suspended, H, HA_t),
         VA=ca.if_else(suspended, VA, V1),
@@ -495,6 +447,112 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         suspended_x=ca.if_else(suspended, Xs, x_rise),
         descent_x=ca.if_else(suspended, 0, x1),
     )
+
+
+def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
+                              between_joints: bool = False):
+    """A buoyant segment (``w < 0``) whose lower end is ``d >= 0`` below the surface.
+
+    The free surface bounds it as the seabed bounds a sinking segment: this is
+    :func:`lifted_segment_equations` on the mirrored line (``w -> -w``, ``Z -> -Z``,
+    ``V -> -V``, the seabed at the surface and ``h = d``), its outputs mirrored back. Three
+    regimes, chosen in the graph:
+
+    - suspended: one catenary below the surface, which may rise above its lower end;
+    - floating: the line rises from the lower end to the surface, reaching it tangentially
+      (the suspended part's vertex at ``z = 0``), floats along it at constant tension for
+      ``floating`` metres and leaves it tangentially down to the upper end (which may be
+      at the surface: then it floats up to it);
+    - slack (``u < 0``): ``H = 0``; the line rises vertically to the surface and
+      ``-u / |w|`` of it floats loose.
+
+    "Lower end" is the block's start (``Z`` is the other end's height above it, of either
+    sign). Returns ``SEGMENT_OUTPUTS`` in the real orientation (``VF`` upward force on the
+    upper end of the line, ``VA`` signed upward pull on the lower end), with ``grounded``
+    0 and ``floating`` the unstretched length on the surface [m]; ``descent_x`` is the
+    horizontal extent of the rise from the lower end to the surface.
+
+    Notes
+    -----
+    REFERENCE.md section 7 ("Free surface": a buoyant line meets the surface as a chain
+    meets the seabed, mirrored). The surface carries the floating part's buoyancy as the
+    seabed carries a grounded part's weight; no drag or friction acts along it.
+    """
+    m = lifted_segment_equations(elastic, X, -Z, d, u, -V, L, -w, ea_inv,
+                                 between_joints=between_joints)
+    return dict(rX=m["rX"], rZ=-m["rZ"], H=m["H"], VF=-m["VF"], HA=m["HA"], VA=-m["VA"],
+                grounded=0 * m["H"], floating=m["grounded"], suspended_x=m["suspended_x"],
+                descent_x=m["descent_x"])
+
+
+SURFACE_INPUTS = LEG_INPUTS + ("d",)
+SURFACE_OUTPUTS = LEG_OUTPUTS + ("floating", "touchup_x")
+
+
+def surface_leg_equations(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, ea_inv,
+                          mu, d):
+    """A buoyant leg from its anchor to its fairlead, bounded by the free surface.
+
+    Parameters as :func:`leg_equations`, plus ``d``, the depth [m] below the surface of
+    the end the block starts from: the anchor, or with ``from_fairlead`` the fairlead
+    (which then lies at or above the surface: ``d = 0``). With ``from_fairlead`` the unknown
+    ``V`` is the upward force the anchor exerts on the line's end there (the block's top
+    tension), so that the floating length, next to the fairlead, is at the block's lower end.
+    ``mu`` is unused (no friction along the surface).
+
+    Returns
+    -------
+    dict
+        ``SURFACE_OUTPUTS`` in the leg's orientation: ``LEG_OUTPUTS`` (``grounded`` 0) plus
+        ``floating``, the unstretched length floating on the surface [m], and
+        ``touchup_x``, the horizontal distance from the anchor at which the line first
+        reaches the surface [m] (meaningful when ``floating > 0``).
+    """
+    del mu
+    if not from_fairlead:
+        o = surface_segment_equations(elastic, X, Z, d, u, V, L, w, ea_inv)
+        return dict(rX=o["rX"], rZ=o["rZ"], H=o["H"], VF=o["VF"], HA=o["HA"], VA=o["VA"],
+                    grounded=o["grounded"], suspended_x=X - o["descent_x"],
+                    floating=o["floating"], touchup_x=o["descent_x"])
+    o = surface_segment_equations(elastic, X, -Z, d, u, V, L, w, ea_inv)
+    # Back to the leg's orientation: the fairlead holds the block's lower end, the anchor
+    # its upper end.
+    return dict(rX=o["rX"], rZ=-o["rZ"], H=o["H"], VF=-o["VA"], HA=o["HA"], VA=-o["VF"],
+                grounded=o["grounded"], suspended_x=X - o["suspended_x"],
+                floating=o["floating"], touchup_x=o["suspended_x"])
+
+
+@lru_cache(maxsize=None)
+def surface_leg_function(elastic: bool, from_fairlead: bool) -> ca.Function:
+    """:func:`surface_leg_equations` as a ``casadi.Function`` (inputs ``SURFACE_INPUTS``,
+    outputs ``SURFACE_OUTPUTS``)."""
+    args = [ca.SX.sym(n) for n in SURFACE_INPUTS]
+    out = surface_leg_equations(elastic, from_fairlead, *args)
+    tag = ("elastic" if elastic else "inextensible") + ("_from_fairlead" if from_fairlead
+                                                        else "")
+    return ca.Function(f"leg_surface_{tag}", args, [out[k] for k in SURFACE_OUTPUTS],
+                       list(SURFACE_INPUTS), list(SURFACE_OUTPUTS))
+
+
+@lru_cache(maxsize=None)
+def surface_segment_function(elastic: bool, between_joints: bool = False) -> ca.Function:
+    """:func:`surface_segment_equations` as a ``casadi.Function`` (inputs
+    ``LIFTED_INPUTS`` with ``h`` the lower end's depth below the surface; outputs
+    ``SEGMENT_OUTPUTS + ("floating",)``)."""
+    args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
+    X, Z, h, u, V, L, w, ea_inv, _ = args
+    out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv, between_joints)
+    names = SEGMENT_OUTPUTS + ("floating",)
+    tag = ("elastic" if elastic else "inextensible") + ("_joints" if between_joints else "")
+    return ca.Function(f"segment_surface_{tag}", args,
+                       [out[k] for k in names], list(LIFTED_INPUTS), list(names))
+
+
+def evaluate_surface_leg(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, ea_inv=0.0,
+                         d=0.0) -> dict:
+    """Evaluate :func:`surface_leg_function` on floats; a dict of floats."""
+    vals = surface_leg_function(elastic, from_fairlead)(X, Z, u, V, L, w, ea_inv, 0.0, d)
+    return {k: float(v) for k, v in zip(SURFACE_OUTPUTS, vals)}
 
 
 def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
@@ -513,11 +571,14 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
 
 
 @lru_cache(maxsize=None)
-def lifted_segment_function(elastic: bool, friction: bool = False) -> ca.Function:
+def lifted_segment_function(elastic: bool, friction: bool = False,
+                            between_joints: bool = False) -> ca.Function:
     """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
     args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
-    out = lifted_segment_equations(elastic, *args, friction=friction)
-    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+    out = lifted_segment_equations(elastic, *args, friction=friction,
+                                   between_joints=between_joints)
+    tag = (("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+           + ("_joints" if between_joints else ""))
     return ca.Function(f"segment_lifted_{tag}", args,
                        [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
                        list(SEGMENT_OUTPUTS))
@@ -531,45 +592,6 @@ def straight_segment_function(elastic: bool) -> ca.Function:
     out = straight_segment_equations(elastic, *args)
     return ca.Function(f"segment_straight_{'elastic' if elastic else 'inextensible'}", args,
                        [out[k] for k in SEGMENT_OUTPUTS], list(names), list(SEGMENT_OUTPUTS))
-
-
-def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None, h: float,
-                    X: float, Z: float, n: int = 51) -> dict:
-    """Points and tension along one segment from its lower end, in the leg's plane.
-
-    Covers every regime of :func:`lifted_segment_equations` (``h`` may be 0) and of a
-    suspended or weightless segment (``w <= 0``); see :func:`leg_profile` for the output.
-    The vertical tension is ``T_v(s) = V_A + w s`` on a suspended segment; on a two-sided
-    touchdown it runs from ``V1`` to 0 on the descent, is 0 on the seabed and rises from 0.
-    """
-    c = 1.0 / ea if ea else 0.0
-    s = np.linspace(0.0, L, n)
-    if w == 0:
-        frac = s / L
-        return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
-    VA = V - w * L
-    V1 = float(descent_force(H, h, w, c)) if w > 0 else -np.inf
-    if VA >= V1:
-        return _hanging_profile(s, H, VA, w, c)
-    s1 = -V1 / w
-    LB = L - s1 - V / w
-    s2 = s1 + LB
-    Tv = np.where(s < s1, V1 + w * s, np.where(s <= s2, 0.0, w * (s - s2)))
-    if H > 0:
-        x_desc = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(V1 / H)) + H * s * c
-        x1 = (H / w) * np.arcsinh(-V1 / H) + H * s1 * c
-        x_ground = x1 + (s - s1) * (1 + H * c)
-        x2 = x1 + LB * (1 + H * c)
-        x_rise = x2 + (H / w) * np.arcsinh(Tv / H) + H * (s - s2) * c
-    else:
-        x_desc = np.zeros_like(s)
-        x_ground = np.minimum(s - s1, X)
-        x_rise = np.full_like(s, X)
-    z_desc = (np.hypot(H, Tv) - np.hypot(H, V1)) / w + (V1 * s + w * s**2 / 2) * c
-    z_rise = -h + (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
-    x = np.where(s < s1, x_desc, np.where(s <= s2, x_ground, x_rise))
-    z = np.where(s < s1, z_desc, np.where(s <= s2, -h, z_rise))
-    return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
 
 
 # ---- a leg on a sloped seabed -------------------------------------------------------------
@@ -665,62 +687,3 @@ def sloped_leg_function(elastic: bool, friction: bool) -> ca.Function:
     tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
     return ca.Function(f"leg_sloped_{tag}", args, [out[k] for k in LEG_OUTPUTS],
                        list(SLOPED_INPUTS), list(LEG_OUTPUTS))
-
-
-def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
-                       mu: float, t: float, X: float, Z: float, n: int = 101) -> dict:
-    """Points and tension along a solved leg on a sloped seabed (see :func:`leg_profile`)."""
-    c = 1.0 / ea if ea else 0.0
-    s = np.linspace(0.0, L, n)
-    sec = np.sqrt(1 + t * t)
-    cos_t, sin_t = 1 / sec, t / sec
-    VA = V - w * L
-    if VA >= H * t:
-        return _hanging_profile(s, H, VA, w, c)
-    LB = L - (V - H * t) / w
-    k = w * (sin_t + mu * cos_t)
-    TA_raw = H * sec - k * LB
-    sg = np.minimum(s, LB)
-    Tg = np.maximum(TA_raw + k * sg, 0.0)
-    if c:
-        # Cumulative stretch along the slope, by the trapezoid rule on a fine grid.
-        fine = np.linspace(0.0, LB, 2001)
-        Tf = np.maximum(TA_raw + k * fine, 0.0)
-        cum = np.concatenate([[0.0], np.cumsum((Tf[1:] + Tf[:-1]) / 2 * np.diff(fine))]) * c
-        stretch = np.interp(sg, fine, cum)
-        stretch_td = cum[-1]
-    else:
-        stretch = np.zeros_like(s)
-        stretch_td = 0.0
-    if H > 0:
-        Tv = H * t + w * (s - LB)
-        xs = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(t)) + H * (s - LB) * c
-        zs = (np.hypot(H, Tv) - H * sec) / w + (Tv**2 - (H * t) ** 2) / (2 * w) * c
-        ground = s <= LB
-        x = np.where(ground, (sg + stretch) * cos_t, (LB + stretch_td) * cos_t + xs)
-        z = np.where(ground, (sg + stretch) * sin_t, (LB + stretch_td) * sin_t + zs)
-        tension = np.where(ground, Tg, np.hypot(H, Tv))
-    else:
-        # Slack: loose on the slope up to below the fairlead, then hanging straight.
-        foot = X / cos_t
-        ground = s <= LB
-        along = np.minimum(sg, foot)
-        hang = np.maximum(s - LB, 0.0)
-        x = np.where(ground, along * cos_t, X)
-        z = np.where(ground, along * sin_t, X * t + hang + w * hang**2 / 2 * c)
-        tension = np.where(ground, 0.0, w * hang)
-    return dict(s=s, x=x, z=z, tension=tension)
-
-
-def _hanging_profile(s, H, VA, w, c) -> dict:
-    """Points of a fully suspended elastic catenary from its lower end, where the vertical
-    force is ``VA``; ``c`` is the compliance 1/EA. ``H = 0`` is a vertical line, which
-    folds where the vertical force changes sign (the integral of its sign)."""
-    Tv = VA + w * s
-    if H > 0:
-        x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
-        z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
-    else:
-        x = np.zeros_like(s)
-        z = (np.abs(Tv) - abs(VA)) / w * np.sign(Tv) + (VA * s + w * s**2 / 2) * c
-    return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))

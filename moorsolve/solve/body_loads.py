@@ -100,10 +100,12 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
         theta = wind_toward - yaw
         model = loads.wind
         if isinstance(model, DragLoad):
-            body = drag_load_body(model, environment.air_density, wind_speed, theta,
+            body = drag_load_body(dataclasses.asdict(model), environment.air_density, wind_speed,
+                                  theta,
                                   field="body.loads.wind")
         elif isinstance(model, HuTangWind):
-            body = hu_tang_wind_body(model, wind_speed, theta, field="body.loads.wind")
+            body = hu_tang_wind_body(dataclasses.asdict(model), wind_speed, theta,
+                                     field="body.loads.wind")
         else:
             raise CaseError("body.loads.wind", f"{type(model).__name__} is not a wind load "
                             "model; expected DragLoad or HuTangWind")
@@ -112,10 +114,11 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
         theta = current_toward - yaw
         model = loads.current
         if isinstance(model, DragLoad):
-            body = drag_load_body(model, environment.water_density, current_speed, theta,
+            body = drag_load_body(dataclasses.asdict(model), environment.water_density,
+                                  current_speed, theta,
                                   field="body.loads.current")
         elif isinstance(model, HuTangCurrent):
-            body = hu_tang_current_body(model, current_speed, theta)
+            body = hu_tang_current_body(dataclasses.asdict(model), current_speed, theta)
         else:
             raise CaseError("body.loads.current", f"{type(model).__name__} is not a current "
                             "load model; expected DragLoad or HuTangCurrent")
@@ -124,9 +127,9 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
         theta = wave_toward - yaw
         model = loads.wave_drift
         if isinstance(model, HuTangDrift):
-            body = hu_tang_drift_body(model, wave_hs, theta)
+            body = hu_tang_drift_body(dataclasses.asdict(model), wave_hs, theta)
         elif isinstance(model, DriftCoefficient):
-            body = drift_coefficient_body(model, environment.water_density,
+            body = drift_coefficient_body(dataclasses.asdict(model), environment.water_density,
                                           environment.gravity, wave_hs, theta)
         else:
             raise CaseError("body.loads.wave_drift", f"{type(model).__name__} is not a wave "

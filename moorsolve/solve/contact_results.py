@@ -66,7 +66,8 @@ def _guide(case: Case, guide, rows: list, pose: np.ndarray) -> dict:
         f = np.array(_vector(row, ("Fx", "Fy", "Fz"), closed))
         force += f
         pads.append({"pad": k, "in_contact": closed,
-                     "reaction_N": row["reaction"] if closed else 0.0, "force_N": f.tolist()})
+                     "reaction_N": row["reaction"] if closed else 0.0, "force_N": f.tolist(),
+                     "contact_point_m": [row["cx"], row["cy"], row["cz"]]})
     horizontal = math.hypot(force[0], force[1])
     bed = case.environment.seabed_z(*pile.position)
     offset = math.hypot(centre[0] - pile.position[0], centre[1] - pile.position[1])

@@ -21,6 +21,7 @@ found by :func:`_diagnose` and the best residual reached.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -31,11 +32,12 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
-from .newton import FLAT, STATUS_TEXT, STEP_LIMIT
-from .outcome import build_result
+from .audit import audit, audit_findings, result_warnings
+from .newton import CONVERGED, FLAT, STATUS_TEXT, STEP_LIMIT
+from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
-from .stability import assess, find_stable
-from .start import initial_point
+from .stability import assess, find_stable, pseudo_transient
+from .start import end_positions, initial_point
 
 log = logging.getLogger(__name__)
 
@@ -81,7 +83,8 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
     if not (problem.n_q and problem.load_names):
         return x0
     p_rest = problem.parameters(case, 0.0)
-    key = b"rest:" + p_rest.tobytes()
+    # The loads do not act at rest (load factor 0): one rest state serves every load.
+    key = b"rest:" + np.where(problem.load_mask, 0.0, p_rest).tobytes()
     with problem.lock:
         cached = problem.start_cache.get(key)
         if cached is not None:
@@ -175,7 +178,10 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats)
             notes += extra
             certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
+        outside = hull_out_of_range(problem, x, p_full) if certified else []
         elapsed = time.perf_counter() - t0
+        stats["status"] = explain_status(stats["status"], certified,
+                                         stats.get("polish_steps", 0))
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
                            iterations=stats["iterations"], solve_time_s=elapsed,
@@ -183,20 +189,46 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         result = build_result(problem, case, x, p_full, cert, certified, used, notes,
                               assessment)
     if not certified:
+        if not math.isfinite(force_res):
+            # A line whose span cannot be closed by a finite force (an inextensible line
+            # pulled straight): report the largest unbalanced force on the bodies instead.
+            force_res = _unbalanced_force(problem, result.state, p_full)
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
+                               residual_Nm=moment_res, status=stats["status"],
+                               iterations=stats["iterations"], result=result)
+    if outside:
+        raise ConvergenceError("; ".join(outside), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
     broken = over_mbl(result)
     if broken and not allow_overload:
         raise ConvergenceError(
-            "overload: " + "; ".join(broken) + " (the mooring cannot hold this load; "
-            "pass allow_overload=True to inspect the equilibrium anyway)",
+            "overload: " + "; ".join(broken) + " (the mooring cannot hold this; to accept "
+            "the equilibrium anyway pass allow_overload=True, or --allow-overload)",
             residual_N=force_res, residual_Nm=moment_res, status=stats["status"],
             iterations=stats["iterations"], result=result)
     if assessment is not None and not assessment.stable:
         log.warning("%s: only an unstable equilibrium was found (unstable in %s)",
                     case.name, ", ".join(assessment.unstable_dofs) or "a coupled mode")
-    return result
+    # An independent check of what is reported (raises AuditFailure), and the warnings.
+    audit(result, case)
+    return dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))
+
+
+#: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
+SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
+                    STATUS_TEXT[CONVERGED])
+
+
+def explain_status(status: str, certified: bool, polish_steps: int) -> str:
+    """The solver status a result reports: the solver's own, explained when it is not a
+    success but the point certifies (a certified point is an equilibrium whatever the
+    solver's stopping reason: the certificate is recomputed from it)."""
+    if not certified or status in SUCCESS_STATUSES:
+        return status
+    how = (f"after {polish_steps} Newton polish step{'s' if polish_steps != 1 else ''}"
+           if polish_steps else "as the solver left it")
+    return f"{status}; the point reached is certified {how}"
 
 
 def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
@@ -243,6 +275,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
         x = run_ipopt(problem, solver, x0, p, lb, ub, stats)
+        stats["polish_steps"] = 0
         x = polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
 
@@ -268,9 +301,28 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         p_step = problem.parameters(case, factor)
         x_try, ok = run(x_step, p_step)
         if not ok:
-            return x_direct if x_direct is not None else x_try
+            if x_direct is not None:
+                return x_direct
+            return _drift(problem, x_rest, p_full, lb, ub, stats, tol, x_try)
         x_step = x_try
     return x_step
+
+
+def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback):
+    """The last resort: the scene's own overdamped motion under the full load from rest
+    (pseudo-transient continuation), then Newton polish. It passes through states where a
+    body has no stiffness (every line slack at rest), which Newton and IPOPT cannot start
+    from. Returns ``fallback`` when it does not certify."""
+    if not problem.n_q:
+        return fallback
+    x = pseudo_transient(problem, x_rest, p, steps=2000)
+    if x is None:
+        return fallback
+    x = polish(problem, x, p, lb, ub, stats, tol)
+    if problem.certify(x, p, tol)[0]:
+        stats["status"] = "pseudo-transient continuation, then Newton"
+        return x
+    return fallback
 
 
 #: A direct solve that turns a body further than this from its rest state is checked by
@@ -328,14 +380,17 @@ def polish(problem, x, p, lb, ub, stats, tol):
         # the tension's error per step while the residual is already below 1e-15.
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
-        found = _search(problem, x, p, g, norm, lb, ub, problem.step_jacobian(x, p, g),
-                        flat=False, tries=6)
+        J = problem.step_jacobian(x, p, g)
+        if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
+            break           # absurd input (a 1e30 coefficient): nothing to polish
+        found = _search(problem, x, p, g, norm, lb, ub, J, flat=False, tries=6)
         if found is None and problem.smoothed:
             spring = max(problem.REGULARISATION, float(np.max(np.abs(g))))
             J = np.asarray(problem.jacobian(x, p)) - np.asarray(
                 ca.densify(problem.regularisation(spring)))
             found = _search(problem, x, p, g, norm, lb, ub, J, flat=True, tries=24)
         stats["iterations"] += 1
+        stats["polish_steps"] = stats.get("polish_steps", 0) + 1
         if found is None:
             break
         x, g, norm = found
@@ -348,7 +403,10 @@ def _search(problem, x, p, g, norm, lb, ub, J, *, flat: bool, tries: int):
     try:
         step = np.linalg.solve(J, g)
     except np.linalg.LinAlgError:
-        step, *_ = np.linalg.lstsq(J, g, rcond=None)
+        try:
+            step, *_ = np.linalg.lstsq(J, g, rcond=None)
+        except np.linalg.LinAlgError:
+            return None
     if flat:
         step = step * min(1.0, STEP_LIMIT / max(float(np.max(np.abs(step))), 1e-300))
     alpha = 1.0
@@ -361,17 +419,50 @@ def _search(problem, x, p, g, norm, lb, ub, J, *, flat: bool, tries: int):
             return x_new, g_new, n_new
         alpha *= 0.5
     return None
+def _unbalanced_force(problem, x, p) -> float:
+    """The largest unbalanced force [N] on a free translation of a body or a free point."""
+    unbalanced = np.asarray(problem.report(x, p)[1], dtype=float).ravel()
+    values, k = [], 0
+    for body_index, body in enumerate(problem.case.bodies):
+        values += [abs(v) for v in unbalanced[6 * body_index: 6 * body_index + 3]]
+        k = 6 * (body_index + 1)
+    values += [abs(v) for v in unbalanced[k:]]
+    finite = [v for v in values if math.isfinite(v)]
+    return max(finite, default=math.inf)
 
 
 def over_mbl(result: Result) -> list:
-    """``"leg NAME would break ..."`` for every line above its minimum breaking load."""
+    """``"leg NAME would break ..."`` for every line above its minimum breaking load; a line
+    whose unstretched length is shorter than the distance between its ends at the case-file
+    pose (neither end a free point) says it cannot reach, with the shortfall in metres."""
     out = []
+    rest = _rest_chords(result.case) if result.case is not None else {}
     for leg in result.legs:
         u = leg.utilisation
         if u is not None and u > 1.0:
-            out.append(f"leg {leg.name} would break: tension "
-                       f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
+            tension = (f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
                        f"> MBL {leg.mbl_N / 1e3:.1f} kN")
+            length, chord = rest.get(leg.name, (math.inf, 0.0))
+            if chord > length:
+                out.append(f"leg {leg.name} cannot reach its fairlead: it is "
+                           f"{chord - length:.2f} m short (unstretched length {length:.2f} m, "
+                           f"anchor to fairlead {chord:.2f} m at rest); stretched to reach, "
+                           f"it would break: tension {tension}")
+            else:
+                out.append(f"leg {leg.name} would break: tension {tension}")
+    return out
+
+
+def _rest_chords(case: Case) -> dict:
+    """``name -> (unstretched length, end-to-end distance at the case-file pose)`` of every
+    line whose ends are both fixed in the scene or on a body."""
+    free = {p.name for p in case.points if p.free}
+    out = {}
+    for line in case.lines:
+        if line.a.point in free or line.b.point in free:
+            continue
+        a, b = end_positions(case, line)
+        out[line.name] = (line.length, math.dist(a, b))
     return out
 
 
@@ -385,7 +476,8 @@ def _diagnose(problem, case, result) -> str:
         if fixed and all(s.line_type.ea is None for s in line.segments) \
                 and chord > line.length * (1 + 1e-9):
             reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
-                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m")
+                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
+                           f"by {chord - line.length:.2f} m")
         elif fixed and lt.ea is None and chord > line.length * (1 - 1e-4):
             reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
                            f"{line.length:.3f} m): an inextensible line would need an "
@@ -399,8 +491,27 @@ def _diagnose(problem, case, result) -> str:
                            f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
-        reasons.append(f"the solver stopped with status {result.certificate.status}")
+        found = audit_findings(result, case, boundaries_only=True)
+        reasons.append(f"the solver stopped with status {result.certificate.status}"
+                       + (f"; at the best point reached: {'; '.join(found)}" if found else "")
+                       + _along_a_boundary(case, result))
     return "; ".join(reasons)
+
+
+def _along_a_boundary(case, result) -> str:
+    """Name a segment lying along the seabed or the surface over its whole length between
+    two ends both on it: its height equation is degenerate there (``Z ~ V|V|`` at ``V = 0``),
+    which limits how closely its state can be certified."""
+    for line, lr in zip(case.lines, result.legs):
+        for k, seg in enumerate(lr.segments):
+            lying = max(seg.get("grounded_length_m", 0.0), seg.get("floating_length_m", 0.0))
+            if lying >= seg["length_m"] * (1 - 1e-9):
+                where = "surface" if seg.get("floating_length_m", 0.0) > 0 else "seabed"
+                return (f" (leg {line.name}: segment {k + 1} lies along the {where} over its "
+                        "whole length between two ends on it, where its height equation is "
+                        "degenerate: join it with the segment beside it, or move an end off "
+                        f"the {where})")
+    return ""
 
 
 __all__ = ["solve", "rest_point", "polish", "over_mbl", "get_problem", "initial_point",

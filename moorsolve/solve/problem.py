@@ -53,7 +53,7 @@ from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geom
 #: (column-major); end A's global position and end B's z; the forces on A and B [N].
 LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X", "Z",
                 "bx", "by", "fx", "fy", "J00", "J10", "J01", "J11",
-                "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz")
+                "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz", "floating")
 ROTATIONS = ("roll", "pitch", "yaw")
 POINT_DOFS = ("x", "y", "zeta")
 
@@ -87,8 +87,9 @@ class EquilibriumProblem:
         Of ``(x, p)`` with ``x`` scaled by ``x_scale``. ``report`` gives the lines table
         (:data:`LINE_COLUMNS`), the unbalanced generalized forces of every body (6 each)
         and free point (3 each), every load (force and moment, 6 each), every body's pose
-        (6 each: m and rad), every free point's position, and every body's resultant
-        wrench (force and moment about its origin, global axes, 6 each).
+        (6 each: m and rad), every free point's position, every body's resultant
+        wrench (force and moment about its origin, global axes, 6 each), and per exact hull
+        member 1 where its buoyancy formula is exact at the pose, else 0.
     effects : list of str
         The physical effects this problem simulates.
     """
@@ -139,6 +140,8 @@ class EquilibriumProblem:
         self.n_x = len(scale)
         self.x_scale = np.array(scale, dtype=float)
         self.n_p = self.layout.size
+        #: Parameter entries that only scale with the load factor (not in the rest state).
+        self.load_mask = self.layout.load_mask()
         self.effects = self._effects()
         self._lock = threading.RLock()
         self._nlp_solvers = {}
@@ -166,6 +169,8 @@ class EquilibriumProblem:
             effects.append("inextensible")
         if any(k.contact for k in kinds):
             effects.append("seabed_contact")
+        if any(k.surface for k in kinds):
+            effects.append("surface_contact")
         if any(k.friction for k in kinds):
             effects.append("seabed_friction")
         if any(k.sloped for k in kinds):
@@ -298,7 +303,7 @@ class EquilibriumProblem:
                 row["H"], row["VF"], row["HA"], row["VA"], row["grounded"],
                 row["suspended_x"], row["rX"], row["rZ"], row["X"], row["Z"],
                 pos_b[0], pos_b[1], fb[0], fb[1], J,
-                pos_a, pos_b[2], fa, fb))
+                pos_a, pos_b[2], fa, fb, row.get("floating", 0 * row["H"])))
 
         # -- contacts ---------------------------------------------------------------------
         def apply_body(bi, where, force):
@@ -313,7 +318,7 @@ class EquilibriumProblem:
         load_vectors, self.load_names = [], []
         rho, g = env.water_density, env.gravity
         body_scale = []
-        generalized, wrenches = [], []
+        generalized, wrenches, hull_range = [], [], []
         for bi, body in enumerate(case.bodies):
             q = poses[bi]
             R = rotations[bi]
@@ -345,6 +350,7 @@ class EquilibriumProblem:
                                       water_density=rho, gravity=g)
                 F, M = F + out["force"], M + out["moment"]
                 body_scale.append(out["force"][2])
+                hull_range.append(out["in_range"])
             loads = body_load_models.body_loads_3d(
                 body.loads, env, R, q[5], E["wind_speed"], E["wind_toward"],
                 E["current_speed"], E["current_toward"], E["wave_hs"], E["wave_toward"])
@@ -427,10 +433,11 @@ class EquilibriumProblem:
         point_vec = ca.vertcat(*[pt["position"] for pt in points]) if points else ca.SX(0, 1)
         load_vec = ca.vertcat(*load_vectors) if load_vectors else ca.SX(0, 1)
         wrench_vec = ca.vertcat(*wrenches) if wrenches else ca.SX(0, 1)
+        range_vec = ca.vertcat(*hull_range) if hull_range else ca.SX(0, 1)
         table = ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS))
         self.report = ca.Function(
             "report", [xs, p], [exact(v) for v in (table, unbalanced, load_vec, pose_vec,
-                                                   point_vec, wrench_vec)])
+                                                   point_vec, wrench_vec, range_vec)])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.node_report = ca.Function(
@@ -446,6 +453,11 @@ class EquilibriumProblem:
         t_max = ca.mmax(all_t) if tensions else ca.SX(0)
         if line_weights:
             t_max = ca.fmax(t_max, 1e-3 * ca.mmax(ca.vertcat(*line_weights)))
+        # The largest force in any body's balance (weight, buoyancy, applied loads) also
+        # sets the scale: a floating body's residual is judged against what it carries.
+        carried = [ca.fabs(v) for v in body_scale] + [ca.norm_2(v[:3]) for v in load_vectors]
+        if carried:
+            t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*carried)))
         penetration, complementarity = ca.SX(0), ca.SX(0)
         if contact_terms:
             t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*[t["reaction"] for t in contact_terms])))
@@ -471,12 +483,16 @@ class EquilibriumProblem:
         self._xs, self._p, self._g, self._g_smooth = xs, p, g_all, g_smooth
 
     def _first_body_summary(self, poses, p):
-        """``[x, y, yaw]`` of the first body: displacement from its case pose."""
+        """``[x, y, yaw]`` of the first body (displacement from its case pose), then, in a
+        network case, every body's absolute pose (6 each, m and rad)."""
         if not poses:
             return ca.SX.zeros(3)
         q = poses[0]
         q0 = p[self.layout.slice(f"body[{self.case.bodies[0].name}].pose")]
-        return ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        first = ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        if self.case.form != "network":
+            return first
+        return ca.vertcat(first, *[ca.vertcat(*pose) for pose in poses])
 
     def _segment_values(self, p) -> dict:
         """Each multi-segment or lumped line's segment parameters (line order)."""
@@ -490,13 +506,17 @@ class EquilibriumProblem:
         return out
 
     def _current(self, E, p) -> dict:
-        rows = next((k.block.profile_rows for k in self.kinds if k.discrete), 0)
+        first = next((k.block for k in self.kinds if k.discrete), None)
+        rows = first.profile_rows if first is not None else 0
+        headings = first is not None and first.profile_headings
         profile = None
         if rows:
+            # (z, signed speed along the heading) rows, or (z, ux, uy) with a heading each.
+            width = 3 if headings else 2
             flat = ca.vertsplit(p[self.layout.slice("current.profile")])
-            profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
+            profile = [tuple(flat[width * r: width * (r + 1)]) for r in range(rows)]
         return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
-                    factor=E["load_factor"])
+                    headings=headings, factor=E["load_factor"])
 
     #: Jacobian smoothing relative to the residual: ``eps = SMOOTHING * L * min(1, |g|)``
     #: [m], with ``L`` the length scale and ``|g|`` the largest scaled residual.
@@ -562,9 +582,10 @@ class EquilibriumProblem:
         """``(certified, force, moment, relative)`` from the certificate's numbers.
 
         The force (and a contact's complementarity residual, a reaction across an open gap)
-        must be within ``tol`` of the largest tension or reaction, the moment within ``tol``
-        of that times the scene's moment arm, and the largest penetration of a contact within
-        ``tol`` of the length scale.
+        must be within ``tol`` of the largest force in the balance (the largest line
+        tension or contact reaction, or a body's weight, buoyancy or applied load where
+        larger), the moment within ``tol`` of that force times the scene's moment arm, and
+        the largest penetration of a contact within ``tol`` of the length scale.
         """
         scale = t_max if t_max > 0 else self.force_scale
         relative = max(force, complementarity) / scale
@@ -657,13 +678,19 @@ class EquilibriumProblem:
             if dof == "pitch":
                 # z-y-x angles are singular at +-90 deg of pitch.
                 lb[j], ub[j] = -0.49 * math.pi, 0.49 * math.pi
+        # No bound on a line's u: every block continues its spans monotonically for u < 0
+        # (loose line on a boundary, or, for a line with nothing to lie on, no root there),
+        # so H = max(u, 0) = 0 is an interior root, not a bound IPOPT must reach (a folded
+        # line hit IPOPT's iteration limit at that bound, issue 20). A hawser's u is its
+        # tension and a rigid contact's unknown its reaction (Fischer-Burmeister
+        # complementarities): neither pulls, and the bound keeps a Newton step from making
+        # them pull where the smoothed Jacobian would.
         for i, kind in enumerate(self.kinds):
-            if kind.single and not kind.contact:
-                # A hanging catenary cannot go slack; a hawser's tension is not negative.
+            if kind.single and kind.neutral:
                 lb[self.line_offsets[i]] = 0.0
         for point, io in zip(self.contacts, self.contact_offsets):
             if point.n_unknowns:
-                lb[io] = 0.0                     # a contact pushes, never pulls
+                lb[io] = 0.0
         return lb, ub
 
     def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:

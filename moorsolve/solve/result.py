@@ -65,6 +65,9 @@ class LegResult:
     segment utilisation. ``fairlead_force`` and ``anchor_force`` are the forces [N] the
     line exerts on its ends B and A, global ``(Fx, Fy, Fz)``: in the line's vertical plane
     for an analytic line, with a sideways part for a line in a current.
+    ``floating_length_m`` is the unstretched length floating on the free surface (a buoyant
+    line, the analogue of ``grounded_length_m``) and ``touchup_from_anchor_m`` the horizontal
+    distance from end A at which the line first reaches the surface (0 when nothing floats).
     """
 
     name: str
@@ -89,6 +92,12 @@ class LegResult:
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
     anchor_force: Optional[tuple] = None
+    floating_length_m: float = 0.0
+    touchup_from_anchor_m: float = 0.0
+
+    def __repr__(self) -> str:
+        from ..report.notebook import leg_repr
+        return leg_repr(self)
 
     @property
     def utilisation(self) -> Optional[float]:
@@ -111,6 +120,8 @@ class LegResult:
             "anchor_vertical_N": self.anchor_vertical_N,
             "grounded_length_m": self.grounded_length_m,
             "touchdown_from_anchor_m": self.touchdown_from_anchor_m,
+            "floating_length_m": self.floating_length_m,
+            "touchup_from_anchor_m": self.touchup_from_anchor_m,
             "uplift": self.uplift,
             "slack": self.slack,
             "uplift_angle_deg": self.uplift_angle_deg,
@@ -211,6 +222,8 @@ class Result:
     points: tuple = ()
     stability: Optional[Stability] = None
     form: str = "legs"
+    #: What an engineer must not miss (wall compression, line floating, an end in air):
+    #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.solve.audit.result_warnings`.
     warnings: tuple = ()
     #: Per fender: in_contact, compression_m, reaction_N, friction_N, stick, slip_m,
     #: energy_J, utilisation (compression over rated deflection), force_N, contact_point_m
@@ -244,6 +257,14 @@ class Result:
                 return b
         raise KeyError(name)
 
+    def __repr__(self) -> str:
+        from ..report.notebook import result_repr
+        return result_repr(self)
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import result_html
+        return result_html(self)
+
     @property
     def iterations(self) -> int:
         return self.certificate.iterations
@@ -274,6 +295,8 @@ class Result:
             "legs": [leg.to_dict(profile=profiles) for leg in self.legs],
             "loads": {k: list(v) for k, v in self.loads.items()},
             "notes": list(self.notes),
+            # Always present, with or without profiles: empty means none.
+            "warnings": [dict(w) for w in self.warnings],
             "case": self.case_name,
         }
         if self.form == "network" or len(self.bodies) > 1 or self.points:
@@ -287,6 +310,4 @@ class Result:
                 out[key] = [dict(item) for item in getattr(self, key)]
         if self.stability is not None:
             out["stability"] = self.stability.to_dict()
-        if self.warnings:
-            out["warnings"] = list(self.warnings)
         return out

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import CaseError
 from ..model import Case
+from ..model.directions import direction_edit, wrap_deg
 from .sweep import sweep
 
 FLOWS = ("wind", "current", "waves")
@@ -51,6 +52,17 @@ class Envelope:
     converged: np.ndarray
     reason: tuple
     table: object = dataclasses.field(repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        ok = np.isfinite(self.worst_tension_N)
+        worst = f", worst {self.worst()['worst_leg']} toward {self.worst()['heading_deg']:g} deg" \
+            if ok.any() else ""
+        return (f"<Envelope {self.case_name!r}: {len(self.heading_deg)} headings, "
+                f"{int(ok.sum())} solved{worst}>")
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import envelope_html
+        return envelope_html(self)
 
     def worst(self) -> dict:
         """The heading with the largest worst tension (an overloaded equilibrium counts)."""
@@ -90,7 +102,8 @@ def _f(value) -> Optional[float]:
 def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, *,
                     step_deg: float = 10.0, flows: Optional[Sequence[str]] = None,
                     solver: str = "newton", tol: Optional[float] = None,
-                    workers: Optional[int] = None) -> Envelope:
+                    workers: Optional[int] = None, body: Optional[str] = None,
+                    allow_overload: bool = False) -> Envelope:
     """The equilibrium of ``case`` with its environment turned to every heading.
 
     Parameters
@@ -104,14 +117,25 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         Heading step [deg] when ``headings_deg`` is not given; 0 < step <= 180.
     flows : sequence of {"wind", "current", "waves"}, optional
         Which flows turn (default: every one the case has).
-    solver, tol, workers
+    solver, tol, workers, allow_overload
         As for :func:`moorsolve.sweep`.
+    body : str, optional
+        The body whose offset (from its case pose) and yaw the envelope reports; default
+        the only body (a case with several bodies must name one; the worst tension is over
+        every line).
 
     Returns
     -------
     Envelope
     """
     env = case.environment
+    names_b = [b.name for b in case.bodies]
+    if body is None and len(names_b) > 1:
+        raise CaseError("body", f"the case has {len(names_b)} bodies ({', '.join(names_b)}); "
+                                "name the one whose offset the envelope reports")
+    if body is not None and body not in names_b:
+        raise CaseError("body", f"{body!r} is not a body of the case; its bodies: "
+                                f"{', '.join(names_b) or 'none'}")
     present = [f for f in FLOWS if getattr(env, f) is not None]
     if flows is None:
         flows = present
@@ -140,9 +164,13 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
 
     reference = getattr(env, flows[0]).toward_deg
     offsets = [getattr(env, f).toward_deg - reference for f in flows]
-    paths = tuple(f"environment.{f}.toward_deg" for f in flows)
-    values = [tuple(_wrap(h + d) for d in offsets) for h in headings]
-    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers)
+    # Each heading as the case file would write it (its key and compass convention).
+    edits = [[direction_edit(case, f, wrap_deg(h + d)) for f, d in zip(flows, offsets)]
+             for h in headings]
+    paths = tuple(path for path, _ in edits[0])
+    values = [tuple(value for _, value in row) for row in edits]
+    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers,
+                  allow_overload=allow_overload)
 
     names = [leg.name for leg in case.legs]
     tension = np.column_stack(
@@ -152,7 +180,14 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
     solved = np.isfinite(tension).all(axis=1)          # an overloaded equilibrium too
     worst_index = np.argmax(np.where(np.isfinite(tension), tension, -np.inf), axis=1)
     worst = np.where(solved, tension[np.arange(len(table)), worst_index], np.nan)
-    if case.body is not None:
+    if case.form == "network" and names_b:
+        target = case.body_named(body or names_b[0])
+        x0, y0, _ = target.position
+        yaw0 = target.orientation_deg[2]
+        x = np.where(solved, table[f"{target.name}.x_m"].to_numpy(float) - x0, np.nan)
+        y = np.where(solved, table[f"{target.name}.y_m"].to_numpy(float) - y0, np.nan)
+        yaw = np.where(solved, table[f"{target.name}.yaw_deg"].to_numpy(float) - yaw0, np.nan)
+    elif case.body is not None:
         x = np.where(solved, table["x_m"].to_numpy(float), np.nan)
         y = np.where(solved, table["y_m"].to_numpy(float), np.nan)
         yaw = np.where(solved, table["yaw_deg"].to_numpy(float), np.nan)
@@ -165,11 +200,6 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         x_m=x, y_m=y, yaw_deg=yaw, worst_tension_N=worst,
         worst_leg=tuple(names[k] if ok else "" for k, ok in zip(worst_index, solved)),
         converged=converged, reason=tuple(table["reason"]), table=table)
-
-
-def _wrap(angle: float) -> float:
-    """An angle in [0, 360), rounded so that 0 + 360 k stays exact."""
-    return round(angle % 360.0, 10) % 360.0
 
 
 def format_envelope(envelope: Envelope) -> str:
