@@ -7,6 +7,26 @@ from __future__ import annotations
 from ..solve.result import Result
 
 
+def _table(header: str, rows: list) -> list:
+    return ["", header, "-" * len(header)] + rows
+
+
+def _fender_row(f: dict) -> str:
+    util = "-" if f["utilisation"] is None else f"{f['utilisation']:.2f}"
+    state = ("open" if not f["in_contact"] else
+             "stick" if f["stick"] else "slip" if f["stick"] is False else "closed")
+    return (f"{f['name']:<10}{'yes' if f['in_contact'] else 'no':>8}"
+            f"{f['compression_m']:10.4f}{f['reaction_N'] / 1e3:10.2f}"
+            f"{f['friction_N'] / 1e3:13.2f}{f['energy_J'] / 1e3:11.2f}{util:>7}  {state}")
+
+
+def _guide_row(g: dict) -> str:
+    on = "on" if g["on_pile"] else "OFF the top of"
+    return (f"{g['name']:<10}{'yes' if g['in_contact'] else 'no':>8}"
+            f"{g['reaction_N'] / 1e3:10.2f}{g['offset_m']:10.4f}{g['height_m']:10.3f}"
+            f"{g['pile_moment_Nm'] / 1e3:13.1f}  {on} {g['pile']}")
+
+
 def berth_lines(result: Result) -> list:
     """Text rows for the fenders and pile guides of ``result`` (none without them)."""
     c = result.certificate
@@ -15,27 +35,13 @@ def berth_lines(result: Result) -> list:
         lines.append(f"contacts     largest penetration {c.penetration_m:.2e} m, "
                      f"complementarity residual {c.complementarity_N:.2e} N")
     if result.fenders:
-        header = (f"{'fender':<10}{'contact':>8}{'compr. m':>10}{'R kN':>10}{'friction kN':>13}"
-                  f"{'energy kJ':>11}{'util':>7}  state")
-        lines += ["", header, "-" * len(header)]
-        for f in result.fenders:
-            util = "-" if f["utilisation"] is None else f"{f['utilisation']:.2f}"
-            state = ("open" if not f["in_contact"] else
-                     "stick" if f["stick"] else "slip" if f["stick"] is False else "closed")
-            lines.append(f"{f['name']:<10}{'yes' if f['in_contact'] else 'no':>8}"
-                         f"{f['compression_m']:10.4f}{f['reaction_N'] / 1e3:10.2f}"
-                         f"{f['friction_N'] / 1e3:13.2f}{f['energy_J'] / 1e3:11.2f}{util:>7}  "
-                         f"{state}")
+        lines += _table(f"{'fender':<10}{'contact':>8}{'compr. m':>10}{'R kN':>10}"
+                        f"{'friction kN':>13}{'energy kJ':>11}{'util':>7}  state",
+                        [_fender_row(f) for f in result.fenders])
     if result.guides:
-        header = (f"{'guide':<10}{'contact':>8}{'R kN':>10}{'offset m':>10}{'height m':>10}"
-                  f"{'pile M kN m':>13}  pile")
-        lines += ["", header, "-" * len(header)]
-        for g in result.guides:
-            on = "on" if g["on_pile"] else "OFF the top of"
-            lines.append(f"{g['name']:<10}{'yes' if g['in_contact'] else 'no':>8}"
-                         f"{g['reaction_N'] / 1e3:10.2f}{g['offset_m']:10.4f}"
-                         f"{g['height_m']:10.3f}{g['pile_moment_Nm'] / 1e3:13.1f}  {on} "
-                         f"{g['pile']}")
+        lines += _table(f"{'guide':<10}{'contact':>8}{'R kN':>10}{'offset m':>10}"
+                        f"{'height m':>10}{'pile M kN m':>13}  pile",
+                        [_guide_row(g) for g in result.guides])
     return lines
 
 

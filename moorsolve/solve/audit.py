@@ -512,9 +512,12 @@ def result_warnings(result, case) -> list[dict]:
             out.append(dict(code="floating", leg=leg.name, message=(
                 f"leg {leg.name}: {leg.floating_length_m:.2f} m of line floats on the surface "
                 f"(from {leg.touchup_from_anchor_m:.2f} m from the anchor)")))
-        for end, z in (("fairlead", leg.fairlead[2]), ("anchor", leg.anchor[2])):
+        level = case.environment.water_level
+        for end, z in (("fairlead", leg.fairlead[2] - level), ("anchor", leg.anchor[2] - level)):
+            lt = leg_case.segments[-1 if end == "fairlead" else 0].line_type
+            if lt.weight_in_water == 0 and lt.weight_in_air is None:
+                continue        # a hawser: weightless by definition, in air as in water
             if z > 0:
-                lt = leg_case.segments[-1 if end == "fairlead" else 0].line_type
                 how = (f"with its weight in air, {lt.weight_in_air:.4g} N/m"
                        if lt.weight_in_air is not None and not leg_case.multi_segment
                        and not _is_lumped(case, leg_case) else
