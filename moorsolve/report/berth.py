@@ -45,4 +45,26 @@ def berth_lines(result: Result) -> list:
     return lines
 
 
-__all__ = ["berth_lines"]
+
+
+def berth_check_lines(report) -> list:
+    """Per condition of a check report, the worst hawser (against MEG4's working load
+    limit), fender (against its rated deflection) and pile guide (against its pile's top);
+    none without them."""
+    lines = []
+    for c in report.conditions:
+        worst = [(c.worst(check), what) for check, what in (
+            ("hawser tension", "hawser"), ("fender compression", "fender"),
+            ("guide on pile", "guide"))]
+        parts = [f"{what} {item.leg} {_show(item)} (util {item.utilisation:.2f}"
+                 f"{'' if item.passed else ', FAIL'})" for item, what in worst if item]
+        if parts:
+            lines.append(f"{c.name:<22}  " + "; ".join(parts))
+    return ["", "berth (worst per condition)"] + lines if lines else []
+
+
+def _show(item) -> str:
+    return f"{item.value / 1e3:.1f} kN" if item.unit == "N" else f"{item.value:.3f} {item.unit}"
+
+
+__all__ = ["berth_lines", "berth_check_lines"]
