@@ -52,8 +52,9 @@ from .bodies import DOFS, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, Hydrost
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
 from .environment import Environment
-from .fields import (FAIRLEAD_Z_MAX, MAX_AREA, check_list, check_mapping, check_name,
-                     check_point, field_path, nullable_quantity, optional_quantity, quantity)
+from .fields import (FAIRLEAD_Z_MAX, MAX_AREA, MAX_LINE_LENGTH, MIN_LINE_LENGTH, check_list,
+                     check_mapping, check_name, check_point, field_path, nullable_quantity,
+                     optional_quantity, quantity)
 from .lines import End, Line
 from .loads import BodyLoads
 from .units import format_si, show_value
@@ -319,6 +320,12 @@ def _pretensioned_length(segments: tuple, path: str, a: End, b: End, bodies: dic
                         "the line's ends coincide at the case-file pose; a pretension cannot "
                         "give its length")
     length = distance / (1 + seg.pretension / seg.line_type.ea)
+    if not MIN_LINE_LENGTH <= length <= MAX_LINE_LENGTH:
+        raise CaseError(field_path(field_path(path, 0), "pretension"),
+                        f"the line's ends are {format_si(distance, 'length')} apart at the "
+                        f"case-file pose: its length would be {format_si(length, 'length')}, "
+                        f"outside {format_si(MIN_LINE_LENGTH, 'length')} to "
+                        f"{format_si(MAX_LINE_LENGTH, 'length')}")
     return (dataclasses.replace(seg, length=length),)
 
 
