@@ -73,10 +73,16 @@ class LineType:
 
 @dataclass(frozen=True)
 class Segment:
-    """A length of one line type [m, unstretched]."""
+    """A length of one line type [m, unstretched].
+
+    ``pretension`` [N]: the segment was given by the tension it carries at the case-file
+    pose instead of a length (a hawser); ``length`` is then the unstretched length that
+    gives it.
+    """
 
     line_type: LineType
     length: float
+    pretension: Optional[float] = None
 
 
 ANCHOR_KINDS = ("drag", "deadweight", "pile")

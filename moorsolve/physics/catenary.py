@@ -45,6 +45,8 @@ from functools import lru_cache
 
 import casadi as ca
 
+from .contact import fischer_burmeister
+
 #: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
 _H_FLOOR = 1e-9
 
@@ -235,19 +237,29 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     )
 
 
-def _neutral_equations(kind, X, Z, u, V, L, ea_inv):
-    """A weightless line: straight at tension T = max(u, 0) when taut, loose otherwise.
+def _neutral_equations(kind, X, Z, u, V, L, ea_inv, stiffness=1.0, smoothing=0.0):
+    """A weightless line (a hawser): straight at tension ``T = u`` when taut, loose otherwise.
 
-    The chord must equal the stretched length while taut; ``-u`` [N] measures, at one metre
-    per newton, how much longer than the chord a loose line is.
+    The tension and the slack are complementary (:mod:`moorsolve.physics.contact`)::
+
+        T >= 0,   b = L (1 + T/EA) - D >= 0,   T b = 0
+
+    (``D`` the chord), imposed by the Fischer-Burmeister residual ``rX = phi(T/k, b)`` [m]
+    with ``k = stiffness`` [N/m]. The tension is the unknown, not a signed variable whose
+    negative half is the slack: a body held only by slack hawsers then still feels them, so
+    a load draws them taut (the signed form left the body's balance independent of every
+    unknown while slack, and the solvers stopped there). ``rZ = (V D - T Z) / k`` [m] makes
+    the end force lie along the chord. ``smoothing`` is the Jacobian smoothing ``eps`` [m]
+    of the solvers (0: exact).
     """
-    T = ca.fmax(u, 0)
+    T = u
     D = ca.sqrt(X**2 + Z**2)
     stretched = L * (1 + T * ea_inv) if kind.elastic else L
-    loose = ca.fmax(-u, 0)
+    opening = stretched - D
     H = T * X / ca.fmax(D, _H_FLOOR)
-    return dict(rX=stretched - loose - D, rZ=V * D - T * Z, H=H, VF=V, HA=H, VA=V,
-                grounded=0 * T, suspended_x=X)
+    rX = fischer_burmeister(T / stiffness, opening, smoothing)
+    return dict(rX=rX, rZ=(V * D - T * Z) / stiffness, H=H, VF=V, HA=H, VA=V, grounded=0 * T,
+                suspended_x=X)
 
 
 LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
@@ -271,6 +283,23 @@ def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0) -> dict:
     """Evaluate the leg block on floats; returns a dict of floats (``LEG_OUTPUTS``)."""
     vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu)
     return {k: float(v) for k, v in zip(LEG_OUTPUTS, vals)}
+
+
+WEIGHTLESS_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv", "k", "eps")
+
+
+@lru_cache(maxsize=None)
+def weightless_line_function(elastic: bool) -> ca.Function:
+    """The weightless line block as a ``casadi.Function``: inputs :data:`WEIGHTLESS_INPUTS`
+    (``k`` the contact stiffness scale [N/m], ``eps`` the Jacobian smoothing [m]), outputs
+    :data:`LEG_OUTPUTS`; see :func:`_neutral_equations`."""
+    args = [ca.SX.sym(n) for n in WEIGHTLESS_INPUTS]
+    X, Z, u, V, L, ea_inv, k, eps = args
+    out = _neutral_equations(LegKind(elastic, contact=False, neutral=True), X, Z, u, V, L,
+                             ea_inv, k, eps)
+    return ca.Function(f"weightless_{'elastic' if elastic else 'inextensible'}", args,
+                       [out[n] for n in LEG_OUTPUTS], list(WEIGHTLESS_INPUTS),
+                       list(LEG_OUTPUTS))
 
 
 # ---- a line end above the water -------------------------------------------------------

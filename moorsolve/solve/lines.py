@@ -63,7 +63,7 @@ from ..model.build_network import end_position
 from ..physics.catenary import (LegKind, air_part, descent_force, leg_function,
                                 lifted_segment_function, sloped_leg_function,
                                 straight_segment_function, surface_leg_function,
-                                surface_segment_function)
+                                surface_segment_function, weightless_line_function)
 
 #: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment line
 #: (from its lower end), its tensions [N] (top H and V, pull on its lower end HA and signed
@@ -414,6 +414,10 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     if kind.lifted:
         args["h"] = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
         fn = lifted_segment_function(block.elastic, False)
+    elif block.neutral:
+        args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], ea_inv=P["ea_inv"],
+                    k=problem.contact_stiffness, eps=problem.smoothing_symbol)
+        fn = weightless_line_function(block.elastic)
     elif block.surface:
         # Depth below the surface of the end the block starts from.
         start_z = upper[2] if block.from_fairlead else lower[2]

@@ -147,7 +147,8 @@ def _parameters(case) -> np.ndarray:
                                 layout.segment_parameters(case, kinds)])
         _LINE_BLOCKS.put(key, (case.lines, lines))
     p = np.concatenate([layout.environment_parameters(case, 1.0), lines,
-                        layout.body_parameters(case), layout.point_parameters(case)])
+                        layout.body_parameters(case), layout.point_parameters(case),
+                        layout.contact_parameters(case)])
     p.setflags(write=False)
     return p
 
