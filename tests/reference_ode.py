@@ -8,7 +8,9 @@ Along the unstretched arc length ``s`` (0 at the anchor, ``L`` at the fairlead) 
 is the position ``(x, z)`` relative to the anchor and the effective tension ``(Tx, Tz)``
 that the line beyond ``s`` (toward the fairlead) exerts on the line before it.
 
-Suspended element (weight ``w`` per unstretched metre, Hooke's law with stiffness ``EA``)::
+Suspended element (weight ``w`` per unstretched metre, Hooke's law with stiffness ``EA``, or
+any strain law ``eps(T)`` given as a plain Python function: then ``1 + eps(T)`` replaces
+``1 + T/EA`` below)::
 
     dTx/ds = 0,   dTz/ds = w,
     dx/ds = (1 + T/EA) Tx/T,   dz/ds = (1 + T/EA) Tz/T,   T = sqrt(Tx^2 + Tz^2)
@@ -45,13 +47,21 @@ from scipy.integrate import solve_ivp
 RTOL = 1e-13
 
 
-def _suspended_rhs(w, ea):
+def _stretch_factor(ea, strain):
+    """``T -> ds/ds0``: Hooke's ``1 + T/EA`` (1 without EA), or ``1 + strain(T)``."""
+    if strain is not None:
+        return lambda t: 1.0 + strain(t)
     c = 0.0 if ea is None else 1.0 / ea
+    return lambda t: 1.0 + t * c
+
+
+def _suspended_rhs(w, ea, strain=None):
+    factor = _stretch_factor(ea, strain)
 
     def rhs(s, y):
         x, z, tx, tz = y
         t = math.hypot(tx, tz)
-        stretch = 1.0 + t * c
+        stretch = factor(t)
         if t == 0.0:
             return [0.0, 0.0, 0.0, w]
         return [stretch * tx / t, stretch * tz / t, 0.0, w]
@@ -70,7 +80,8 @@ def _integrate(rhs, s0, s1, y0, scale):
     return sol.y[:, -1]
 
 
-def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
+def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True, strain=None,
+                  strain_max=None, tension_breaks=()):
     """Integrate one leg from its fairlead end forces down to the anchor.
 
     Parameters
@@ -87,6 +98,14 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
         Seabed friction coefficient (contact legs only).
     contact : bool
         The anchor lies on the seabed and the line may rest on it (needs w > 0).
+    strain : callable, optional
+        A strain law ``T [N] -> eps [-]`` replacing Hooke's (``ea`` is then unused).
+    strain_max : float, optional
+        The largest strain on the line (for the integrator's length scale) when ``strain``
+        is given.
+    tension_breaks : sequence of float
+        Tensions [N] where the strain law's higher derivatives jump (a table's rows): the
+        integration is split where the suspended line's tension passes them.
 
     Returns
     -------
@@ -97,9 +116,13 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
         unstretched length on the seabed [m].
     """
     t_scale = max(math.hypot(H, V), abs(w) * L, 1e-300)
-    stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
+    if strain is not None:
+        stretch_max = strain_max if strain_max is not None else strain(t_scale + abs(w) * L)
+    else:
+        stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
     scale = (L * (1.0 + stretch_max), t_scale)
-    rhs = _suspended_rhs(w, ea)
+    rhs = _suspended_rhs(w, ea, strain)
+    factor = _stretch_factor(ea, strain)
     # Fairlead at the origin of this local frame; the anchor end's coordinates are
     # relative to it and the span is minus them at the end.
     y = np.array([0.0, 0.0, float(H), float(V)])
@@ -115,7 +138,16 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
         vertex = L - V / w
         if s_end < vertex < L:
             breaks.append(vertex)
-    breaks.append(s_end)
+        # Tz(s) = V - w (L - s); the tension passes T_k where Tz = +-sqrt(T_k^2 - H^2).
+        for tk in tension_breaks:
+            if tk > H:
+                for tz in (math.sqrt(tk * tk - H * H), -math.sqrt(tk * tk - H * H)):
+                    s_k = L - (V - tz) / w
+                    if s_end < s_k < L:
+                        breaks.append(s_k)
+    breaks = sorted(set(breaks), reverse=True)
+    if breaks[-1] != s_end:
+        breaks.append(s_end)
     for a, b in zip(breaks[:-1], breaks[1:]):
         y = _integrate(rhs, a, b, y, scale)
     # Exact values for the force components (their equations are trivially integrable;
@@ -126,13 +158,12 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
     grounded = 0.0
     if touch is not None:
         grounded = s_end
-        c = 0.0 if ea is None else 1.0 / ea
         tx = float(H)
         if grounded > 0:
             if mu > 0 and tx > 0:
                 # Friction: Tx falls by mu w per metre toward the anchor until it is zero.
                 def ground_rhs(s, yy):
-                    return [1.0 + yy[1] * c, mu * w]
+                    return [factor(max(yy[1], 0.0)), mu * w]
 
                 def exhausted(s, yy):
                     return yy[1]
@@ -150,7 +181,7 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
                     tx = max(sol.y[1, -1], 0.0)
             else:
                 def ground_rhs(s, yy):
-                    return [1.0 + tx * c]
+                    return [factor(tx)]
                 sol = solve_ivp(ground_rhs, (grounded, 0.0), [y[0]], method="DOP853",
                                 rtol=RTOL, atol=[1e-16 * scale[0]])
                 y[0] = sol.y[0, -1]

@@ -24,10 +24,16 @@ Schema (SI units, ``[...]`` lists)::
       waves: {hs: >= 0 [m], toward_deg}        optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
-             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
+             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm},
+             stretch: STRETCH (instead of ea), fibre: bool, min_tension >= 0 [N],
+             stiffness_bounds: {lower: BOUND, upper: BOUND}}
                                                drag needs a diameter
       NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
-             weight_in_water, ea, mbl (override the catalogue), sealed, drag}
+             weight_in_water, ea, mbl (override the catalogue), sealed, drag,
+             stretch, fibre, min_tension, stiffness_bounds}
+    STRETCH: {model: hooke, ea} | {model: baranov, n > 0 [N^-1/2]}
+             | {model: table, strain: [...], tension: [...]}   (moorsolve.model.stretch)
+    BOUND: ea [N] | STRETCH | {model: dynamic, alpha, beta}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
@@ -73,6 +79,7 @@ from .fields import (FAIRLEAD_Z_MAX, GRAVITY_RANGE, MAX_AREA, MAX_DENSITY, MAX_D
                      check_mapping, check_name, check_point, check_rows, field_path,
                      nullable_quantity, optional_quantity, quantity)
 from .moordyn_block import validate_moordyn_block
+from .stretch import LINE_TYPE_KEYS, line_type_fields
 from .units import format_si, show_value, weight_per_length_to_si
 
 __all__ = ["build_case"]
@@ -179,7 +186,8 @@ def _line_type(name: str, raw, path: str, gravity: float,
     if isinstance(raw, Mapping) and "catalog" in raw:
         return _catalog_line_type(name, raw, path, gravity, water_density)
     m = check_mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag"))
+                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag")
+                 + LINE_TYPE_KEYS)
     wpath = field_path(path, "weight_in_water")
     weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
     if abs(weight) > MAX_WEIGHT:
@@ -195,8 +203,9 @@ def _line_type(name: str, raw, path: str, gravity: float,
     mbl = nullable_quantity(m, path, "mbl", "force", gt=0)
     diameter = nullable_quantity(m, path, "diameter", "length", gt=0)
     sealed = _sealed(m, path, diameter)
-    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
-                    sealed=sealed, drag=_line_type_drag(m, path, diameter))
+    return LineType(name=name, weight_in_water=weight, mbl=mbl, diameter=diameter,
+                    sealed=sealed, drag=_line_type_drag(m, path, diameter),
+                    **line_type_fields(m, path, ea))
 
 
 def _sealed(m: dict, path: str, diameter) -> bool:
@@ -223,7 +232,7 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
     """
     m = check_mapping(raw, path, required=("catalog", "diameter"),
                  optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
-                           "drag"))
+                           "drag") + LINE_TYPE_KEYS)
     known = line_catalog.entries()
     entry = m["catalog"]
     if not isinstance(entry, str) or entry not in known:
@@ -249,11 +258,12 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
                         "applies to the catalogue MBL only; with an explicit mbl give the "
                         "corroded value directly")
     return LineType(name=name, weight_in_water=weight,
-                    ea=props.ea if ea is None else ea,
                     mbl=props.mbl if mbl is None else mbl,
                     diameter=diameter, sealed=_sealed(m, path, diameter), catalog=entry,
                     drag=_line_type_drag(m, path, diameter),
-                    corrosion_allowance=allowance, source=props.source)
+                    corrosion_allowance=allowance, source=props.source,
+                    **line_type_fields(m, path, props.ea if ea is None else ea,
+                                       catalogue=props))
 
 
 def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_DENSITY) -> dict:

@@ -20,15 +20,31 @@ tension on the seabed falls off as ``H - mu w s`` from the touchdown point, reac
 anchor as ``H_A = max(H - mu w L_B, 0)``. It changes the anchor load and the elastic
 stretch of the grounded part; an inextensible line's shape does not depend on it. The
 opposite "as laid" assumption (no friction relief) is ``mu = 0``.
+
+Stretch laws
+------------
+Hooke's law (``ea_inv = 1/EA``) has its own closed forms below. A line following another law
+of :mod:`moorsolve.physics.stretch` (Baranov, a tension-strain table) gives its
+:class:`~moorsolve.physics.stretch.StretchModel` in the kind (``law``) and its parameters as
+the block's extra input ``law``; the stretch is then integrated exactly along the line: on
+a catenary with vertical tension ``T_v`` as the variable (``ds0 = dT_v/w``) the vertical
+extent gains ``(T_F - T_A)/w`` times the mean strain over the tensions passed, the horizontal
+extent ``(H/w) [Psi(V) - Psi(V_A)]`` (:meth:`~moorsolve.physics.stretch.Law.horizontal`); on
+the seabed the tension falls linearly (friction) or stays ``H``, so the grounded stretch is
+the loaded length times the mean strain between the anchor's and the touchdown's tension.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Optional
 
 import casadi as ca
 import numpy as np
+
+from .stretch import Law, NumericLaw, StretchModel
 
 #: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
 _H_FLOOR = 1e-9
@@ -50,6 +66,9 @@ class LegKind:
         Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
     sloped : bool
         The anchor rests on a sloped seabed (:func:`sloped_leg_equations`; needs ``contact``).
+    law : StretchModel or None
+        The stretch law of an elastic line other than Hooke's (its parameters are then the
+        block's input ``law``); None: Hooke, with the compliance ``ea_inv``.
     """
 
     elastic: bool
@@ -57,10 +76,13 @@ class LegKind:
     friction: bool = False
     neutral: bool = False
     sloped: bool = False
+    law: Optional[StretchModel] = None
 
     @property
     def tag(self) -> str:
         parts = ["elastic" if self.elastic else "inextensible"]
+        if self.law is not None:
+            parts.append(self.law.tag)
         if self.neutral:
             parts.append("neutral")
         elif self.contact:
@@ -74,7 +96,7 @@ class LegKind:
         return "_".join(parts)
 
 
-def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
+def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     """Residuals and end forces of one leg, symbolic or numeric.
 
     Parameters
@@ -95,6 +117,8 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
         Compliance 1/EA [1/N] (unused for inextensible kinds).
     mu : float or symbol
         Seabed friction coefficient [-] (unused without friction).
+    law : sequence, optional
+        Parameters of ``kind.law`` (floats or symbols), when the line is not Hooke's.
 
     Returns
     -------
@@ -120,14 +144,26 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
 
     The ``sgn(V)`` form removes the mirrored false root at ``V = -w L_s`` that the even
     textbook form has once ``H = 0`` is admitted.
+
+    Another stretch law (``kind.law``): the terms ``H L/EA`` and ``(L/EA)(V - w L/2)`` become
+    ``(H/w)[Psi(V) - Psi(V_A)]`` and ``Z_0 mean_strain(T_A, T_F)`` (``Z_0`` the inextensible
+    rise); on touchdown the grounded length stretches by ``L_B eps(H)`` (with friction: the
+    loaded length ``min(L_B, H/(mu w))`` times the mean strain between ``H_A`` and ``H``) and
+    the suspended part by ``(H/w) Psi(V)`` and ``Z_0 mean_strain(H, T_F)``
+    (:mod:`moorsolve.physics.stretch`).
     """
     H = ca.fmax(u, 0)
+    bound = _bind(kind, law)
     if kind.neutral:
-        return _neutral_equations(kind, X, Z, u, V, L, ea_inv)
+        return _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound)
 
     Hg = ca.fmax(H, _H_FLOOR)
     VA = V - w * L
-    stretch = H * L * ea_inv if kind.elastic else 0
+    if bound is not None:
+        psi_V, psi_VA = bound.horizontal(Hg, V, VA)
+        stretch = (H / w) * (psi_V - psi_VA)
+    else:
+        stretch = H * L * ea_inv if kind.elastic else 0
 
     # asinh(V/H) - asinh(VA/H) loses eps*asinh(V/H) to cancellation when V and VA have the
     # same sign (a nearly taut line: H/w times that can exceed the span tolerance); there
@@ -141,7 +177,9 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     # [sqrt(H^2+V^2) - sqrt(H^2+VA^2)]/w without the cancellation that loses eps*H/w
     # on a nearly taut line (V - VA = w L); the denominator is at least |w| L.
     Zs = L * (V + VA) / (ca.sqrt(H**2 + V**2) + ca.sqrt(H**2 + VA**2))
-    if kind.elastic:
+    if bound is not None:
+        Zs = Zs * (1 + bound.mean(ca.sqrt(H**2 + VA**2), ca.sqrt(H**2 + V**2)))
+    elif kind.elastic:
         Zs = Zs + L * ea_inv * (V - w * L / 2)
 
     if not kind.contact:
@@ -155,18 +193,24 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     Xt = LB + Xsusp_t + stretch
     # sgn(V)[sqrt(H^2+V^2) - H]/w, written without cancellation for V << H.
     Zt = V * ca.fabs(V) / (w * ca.fmax(ca.sqrt(H**2 + V**2) + H, _H_FLOOR))
-    if kind.elastic:
+    if bound is not None:
+        Zt = Zt * (1 + bound.mean(H, ca.sqrt(H**2 + V**2)))
+        Xsusp_t = Xsusp_t + (H / w) * psi_V
+    elif kind.elastic:
         Zt = Zt + ea_inv * V * ca.fabs(V) / (2 * w)
         Xsusp_t = Xsusp_t + H * (V / w) * ea_inv
     if kind.friction:
         # Tension decays by mu*w per metre along the grounded length, from H at touchdown.
         # Where it would reach zero before the anchor (L_B > H/(mu w)) the rest is unloaded.
         excess = LB - H / (mu * w)
-        if kind.elastic:
+        if kind.elastic and bound is None:
             Xt = Xt + (mu * w * ea_inv / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
         HA_t = ca.fmax(H - mu * w * LB, 0)
     else:
         HA_t = H
+    if bound is not None:
+        Xt = LB + _ground_stretch(bound, H, LB, HA_t, mu * w if kind.friction else None) \
+            + Xsusp_t
 
     suspended = VA >= 0
     Xc = ca.if_else(suspended, Xs, Xt)
@@ -183,7 +227,29 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     )
 
 
-def _neutral_equations(kind, X, Z, u, V, L, ea_inv):
+def _bind(kind, law):
+    """The stretch law of ``kind`` bound to its parameters ``law`` (None for Hooke)."""
+    model = getattr(kind, "law", None)
+    if model is None:
+        return None
+    if law is None:
+        raise ValueError(f"a {model.tag} line needs its law parameters (input 'law')")
+    return Law(model, law if isinstance(law, (list, tuple)) else ca.vertsplit(law))
+
+
+def _ground_stretch(bound, H, LB, HA, decay):
+    """Stretch of ``LB`` of line lying on a flat seabed with tension ``H`` at touchdown.
+
+    Without friction (``decay`` None) the tension is ``H`` throughout: ``LB eps(H)``. With
+    friction it falls by ``decay = mu w`` per metre toward the anchor, to ``HA`` there (or
+    to zero at ``H/decay`` from touchdown): the loaded length times the mean strain.
+    """
+    if decay is None:
+        return LB * bound.strain(H)
+    return ca.fmin(LB, H / decay) * bound.mean(HA, H)
+
+
+def _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound=None):
     """A weightless line: straight at tension T = max(u, 0) when taut, loose otherwise.
 
     The chord must equal the stretched length while taut; ``-u`` [N] measures, at one metre
@@ -191,7 +257,10 @@ def _neutral_equations(kind, X, Z, u, V, L, ea_inv):
     """
     T = ca.fmax(u, 0)
     D = ca.sqrt(X**2 + Z**2)
-    stretched = L * (1 + T * ea_inv) if kind.elastic else L
+    if bound is not None:
+        stretched = L * (1 + bound.strain(T))
+    else:
+        stretched = L * (1 + T * ea_inv) if kind.elastic else L
     loose = ca.fmax(-u, 0)
     H = T * X / ca.fmax(D, _H_FLOOR)
     return dict(rX=stretched - loose - D, rZ=V * D - T * Z, H=H, VF=V, HA=H, VA=V,
@@ -202,22 +271,34 @@ LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
 LEG_INPUTS = ("X", "Z", "u", "V", "L", "w", "ea_inv", "mu")
 
 
+def _law_inputs(kind, names):
+    """Input names and symbols of a block: ``names``, plus ``law`` for a non-Hooke line."""
+    model = getattr(kind, "law", None)
+    args = [ca.SX.sym(n) for n in names]
+    if model is None:
+        return list(names), args, None
+    law = ca.SX.sym("law", model.n_params)
+    return list(names) + ["law"], args + [law], ca.vertsplit(law)
+
+
 @lru_cache(maxsize=None)
 def leg_function(kind: LegKind) -> ca.Function:
     """The leg block for ``kind`` as one ``casadi.Function``, built once and reused.
 
-    Inputs ``(X, Z, u, V, L, w, ea_inv, mu)``, outputs ``LEG_OUTPUTS``; see
-    :func:`leg_equations`. Call it on SX/MX symbols to embed it, or on floats.
+    Inputs ``(X, Z, u, V, L, w, ea_inv, mu)`` and, for a line with ``kind.law``, ``law``
+    (its parameters); outputs ``LEG_OUTPUTS``; see :func:`leg_equations`. Call it on
+    SX/MX symbols to embed it, or on floats.
     """
-    args = [ca.SX.sym(n) for n in LEG_INPUTS]
-    out = leg_equations(kind, *args)
+    names, args, law = _law_inputs(kind, LEG_INPUTS)
+    out = leg_equations(kind, *args[:len(LEG_INPUTS)], law=law)
     return ca.Function(f"leg_{kind.tag}", args, [out[k] for k in LEG_OUTPUTS],
-                       list(LEG_INPUTS), list(LEG_OUTPUTS))
+                       names, list(LEG_OUTPUTS))
 
 
-def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0) -> dict:
+def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0, law=None) -> dict:
     """Evaluate the leg block on floats; returns a dict of floats (``LEG_OUTPUTS``)."""
-    vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu)
+    extra = () if kind.law is None else (list(law),)
+    vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu, *extra)
     return {k: float(v) for k, v in zip(LEG_OUTPUTS, vals)}
 
 
@@ -286,7 +367,7 @@ def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
 
 def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
                 ea: float | None, mu: float, X: float, Z: float = 0.0,
-                n: int = 101) -> dict:
+                n: int = 101, law: NumericLaw | None = None) -> dict:
     """Points and tension along a solved leg, in its vertical plane, from the anchor.
 
     Parameters
@@ -301,6 +382,8 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
         chord of a weightless line.
     n : int
         Number of points.
+    law : NumericLaw, optional
+        The line's stretch law when it is not Hooke's (``ea`` is then unused).
 
     Returns
     -------
@@ -313,9 +396,11 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
     With ``T_v(s)`` the vertical tension at arc length s, the suspended part follows
     ``x = (H/w)[asinh(T_v/H) - asinh(T_v0/H)] + H s/EA`` and
     ``z = [sqrt(H^2+T_v^2) - sqrt(H^2+T_v0^2)]/w + (T_v0 s + w s^2/2)/EA``
-    (Merkin 1980, seed 004, section 2.3, integrated from the lowest suspended point).
+    (Merkin 1980, seed 004, section 2.3, integrated from the lowest suspended point); with
+    another stretch law the terms in ``1/EA`` become ``(H/w)[Psi(T_v) - Psi(T_v0)]`` and
+    ``[E(T) - E(T_0)]/w`` (:mod:`moorsolve.physics.stretch`).
     """
-    c = 1.0 / ea if ea else 0.0
+    st = _ProfileStretch(ea, law)
     s = np.linspace(0.0, L, n)
     if kind.neutral:
         # Straight along the chord when taut; a loose weightless line has no definite
@@ -324,7 +409,7 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
         return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
     VA = V - w * L
     if not kind.contact or VA >= 0:
-        return _hanging_profile(s, H, VA, w, c)
+        return _hanging_profile(s, H, VA, w, st)
     LB = L - V / w
     grounded = s <= LB
     Tv = np.where(grounded, 0.0, w * (s - LB))
@@ -332,34 +417,56 @@ def leg_profile(kind: LegKind, *, H: float, V: float, L: float, w: float,
     # Tension on the seabed: H at touchdown, decaying by friction toward the anchor.
     Tg = np.maximum(H - mu * w * (LB - sg), 0.0) if mu > 0 else np.full_like(s, H)
     if H > 0:
-        stretch_g = _grounded_stretch(H, w, mu, LB, sg, c)
-        x_td = sg + stretch_g
-        xs = (H / w) * np.arcsinh(Tv / H) + H * (s - sg) * c
-        zs = (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
-        x_touch = LB + _grounded_stretch(H, w, mu, LB, np.array([LB]), c)[0]
+        # Where the seabed tension starts to rise (friction may use it up before the anchor).
+        s0 = max(LB - H / (mu * w), 0.0) if mu > 0 else 0.0
+        T_anchor = max(H - mu * w * LB, 0.0) if mu > 0 else H
+        x_td = sg + _laid_stretch(st, s0, T_anchor, sg, Tg)
+        T = np.hypot(H, Tv)
+        xs = (H / w) * (np.arcsinh(Tv / H) + st.psi(H, Tv))
+        zs = (T - H) / w + (st.energy(T) - st.energy(H)) / w
+        x_touch = LB + _laid_stretch(st, s0, T_anchor, np.array([LB]), np.array([H]))[0]
         x = np.where(grounded, x_td, x_touch + xs)
         z = np.where(grounded, 0.0, zs)
-        tension = np.where(grounded, Tg, np.hypot(H, Tv))
+        tension = np.where(grounded, Tg, T)
     else:
         # Slack: the hanging part is vertical under the fairlead, the rest lies loose
         # (buckled) between anchor and the fairlead's foot: shown straight along the seabed.
         x = np.where(grounded, np.minimum(sg, X), X)
-        z = np.where(grounded, 0.0, Tv / w + Tv**2 / (2 * w) * c)
+        z = np.where(grounded, 0.0, (Tv + st.energy(Tv)) / w)
         tension = np.where(grounded, 0.0, Tv)
     return dict(s=s, x=x, z=z, tension=tension)
 
 
-def _grounded_stretch(H, w, mu, LB, sg, c):
-    """Elastic stretch accumulated from the anchor to arc length ``sg`` on the seabed."""
-    if c == 0:
-        return np.zeros_like(sg)
-    if mu <= 0:
-        return H * sg * c
-    # T(s) = max(H - mu w (LB - s), 0); integrate T/EA from 0 to sg.
-    s0 = max(LB - H / (mu * w), 0.0)            # where the tension starts to rise
-    a = np.clip(sg, s0, None)
-    integral = np.where(sg > s0, (H - mu * w * LB) * (a - s0) + mu * w * (a**2 - s0**2) / 2, 0.0)
-    return integral * c
+class _ProfileStretch:
+    """Stretch terms of a solved line on numpy arrays: Hooke's (compliance ``1/ea``, 0 when
+    inextensible) or a :class:`~moorsolve.physics.stretch.NumericLaw`'s."""
+
+    def __init__(self, ea, law):
+        self.c = 1.0 / ea if ea else 0.0
+        self.law = law
+
+    def strain(self, T):
+        return self.law.strain(T) if self.law is not None else self.c * np.asarray(T)
+
+    def energy(self, T):
+        return self.law.energy(T) if self.law is not None else self.c * np.square(T) / 2
+
+    def mean(self, a, b):
+        return self.law.mean(a, b) if self.law is not None else self.c * (a + b) / 2
+
+    def psi(self, H, Tv):
+        return self.law.horizontal(H, Tv) if self.law is not None else self.c * np.asarray(Tv)
+
+    def bound(self):
+        """The law as a bound :class:`~moorsolve.physics.stretch.Law` (None for Hooke)."""
+        return None if self.law is None else Law(self.law.model, self.law.params)
+
+
+def _laid_stretch(st, s0, T_start, sg, T_end):
+    """Stretch from the anchor to arc length ``sg`` of line lying on the seabed: unloaded up
+    to ``s0``, then the tension runs linearly from ``T_start`` to ``T_end`` at ``sg``."""
+    loaded = np.maximum(sg - s0, 0.0)
+    return loaded * st.mean(T_start, np.maximum(T_end, 0.0))
 
 
 # ---- segments of a multi-segment leg ----------------------------------------------------
@@ -378,7 +485,7 @@ LIFTED_INPUTS = ("X", "Z", "h", "u", "V", "L", "w", "ea_inv", "mu")
 SEGMENT_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x", "descent_x")
 
 
-def descent_force(H, h, w, ea_inv):
+def descent_force(H, h, w, ea_inv, law=None):
     """Vertical force at a lifted end whose line runs down to touch a flat seabed.
 
     A line that leaves its lower end (``h`` above the seabed) downward reaches the seabed
@@ -392,7 +499,14 @@ def descent_force(H, h, w, ea_inv):
     With ``d = w h (w h + 2 H)``, ``a = w h + H`` and ``c = 1/EA``:
     ``t = 2 d / (1 + a c + sqrt(1 + 2 a c + c^2 H^2))``, which is ``d`` when ``c = 0``
     (Merkin 1980, seed 004, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
+    With another stretch law ``law`` (a bound :class:`~moorsolve.physics.stretch.Law`) the
+    tension gain ``delta = T_1 - H`` solves ``delta (1 + mean_strain(H, H + delta)) = w h``
+    (:meth:`~moorsolve.physics.stretch.Law.descent`) and ``t = delta (delta + 2 H)``.
     """
+    if law is not None:
+        delta = law.descent(H, w * h)
+        t = delta * (delta + 2 * H)
+        return -t / ca.sqrt(ca.fmax(t, _T_FLOOR))
     d = w * h * (w * h + 2 * H)
     a = w * h + H
     c = ea_inv
@@ -406,7 +520,7 @@ def _hyp(a, b):
 
 
 def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
-                             friction: bool = False):
+                             friction: bool = False, model=None, law=None):
     """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
 
     The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
@@ -423,7 +537,9 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
     1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
     ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
-    decays toward the lower end as in :func:`leg_equations`.
+    decays toward the lower end as in :func:`leg_equations`. A stretch law other than
+    Hooke's (``model``, a :class:`~moorsolve.physics.stretch.StretchModel`, with parameters
+    ``law``) enters as in :func:`leg_equations`.
 
     Returns
     -------
@@ -435,9 +551,10 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     """
     H = ca.fmax(u, 0)
     Hg = ca.fmax(H, _H_FLOOR)
-    c = ea_inv if elastic else 0
+    bound = _bind(_Kind(model), law) if elastic else None
+    c = ea_inv if elastic and bound is None else 0
     VA = V - w * L
-    V1 = descent_force(H, h, w, c)
+    V1 = descent_force(H, h, w, c, bound)
     Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
     Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
     s1 = -V1 / w
@@ -446,12 +563,22 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     x_rise = (H / w) * ca.asinh(V / Hg) + H * (V / w) * c
     Xt = x1 + LB * (1 + H * c) + x_rise
     Zt = -h + ca.sign(V) * (_hyp(H, V) - _hyp(H, 0)) / w + c * V * ca.fabs(V) / (2 * w)
+    if bound is not None:
+        psi_V, psi_VA, psi_1 = bound.horizontal(Hg, V, VA, -V1)
+        Xs = Xs + (H / w) * (psi_V - psi_VA)
+        Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
+        x1 = x1 + (H / w) * psi_1
+        x_rise = x_rise + (H / w) * psi_V
+        Zt = -h + (Zt + h) * (1 + bound.mean(_hyp(H, 0), _hyp(H, V)))
     HA_t = H
     if friction:
         excess = LB - H / (mu * w)
-        if elastic:
+        if elastic and bound is None:
             Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
         HA_t = ca.fmax(H - mu * w * LB, 0)
+    if bound is not None:
+        Xt = x1 + LB + _ground_stretch(bound, H, LB, HA_t, mu * w if friction else None) \
+            + x_rise
     loose = ca.fmax(-u, 0) / w
     suspended = VA >= V1
     return dict(
@@ -465,76 +592,103 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     )
 
 
-def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
+def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None, law=None):
     """A weightless segment inside a multi-segment leg: straight, ``H = max(u, 0)``.
 
     Its tension ``T = sqrt(H^2 + V^2)`` is the same at both ends and its direction is the
-    chord's: ``X = H L (1/T + 1/EA)``, ``Z = V L (1/T + 1/EA)``. With ``H = 0`` it hangs
-    vertical under the joint loads. (A weightless segment with no tension at all has no
-    definite shape; the model does not represent it.)
+    chord's: ``X = H L (1/T + 1/EA)``, ``Z = V L (1/T + 1/EA)``; with another stretch law
+    (``model`` and its parameters ``law``) ``1/EA`` becomes ``eps(T)/T``. With ``H = 0`` it
+    hangs vertical under the joint loads. (A weightless segment with no tension at all has
+    no definite shape; the model does not represent it.)
     """
     H = ca.fmax(u, 0)
     T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
-    k = L * (1 / T + (ea_inv if elastic else 0))
+    bound = _bind(_Kind(model), law) if elastic else None
+    if bound is not None:
+        k = L * (1 + bound.strain(T)) / T
+    else:
+        k = L * (1 / T + (ea_inv if elastic else 0))
     return dict(rX=H * k - X, rZ=V * k - Z, H=H, VF=V, HA=H, VA=V, grounded=0 * H,
                 suspended_x=X, descent_x=0 * H)
 
 
+@dataclass(frozen=True)
+class _Kind:
+    """The stretch law of a block that has no kind of its own (segments, sloped legs)."""
+
+    law: Optional[StretchModel] = None
+
+
+def _law_tag(elastic: bool, model) -> str:
+    return ("elastic" if elastic else "inextensible") + (
+        f"_{model.tag}" if elastic and model is not None else "")
+
+
 @lru_cache(maxsize=None)
-def lifted_segment_function(elastic: bool, friction: bool = False) -> ca.Function:
-    """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
-    args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
-    out = lifted_segment_equations(elastic, *args, friction=friction)
-    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+def lifted_segment_function(elastic: bool, friction: bool = False,
+                            model: Optional[StretchModel] = None) -> ca.Function:
+    """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``,
+    and ``law`` for a stretch law ``model`` other than Hooke's)."""
+    names, args, law = _law_inputs(_Kind(model if elastic else None), LIFTED_INPUTS)
+    out = lifted_segment_equations(elastic, *args[:len(LIFTED_INPUTS)], friction=friction,
+                                   model=model, law=law)
+    tag = _law_tag(elastic, model) + ("_friction" if friction else "")
     return ca.Function(f"segment_lifted_{tag}", args,
-                       [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
-                       list(SEGMENT_OUTPUTS))
+                       [out[k] for k in SEGMENT_OUTPUTS], names, list(SEGMENT_OUTPUTS))
+
+
+STRAIGHT_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv")
 
 
 @lru_cache(maxsize=None)
-def straight_segment_function(elastic: bool) -> ca.Function:
+def straight_segment_function(elastic: bool,
+                              model: Optional[StretchModel] = None) -> ca.Function:
     """:func:`straight_segment_equations` as a ``casadi.Function``."""
-    names = ("X", "Z", "u", "V", "L", "ea_inv")
-    args = [ca.SX.sym(n) for n in names]
-    out = straight_segment_equations(elastic, *args)
-    return ca.Function(f"segment_straight_{'elastic' if elastic else 'inextensible'}", args,
-                       [out[k] for k in SEGMENT_OUTPUTS], list(names), list(SEGMENT_OUTPUTS))
+    names, args, law = _law_inputs(_Kind(model if elastic else None), STRAIGHT_INPUTS)
+    out = straight_segment_equations(elastic, *args[:len(STRAIGHT_INPUTS)], model=model,
+                                     law=law)
+    return ca.Function(f"segment_straight_{_law_tag(elastic, model)}", args,
+                       [out[k] for k in SEGMENT_OUTPUTS], names, list(SEGMENT_OUTPUTS))
 
 
 def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None, h: float,
-                    X: float, Z: float, n: int = 51) -> dict:
+                    X: float, Z: float, n: int = 51, law: NumericLaw | None = None) -> dict:
     """Points and tension along one segment from its lower end, in the leg's plane.
 
     Covers every regime of :func:`lifted_segment_equations` (``h`` may be 0) and of a
     suspended or weightless segment (``w <= 0``); see :func:`leg_profile` for the output.
     The vertical tension is ``T_v(s) = V_A + w s`` on a suspended segment; on a two-sided
     touchdown it runs from ``V1`` to 0 on the descent, is 0 on the seabed and rises from 0.
+    ``law``: the stretch law when it is not Hooke's.
     """
-    c = 1.0 / ea if ea else 0.0
+    st = _ProfileStretch(ea, law)
     s = np.linspace(0.0, L, n)
     if w == 0:
         frac = s / L
         return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
     VA = V - w * L
-    V1 = float(descent_force(H, h, w, c)) if w > 0 else -np.inf
+    V1 = float(descent_force(H, h, w, st.c, st.bound())) if w > 0 else -np.inf
     if VA >= V1:
-        return _hanging_profile(s, H, VA, w, c)
+        return _hanging_profile(s, H, VA, w, st)
     s1 = -V1 / w
     LB = L - s1 - V / w
     s2 = s1 + LB
     Tv = np.where(s < s1, V1 + w * s, np.where(s <= s2, 0.0, w * (s - s2)))
+    T, T1 = np.hypot(H, Tv), math.hypot(H, V1)
     if H > 0:
-        x_desc = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(V1 / H)) + H * s * c
-        x1 = (H / w) * np.arcsinh(-V1 / H) + H * s1 * c
-        x_ground = x1 + (s - s1) * (1 + H * c)
-        x2 = x1 + LB * (1 + H * c)
-        x_rise = x2 + (H / w) * np.arcsinh(Tv / H) + H * (s - s2) * c
+        x_desc = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(V1 / H)
+                            + st.psi(H, Tv) - st.psi(H, V1))
+        x1 = (H / w) * (np.arcsinh(-V1 / H) + st.psi(H, -V1))
+        eps_H = float(st.strain(H))
+        x_ground = x1 + (s - s1) * (1 + eps_H)
+        x2 = x1 + LB * (1 + eps_H)
+        x_rise = x2 + (H / w) * (np.arcsinh(Tv / H) + st.psi(H, Tv))
     else:
         x_desc = np.zeros_like(s)
         x_ground = np.minimum(s - s1, X)
         x_rise = np.full_like(s, X)
-    z_desc = (np.hypot(H, Tv) - np.hypot(H, V1)) / w + (V1 * s + w * s**2 / 2) * c
-    z_rise = -h + (np.hypot(H, Tv) - H) / w + Tv**2 / (2 * w) * c
+    z_desc = (T - T1) / w + (st.energy(T) - st.energy(T1)) / w
+    z_rise = -h + (T - H) / w + (st.energy(T) - st.energy(H)) / w
     x = np.where(s < s1, x_desc, np.where(s <= s2, x_ground, x_rise))
     z = np.where(s < s1, z_desc, np.where(s <= s2, -h, z_rise))
     return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))
@@ -545,7 +699,8 @@ def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
 SLOPED_INPUTS = LEG_INPUTS + ("t",)
 
 
-def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv, mu, t):
+def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv, mu, t,
+                         model=None, law=None):
     """A sinking leg whose anchor is on a seabed of slope ``t = tan(theta)`` in its plane.
 
     ``t`` is the seabed's rise per metre along the leg's horizontal direction (anchor toward
@@ -575,13 +730,17 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
         Z_s = [sqrt(H^2+V^2) - H sqrt(1+t^2)]/w + (V^2 - H^2 t^2)/(2 w EA)
 
     The grounded part adds ``(L_B + stretch)(cos, sin)(theta)`` with the stretch
-    ``int T/EA ds`` over the slope. With ``t = 0`` this is :func:`leg_equations`.
+    ``int T/EA ds`` over the slope. With ``t = 0`` this is :func:`leg_equations`. Another
+    stretch law (``model`` with parameters ``law``) enters as there: the suspended part
+    from ``T_v = H t``, the grounded part the loaded length times the mean strain between
+    the anchor's and the touchdown's tension.
     The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
     the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
     """
     H = ca.fmax(u, 0)
     Hg = ca.fmax(H, _H_FLOOR)
-    c = ea_inv if elastic else 0
+    bound = _bind(_Kind(model), law) if elastic else None
+    c = ea_inv if elastic and bound is None else 0
     sec = ca.sqrt(1 + t**2)
     cos_t, sin_t = 1 / sec, t / sec
     VA = V - w * L
@@ -596,9 +755,20 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     # Rise of the suspended part; below V = Vtd (a negative suspended length, outside the
     # regime) a monotone continuation, so that no false root appears there (for H = 0 it
     # is the sgn(V) form of the leg block).
-    z_susp = ca.if_else(V >= Vtd,
-                        (_hyp(H, V) - _hyp(H, Vtd)) / w + c * (V**2 - Vtd**2) / (2 * w),
-                        (V - Vtd) / w + c * (V * ca.fabs(V) - Vtd * ca.fabs(Vtd)) / (2 * w))
+    if bound is None:
+        rise = (_hyp(H, V) - _hyp(H, Vtd)) / w + c * (V**2 - Vtd**2) / (2 * w)
+        below = (V - Vtd) / w + c * (V * ca.fabs(V) - Vtd * ca.fabs(Vtd)) / (2 * w)
+    else:
+        psi_V, psi_VA, psi_td = bound.horizontal(Hg, V, VA, Vtd)
+        Xs = Xs + (H / w) * (psi_V - psi_VA)
+        Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
+        x_susp = x_susp + (H / w) * (psi_V - psi_td)
+        rise = (_hyp(H, V) - _hyp(H, Vtd)) / w * (1 + bound.mean(_hyp(H, Vtd), _hyp(H, V)))
+
+        def signed_energy(v):
+            return ca.sign(v) * bound.energy(ca.fabs(v))
+        below = (V - Vtd + signed_energy(V) - signed_energy(Vtd)) / w
+    z_susp = ca.if_else(V >= Vtd, rise, below)
     k = w * (sin_t + (mu * cos_t if friction else 0))
     T_td = H * sec
     TA_raw = T_td - k * LB
@@ -606,7 +776,10 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
         # Stretch of the grounded part: the tension is max(TA_raw + k s, 0) along it.
         k_pos = ca.fmax(k, 1e-300)
         s0 = ca.if_else(k > 0, ca.fmin(ca.fmax(-TA_raw / k_pos, 0), LB), 0)
-        ground_stretch = c * (TA_raw * (LB - s0) + k * (LB**2 - s0**2) / 2)
+        if bound is None:
+            ground_stretch = c * (TA_raw * (LB - s0) + k * (LB**2 - s0**2) / 2)
+        else:
+            ground_stretch = (LB - s0) * bound.mean(ca.fmax(TA_raw, 0), T_td)
     else:
         ground_stretch = 0
     on_ground = LB - loose + ground_stretch
@@ -626,44 +799,45 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
 
 
 @lru_cache(maxsize=None)
-def sloped_leg_function(elastic: bool, friction: bool) -> ca.Function:
-    """:func:`sloped_leg_equations` as a ``casadi.Function`` (inputs ``SLOPED_INPUTS``)."""
-    args = [ca.SX.sym(n) for n in SLOPED_INPUTS]
-    out = sloped_leg_equations(elastic, friction, *args)
-    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
+def sloped_leg_function(elastic: bool, friction: bool,
+                        model: Optional[StretchModel] = None) -> ca.Function:
+    """:func:`sloped_leg_equations` as a ``casadi.Function`` (inputs ``SLOPED_INPUTS``,
+    and ``law`` for a stretch law ``model`` other than Hooke's)."""
+    names, args, law = _law_inputs(_Kind(model if elastic else None), SLOPED_INPUTS)
+    out = sloped_leg_equations(elastic, friction, *args[:len(SLOPED_INPUTS)], model=model,
+                               law=law)
+    tag = _law_tag(elastic, model) + ("_friction" if friction else "")
     return ca.Function(f"leg_sloped_{tag}", args, [out[k] for k in LEG_OUTPUTS],
-                       list(SLOPED_INPUTS), list(LEG_OUTPUTS))
+                       names, list(LEG_OUTPUTS))
 
 
 def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
-                       mu: float, t: float, X: float, Z: float, n: int = 101) -> dict:
+                       mu: float, t: float, X: float, Z: float, n: int = 101,
+                       law: NumericLaw | None = None) -> dict:
     """Points and tension along a solved leg on a sloped seabed (see :func:`leg_profile`)."""
-    c = 1.0 / ea if ea else 0.0
+    st = _ProfileStretch(ea, law)
     s = np.linspace(0.0, L, n)
     sec = np.sqrt(1 + t * t)
     cos_t, sin_t = 1 / sec, t / sec
     VA = V - w * L
     if VA >= H * t:
-        return _hanging_profile(s, H, VA, w, c)
+        return _hanging_profile(s, H, VA, w, st)
     LB = L - (V - H * t) / w
     k = w * (sin_t + mu * cos_t)
     TA_raw = H * sec - k * LB
     sg = np.minimum(s, LB)
     Tg = np.maximum(TA_raw + k * sg, 0.0)
-    if c:
-        # Cumulative stretch along the slope, by the trapezoid rule on a fine grid.
-        fine = np.linspace(0.0, LB, 2001)
-        Tf = np.maximum(TA_raw + k * fine, 0.0)
-        cum = np.concatenate([[0.0], np.cumsum((Tf[1:] + Tf[:-1]) / 2 * np.diff(fine))]) * c
-        stretch = np.interp(sg, fine, cum)
-        stretch_td = cum[-1]
-    else:
-        stretch = np.zeros_like(s)
-        stretch_td = 0.0
+    # Stretch along the slope: unloaded up to s0 (where the tension has fallen to zero),
+    # then the tension runs linearly from max(TA_raw, 0).
+    s0 = min(max(-TA_raw / k, 0.0), LB) if k > 0 else 0.0
+    stretch = _laid_stretch(st, s0, max(TA_raw, 0.0), sg, Tg)
+    stretch_td = float(_laid_stretch(st, s0, max(TA_raw, 0.0), np.array([LB]),
+                                       np.array([H * sec]))[0])
     if H > 0:
         Tv = H * t + w * (s - LB)
-        xs = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(t)) + H * (s - LB) * c
-        zs = (np.hypot(H, Tv) - H * sec) / w + (Tv**2 - (H * t) ** 2) / (2 * w) * c
+        T = np.hypot(H, Tv)
+        xs = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(t) + st.psi(H, Tv) - st.psi(H, H * t))
+        zs = (T - H * sec) / w + (st.energy(T) - st.energy(H * sec)) / w
         ground = s <= LB
         x = np.where(ground, (sg + stretch) * cos_t, (LB + stretch_td) * cos_t + xs)
         z = np.where(ground, (sg + stretch) * sin_t, (LB + stretch_td) * sin_t + zs)
@@ -675,20 +849,22 @@ def sloped_leg_profile(*, H: float, V: float, L: float, w: float, ea: float | No
         along = np.minimum(sg, foot)
         hang = np.maximum(s - LB, 0.0)
         x = np.where(ground, along * cos_t, X)
-        z = np.where(ground, along * sin_t, X * t + hang + w * hang**2 / 2 * c)
+        z = np.where(ground, along * sin_t, X * t + hang + st.energy(w * hang) / w)
         tension = np.where(ground, 0.0, w * hang)
     return dict(s=s, x=x, z=z, tension=tension)
 
 
-def _hanging_profile(s, H, VA, w, c) -> dict:
+def _hanging_profile(s, H, VA, w, st) -> dict:
     """Points of a fully suspended elastic catenary from its lower end, where the vertical
-    force is ``VA``; ``c`` is the compliance 1/EA. ``H = 0`` is a vertical line, which
-    folds where the vertical force changes sign (the integral of its sign)."""
+    force is ``VA``; ``st`` its stretch (:class:`_ProfileStretch`). ``H = 0`` is a vertical
+    line, which folds where the vertical force changes sign (the integral of its sign)."""
     Tv = VA + w * s
+    T, T0 = np.hypot(H, Tv), math.hypot(H, VA)
+    stretch_z = (st.energy(T) - st.energy(T0)) / w
     if H > 0:
-        x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H)) + H * s * c
-        z = (np.hypot(H, Tv) - np.hypot(H, VA)) / w + (VA * s + w * s**2 / 2) * c
+        x = (H / w) * (np.arcsinh(Tv / H) - np.arcsinh(VA / H) + st.psi(H, Tv) - st.psi(H, VA))
+        z = (T - T0) / w + stretch_z
     else:
         x = np.zeros_like(s)
-        z = (np.abs(Tv) - abs(VA)) / w * np.sign(Tv) + (VA * s + w * s**2 / 2) * c
+        z = (np.abs(Tv) - abs(VA)) / w * np.sign(Tv) + stretch_z
     return dict(s=s, x=x, z=z, tension=np.hypot(H, Tv))

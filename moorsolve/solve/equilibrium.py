@@ -35,6 +35,7 @@ from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
                       EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
                       leg_parameters, parameter_vector, segment_parameters, structure_key)
 from .result import Certificate, LegResult, Result
+from .stretch_params import numeric_law, start_ea
 
 log = logging.getLogger(__name__)
 
@@ -107,7 +108,7 @@ def _compute_rest_leg_states(case: Case):
             continue
         lt = leg.line_type
         states.append(initial_state(leg_kind(case, leg), X, Z, leg.length,
-                                    lt.weight_in_water, lt.ea))
+                                    lt.weight_in_water, start_ea(lt)))
     return states
 
 
@@ -436,10 +437,10 @@ def _diagnose(problem, case, result) -> str:
     for leg, lr in zip(case.legs, result.legs):
         lt = leg.line_type
         chord = math.dist(lr.anchor, lr.fairlead)
-        if lt.ea is None and chord > leg.length * (1 + 1e-9):
+        if not lt.elastic and chord > leg.length * (1 + 1e-9):
             reasons.append(f"leg {leg.name} cannot reach: anchor-fairlead distance "
                            f"{chord:.2f} m exceeds its inextensible length {leg.length:.2f} m")
-        elif lt.ea is None and chord > leg.length * (1 - 1e-4):
+        elif not lt.elastic and chord > leg.length * (1 - 1e-4):
             reasons.append(f"leg {leg.name} is pulled straight (chord {chord:.3f} m of "
                            f"{leg.length:.3f} m): an inextensible line would need an "
                            f"unbounded tension; give the line type an ea")
@@ -497,11 +498,12 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
             slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
             prof = sloped_leg_profile(H=H, V=VF, L=leg.length, w=lt.weight_in_water, ea=lt.ea,
                                       mu=env.seabed.friction if kind.friction else 0.0,
-                                      t=slope, X=X, Z=Z, n=_PROFILE_POINTS)
+                                      t=slope, X=X, Z=Z, n=_PROFILE_POINTS,
+                                      law=numeric_law(lt))
         else:
             prof = leg_profile(kind, H=H, V=VF, L=leg.length, w=lt.weight_in_water,
                                ea=lt.ea, mu=env.seabed.friction if kind.friction else 0.0,
-                               X=X, Z=Z, n=_PROFILE_POINTS)
+                               X=X, Z=Z, n=_PROFILE_POINTS, law=numeric_law(lt))
         profile = {"x_m": anchor[0] + ux * prof["x"], "y_m": anchor[1] + uy * prof["x"],
                    "z_m": anchor[2] + prof["z"], "tension_N": prof["tension"]}
         if lt.sealed and lt.diameter:
@@ -582,22 +584,23 @@ def _multi_leg_result(problem, case, leg, kind, row, rows, u, p, i) -> LegResult
     td = None
     for k, (seg, sk, r) in enumerate(zip(leg.segments, kind.segments, rows)):
         lt = seg.line_type
+        law = numeric_law(lt)
         if sk.friction:
             prof = leg_profile(LegKind(elastic=sk.elastic, contact=True, friction=True),
                                H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                ea=lt.ea, mu=env.seabed.friction, X=r["X"], Z=r["Z"],
-                               n=_PROFILE_POINTS)
+                               n=_PROFILE_POINTS, law=law)
         elif k == len(rows) - 1 and kind.reversed_top:
             # Solved from the fairlead end: draw it from there, then turn it round.
             back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water,
                                    ea=lt.ea, h=max(leg.fairlead[2] + env.depth, 0.0),
-                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
             prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
                     "tension": back["tension"][::-1]}
         else:
             prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                    ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
-                                   n=_PROFILE_POINTS)
+                                   n=_PROFILE_POINTS, law=law)
         sl = slice(1, None) if k else slice(None)
         parts["x"].append(r["lower_xi"] + prof["x"][sl])
         parts["z"].append(r["lower_z"] + prof["z"][sl])

@@ -56,6 +56,8 @@ from ..model import DEGREES_OF_FREEDOM, Case, Leg
 from . import body_loads as body_load_models
 from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
                                 sloped_leg_function, straight_segment_function)
+from ..physics.stretch import StretchModel
+from .stretch_params import law_model, split_stretch_parameters, stretch_parameters
 
 #: Environment parameter layout (angles in radians).
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
@@ -100,6 +102,7 @@ class SegmentKind:
     elastic: bool
     leg: Optional[LegKind] = None
     friction: bool = False
+    law: Optional[StretchModel] = None
 
 
 @dataclass(frozen=True)
@@ -160,6 +163,7 @@ class DiscreteLegKind:
     elastic_segments: tuple
     profile_rows: int = 0
     side: bool = False
+    laws: tuple = ()
 
     @property
     def elastic(self) -> bool:
@@ -201,7 +205,8 @@ def leg_kind(case: Case, leg: Leg):
             elastic_segments=tuple(seg.line_type.elastic for seg in leg.segments),
             profile_rows=len(profile) if profile else 0,
             side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
-                     for seg in leg.segments))
+                     for seg in leg.segments),
+            laws=tuple(law_model(seg.line_type) for seg in leg.segments))
     if leg.multi_segment:
         return _multi_leg_kind(case, leg)
     lt = leg.line_type
@@ -209,7 +214,8 @@ def leg_kind(case: Case, leg: Leg):
     contact = _on_seabed(case, leg) and w > 0
     return LegKind(elastic=lt.elastic, contact=contact,
                    friction=contact and case.environment.seabed.friction > 0,
-                   neutral=(w == 0), sloped=contact and case.environment.seabed.sloped)
+                   neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
+                   law=law_model(lt))
 
 
 def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
@@ -217,14 +223,16 @@ def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
     for k, seg in enumerate(leg.segments):
         lt = seg.line_type
         w = lt.weight_in_water
+        law = law_model(lt)
         if w == 0:
-            kinds.append(SegmentKind("straight", lt.elastic))
+            kinds.append(SegmentKind("straight", lt.elastic, law=law))
         elif w < 0:
-            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False)))
+            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False,
+                                                                 law=law), law=law))
         else:
             # Friction acts on the anchor segment's grounded length only (README).
             friction = k == 0 and _on_seabed(case, leg) and case.environment.seabed.friction > 0
-            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction))
+            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction, law=law))
     fairlead_on_seabed = leg.fairlead[2] <= -case.environment.depth + 1e-9
     return MultiLegKind(tuple(kinds), reversed_top=fairlead_on_seabed and kinds[-1].block
                         == "lifted")
@@ -298,9 +306,10 @@ def segment_parameters(case: Case) -> np.ndarray:
 
 
 def parameter_vector(case: Case, load_factor: float = 1.0) -> np.ndarray:
-    """The full parameter vector ``p`` of ``case``'s problem: environment, legs, segments."""
+    """The full parameter vector ``p`` of ``case``'s problem: environment, legs, segments,
+    stretch laws (:mod:`.stretch_params`)."""
     return np.concatenate([environment_parameters(case, load_factor), leg_parameters(case),
-                           segment_parameters(case)])
+                           segment_parameters(case), stretch_parameters(case)])
 
 
 class EquilibriumProblem:
@@ -400,7 +409,10 @@ class EquilibriumProblem:
         legp = ca.SX.sym("legp", len(LEG_PARAMS) * self.n_legs)
         n_seg_params = len(segment_parameters(case))
         segp = ca.SX.sym("segp", n_seg_params)
-        p = ca.vertcat(env, legp, segp)
+        lawp = ca.SX.sym("lawp", len(stretch_parameters(case)))
+        p = ca.vertcat(env, legp, segp, lawp)
+        # Stretch-law parameters per leg and segment (None: Hooke or inextensible).
+        self._laws = split_stretch_parameters(case, ca.vertsplit(lawp))
         self.n_p = p.numel()
         E = dict(zip(ENV_PARAMS, ca.vertsplit(env)))
         seg_values = ca.vertsplit(segp) if n_seg_params else []
@@ -464,10 +476,13 @@ class EquilibriumProblem:
                 u, V = x[iu], x[iu + 1]
                 args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"],
                             ea_inv=P["ea_inv"], mu=P["friction"])
+                if kind.law is not None:
+                    args["law"] = ca.vertcat(*self._laws[i][0])
                 if kind.sloped:
                     # The seabed's rise per metre along the leg, anchor toward fairlead.
                     args["t"] = (seabed["gradient_x"] * dx + seabed["gradient_y"] * dy) / X
-                    out = sloped_leg_function(kind.elastic, kind.friction).call(args)
+                    out = sloped_leg_function(kind.elastic, kind.friction,
+                                              kind.law).call(args)
                 else:
                     out = leg_function(kind).call(args)
                 scale = 1.0 / P["length"]
@@ -617,16 +632,18 @@ class EquilibriumProblem:
                 Zk = node_z[k] - P["fair_z"]
                 h = ca.fmax(P["fair_z"] - z_bed, 0)
             L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
+            law = {} if sk.law is None else {"law": ca.vertcat(*self._laws[i][k])}
             if sk.block == "leg":
                 o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
-                                                   ea_inv=c, mu=P["friction"]))
+                                                   ea_inv=c, mu=P["friction"], **law))
                 o["descent_x"] = 0 * u
             elif sk.block == "lifted":
-                o = lifted_segment_function(sk.elastic, sk.friction).call(dict(
-                    X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"]))
+                o = lifted_segment_function(sk.elastic, sk.friction, sk.law).call(dict(
+                    X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"],
+                    **law))
             else:
-                o = straight_segment_function(sk.elastic).call(dict(
-                    X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c))
+                o = straight_segment_function(sk.elastic, sk.law).call(dict(
+                    X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c, **law))
             if top:
                 res += [o["rX"] / L, o["rZ"] / L]
                 e = ca.vertcat(o["rX"], o["rZ"])
