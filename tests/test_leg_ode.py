@@ -157,12 +157,15 @@ def test_neutral_line_is_a_straight_stretched_bar(angle, T, L, ea):
 
 
 def _span_map(kind):
-    """(u, V, X, Z, L, w, ea_inv, mu) -> span residuals and their Jacobian in (u, V)."""
+    """(u, V, X, Z, L, w, ea_inv, mu) -> span residuals and their Jacobian in (u, V); a
+    kind with a stretch law (tests/test_stretch_laws.py) takes its parameters last."""
     args = {n: ca.SX.sym(n) for n in LEG_INPUTS}
+    if kind.law is not None:
+        args["law"] = ca.SX.sym("law", kind.law.n_params)
     f = leg_function(kind).call(args)
     r = ca.vertcat(f["rX"], f["rZ"])
     uv = ca.vertcat(args["u"], args["V"])
-    others = [args[n] for n in LEG_INPUTS if n not in ("u", "V")]
+    others = [v for n, v in args.items() if n not in ("u", "V")]
     return ca.Function("F", [uv, *others], [r, ca.jacobian(r, uv)])
 
 

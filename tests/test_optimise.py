@@ -228,7 +228,8 @@ def test_drag_anchor_no_uplift_closed_form():
 
 # ---- a small moored body: lengths and anchor distances, several active constraints -------
 
-def four_leg_case():
+def four_leg_case(line_type=None):
+    """Four legs of 290 m round a body; ``line_type`` (case-file data) replaces the chain."""
     legs = []
     for i, ang in enumerate((0, 90, 180, 270)):
         a = math.radians(ang)
@@ -238,15 +239,16 @@ def four_leg_case():
                      "segments": [{"type": "chain", "length": 290.0}]})
     return moorsolve.load_case({
         "name": "four legs", "environment": {"depth": 60.0},
-        "line_types": {"chain": {"weight_in_water": 1200.0, "ea": 6e8, "mbl": 6e6}},
+        "line_types": {"chain": line_type or {"weight_in_water": 1200.0, "ea": 6e8,
+                                              "mbl": 6e6}},
         "body": {"free": ["surge", "sway", "yaw"], "loads": {"force": [4e5, 1.5e5, 2e6]}},
         "legs": legs})
 
 
-@pytest.fixture(scope="module")
-def four_legs():
-    case = four_leg_case()
-    study = load_study({
+def four_leg_study(case):
+    """Cost of line and anchors; two length groups and the anchor radius; offset, grounded
+    length and safety factor limits over two storm headings and a calm."""
+    return load_study({
         "objective": "cost", "currency": "EUR",
         "line_types": {"chain": {"cost_per_length": 250}}, "anchor_cost": 40000,
         "variables": {
@@ -256,6 +258,12 @@ def four_legs():
         "limits": {"offset_limit": "6 m", "min_grounded_length": "15 m", "safety_factor": 2},
         "load_cases": [{"name": "storm", "headings": [0, 90]},
                        {"name": "calm", "set": {"body.loads.force": [0, 0, 0]}}]}, case)
+
+
+@pytest.fixture(scope="module")
+def four_legs():
+    case = four_leg_case()
+    study = four_leg_study(case)
     return case, study, optimise(case, study)
 
 

@@ -41,6 +41,7 @@ from pathlib import Path
 
 from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
+from .moordyn_curves import is_number, read_curve
 from .output_files import write_case_yaml
 
 __all__ = ["MoorDynError", "MoorDynFile", "read_moordyn", "moordyn_to_case_data",
@@ -348,17 +349,26 @@ def _line_types(md: MoorDynFile, gravity: float, rho: float):
             raise md.error(row.line, f"column 'Mass/m': {row.values[2]!r} must be >= 0")
         ea_token = row.values[3]
         cols = {}
-        if "|" in ea_token and not v1:
-            # Static and dynamic stiffness "EA_s|EA_d(|slope)": the static one is the statics'.
-            first = Row(row.line, [ea_token.split("|")[0]])
-            ea = _number(md, first, 0, "EA")
-            cols["ea"] = ea_token
-        else:
-            ea = _number(md, row, 3, "EA")
-        if not ea > 0:
-            raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
         weight = gravity * (mass - rho * math.pi * diameter ** 2 / 4.0)
-        types[name] = {"weight_in_water": weight, "ea": ea, "diameter": diameter}
+        static = ea_token.split("|")[0] if not v1 else ea_token
+        if not is_number(static):
+            # EA names a file of strain and tension (moorsolve.io.moordyn_curves).
+            stretch = read_curve(Path(md.path).parent, static,
+                                 lambda message, line=row.line: md.error(line, message))
+            cols["ea"] = ea_token
+            types[name] = {"weight_in_water": weight, "stretch": stretch, "diameter": diameter}
+        else:
+            if "|" in ea_token and not v1:
+                # Static and dynamic stiffness "EA_s|EA_d(|slope)": the static one is the
+                # statics'.
+                first = Row(row.line, [static])
+                ea = _number(md, first, 0, "EA")
+                cols["ea"] = ea_token
+            else:
+                ea = _number(md, row, 3, "EA")
+            if not ea > 0:
+                raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
+            types[name] = {"weight_in_water": weight, "ea": ea, "diameter": diameter}
         keys = (("ba", "can", "cat", "cdn", "cdt") if v1
                 else ("ba", "ei", "cd", "ca", "cdax", "caax", "cl", "df", "cf"))
         names = {"can": "ca", "cat": "caax", "cdn": "cd", "cdt": "cdax"}

@@ -271,6 +271,12 @@ LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
 LEG_INPUTS = ("X", "Z", "u", "V", "L", "w", "ea_inv", "mu")
 
 
+def _shared(outputs, law):
+    """A block's outputs with common subexpressions merged when it has a stretch law (the
+    law's pieces are picked at the same tension by several terms); Hooke's graph as built."""
+    return outputs if law is None else ca.cse(outputs)
+
+
 def _law_inputs(kind, names):
     """Input names and symbols of a block: ``names``, plus ``law`` for a non-Hooke line."""
     model = getattr(kind, "law", None)
@@ -291,7 +297,7 @@ def leg_function(kind: LegKind) -> ca.Function:
     """
     names, args, law = _law_inputs(kind, LEG_INPUTS)
     out = leg_equations(kind, *args[:len(LEG_INPUTS)], law=law)
-    return ca.Function(f"leg_{kind.tag}", args, [out[k] for k in LEG_OUTPUTS],
+    return ca.Function(f"leg_{kind.tag}", args, _shared([out[k] for k in LEG_OUTPUTS], law),
                        names, list(LEG_OUTPUTS))
 
 
@@ -457,9 +463,12 @@ class _ProfileStretch:
     def psi(self, H, Tv):
         return self.law.horizontal(H, Tv) if self.law is not None else self.c * np.asarray(Tv)
 
-    def bound(self):
-        """The law as a bound :class:`~moorsolve.physics.stretch.Law` (None for Hooke)."""
-        return None if self.law is None else Law(self.law.model, self.law.params)
+    def descent_force(self, H, h, w):
+        """:func:`descent_force` on floats."""
+        if self.law is None:
+            return float(descent_force(H, h, w, self.c))
+        delta = self.law.descent(H, w * h)
+        return -math.sqrt(delta * (delta + 2 * H))
 
 
 def _laid_stretch(st, s0, T_start, sg, T_end):
@@ -634,7 +643,8 @@ def lifted_segment_function(elastic: bool, friction: bool = False,
                                    model=model, law=law)
     tag = _law_tag(elastic, model) + ("_friction" if friction else "")
     return ca.Function(f"segment_lifted_{tag}", args,
-                       [out[k] for k in SEGMENT_OUTPUTS], names, list(SEGMENT_OUTPUTS))
+                       _shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
+                       list(SEGMENT_OUTPUTS))
 
 
 STRAIGHT_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv")
@@ -648,7 +658,8 @@ def straight_segment_function(elastic: bool,
     out = straight_segment_equations(elastic, *args[:len(STRAIGHT_INPUTS)], model=model,
                                      law=law)
     return ca.Function(f"segment_straight_{_law_tag(elastic, model)}", args,
-                       [out[k] for k in SEGMENT_OUTPUTS], names, list(SEGMENT_OUTPUTS))
+                       _shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
+                       list(SEGMENT_OUTPUTS))
 
 
 def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None, h: float,
@@ -667,7 +678,7 @@ def segment_profile(*, H: float, V: float, L: float, w: float, ea: float | None,
         frac = s / L
         return dict(s=s, x=frac * X, z=frac * Z, tension=np.full_like(s, np.hypot(H, V)))
     VA = V - w * L
-    V1 = float(descent_force(H, h, w, st.c, st.bound())) if w > 0 else -np.inf
+    V1 = st.descent_force(H, h, w) if w > 0 else -np.inf
     if VA >= V1:
         return _hanging_profile(s, H, VA, w, st)
     s1 = -V1 / w
@@ -807,7 +818,7 @@ def sloped_leg_function(elastic: bool, friction: bool,
     out = sloped_leg_equations(elastic, friction, *args[:len(SLOPED_INPUTS)], model=model,
                                law=law)
     tag = _law_tag(elastic, model) + ("_friction" if friction else "")
-    return ca.Function(f"leg_sloped_{tag}", args, [out[k] for k in LEG_OUTPUTS],
+    return ca.Function(f"leg_sloped_{tag}", args, _shared([out[k] for k in LEG_OUTPUTS], law),
                        names, list(LEG_OUTPUTS))
 
 

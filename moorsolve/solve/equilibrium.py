@@ -35,6 +35,7 @@ from .problem import (ENV_PARAMS, LEG_PARAMS, SEGMENT_COLUMNS, DiscreteLegKind,
                       EquilibriumProblem, MultiLegKind, _can_ground, discretised, leg_kind,
                       leg_parameters, parameter_vector, segment_parameters, structure_key)
 from .result import Certificate, LegResult, Result
+from .fibre import fibre_grounded, fibre_notes
 from .stretch_params import numeric_law, start_ea
 
 log = logging.getLogger(__name__)
@@ -534,6 +535,8 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
     legs = [dataclasses.replace(lr, fairlead_force=(float(table[i][12]), float(table[i][13]),
                                                     -lr.fairlead_vertical_N))
             for i, lr in enumerate(legs)]
+    legs = [dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, leg, lr))
+            for leg, lr in zip(case.legs, legs)]
     body = None
     if case.body is not None:
         body = {"x_m": q["surge"], "y_m": q["sway"], "yaw_deg": math.degrees(q["yaw"])}
@@ -561,6 +564,7 @@ def _build_result(problem, case, x, p, cert, certified, solver="ipopt",
                 notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
                              f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
                              "(a segment hanging down into a joint is outside the model)")
+    notes += fibre_notes(case, legs)
     # Clump weights are parameters: what they are depends on this case, not the structure.
     effects = list(problem.effects)
     clumps = [c.weight for leg in case.legs for c in leg.joint_clumps if c is not None]

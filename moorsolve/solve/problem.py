@@ -377,13 +377,15 @@ class EquilibriumProblem:
             effects.append("elastic")
         if not all(k.elastic for k in self.kinds):
             effects.append("inextensible")
+        types = [seg.line_type for leg in case.legs for seg in leg.segments]
+        if any(lt.stretch is not None for lt in types):
+            effects.append("nonlinear_stretch")
         if any(k.contact for k in self.kinds):
             effects.append("seabed_contact")
         if any(k.friction for k in self.kinds):
             effects.append("seabed_friction")
         if any(getattr(k, "sloped", False) for k in self.kinds):
             effects.append("sloped_seabed")
-        types = [seg.line_type for leg in case.legs for seg in leg.segments]
         if any(lt.weight_in_water < 0 for lt in types):
             effects.append("buoyant_line")
         if any(k.neutral for k in self.kinds) or any(

@@ -54,7 +54,8 @@ class LegResult:
     weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
     segment utilisation. ``fairlead_force`` is the force [N] the line exerts on its
     fairlead, global ``(Fx, Fy, Fz)``: along the leg's plane for an analytic leg, with a
-    sideways part for a line in a current.
+    sideways part for a line in a current. ``fibre_grounded_m`` is the length of fibre
+    rope lying on the seabed [m] (None for a leg without fibre rope).
     """
 
     name: str
@@ -78,6 +79,7 @@ class LegResult:
     segments: tuple = ()
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
+    fibre_grounded_m: Optional[float] = None
 
     @property
     def utilisation(self) -> Optional[float]:
@@ -113,6 +115,8 @@ class LegResult:
         }
         if self.fairlead_force is not None:
             d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
+        if self.fibre_grounded_m is not None:
+            d["fibre_grounded_length_m"] = self.fibre_grounded_m
         if self.segments:
             d["segments"] = [dict(s) for s in self.segments]
             d["joints"] = [dict(j) for j in self.joints]

@@ -26,6 +26,7 @@ from ..model import DEGREES_OF_FREEDOM, Body, BodyLoads, Case
 from ..solve.equilibrium import get_problem, solve
 from ..solve.problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
 from ..solve.result import Result
+from ..solve.stretch_params import baranov_n_column, stiffness_scale_column
 
 #: The three horizontal-plane degrees of freedom, in the order of every matrix here.
 DOFS = DEGREES_OF_FREEDOM
@@ -400,13 +401,18 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
             raise ValueError(f"{name}: the case has no seabed friction (0 builds none)")
         return col
     m = _TYPE_PATH.match(name)
+    if m and m.group(2) in ("stiffness_scale", "n"):
+        # The stretch law's parameters: every segment of the type (solve/stretch_params).
+        columns = {"stiffness_scale": stiffness_scale_column, "n": baranov_n_column}
+        return columns[m.group(2)](case, problem.n_p, m.group(1))
     if m:
         field = m.group(2)
         legs = [i for i, leg in enumerate(case.legs) if leg.line_type.name == m.group(1)]
         if not legs:
             raise ValueError(f"{name}: no leg uses line type {m.group(1)!r}")
         if field not in ("ea", "weight_in_water"):
-            raise ValueError(f"{name}: line-type parameters are ea and weight_in_water")
+            raise ValueError(f"{name}: line-type parameters are ea, weight_in_water, n "
+                             "(Baranov) and stiffness_scale")
         for i in legs:
             col += _parameter_column(case, problem, f"legs[{i}]." + (
                 "ea" if field == "ea" else "weight"))
@@ -417,7 +423,9 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         leg, field = case.legs[i], m.group(2)
         if field == "ea":
             if leg.line_type.ea is None:
-                raise ValueError(f"{name}: leg {leg.name}'s line is inextensible (no ea)")
+                what = ("follows a stretch law (use line_types[NAME].stiffness_scale)"
+                        if leg.line_type.stretch is not None else "is inextensible (no ea)")
+                raise ValueError(f"{name}: leg {leg.name}'s line {what}")
             col[leg_slot(i, "ea_inv")] = -1.0 / leg.line_type.ea ** 2
         elif field == "anchor_z" and problem.kinds[i].contact:
             raise ValueError(f"{name}: leg {leg.name}'s anchor lies on the seabed; raising "
@@ -429,7 +437,8 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         return col
     raise ValueError(
         f"parameter {name!r}: must be legs[NAME].FIELD with FIELD in "
-        f"{', '.join(_LEG_PARAMETERS)}, line_types[NAME].ea or .weight_in_water, "
+        f"{', '.join(_LEG_PARAMETERS)}, line_types[NAME].ea, .weight_in_water, .n or "
+        f".stiffness_scale, "
         f"{', '.join(_ENV_PARAMETERS)}, environment.seabed.friction or body.loads.force[0-2]")
 
 
@@ -466,7 +475,10 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
     parameters : str or sequence of str
         ``legs[NAME].length | ea | weight | anchor_x | anchor_y | anchor_z | fairlead_x |
         fairlead_y | fairlead_z`` (that leg's line only), ``line_types[NAME].ea`` and
-        ``.weight_in_water`` (every leg of the type), ``environment.wind.speed``,
+        ``.weight_in_water`` (every leg of the type), ``line_types[NAME].n`` (Baranov's
+        coefficient) and ``.stiffness_scale`` (per unit factor on the tension at every
+        strain: a stiffer rope; any stretch law, every segment of the type),
+        ``environment.wind.speed``,
         ``environment.current.speed``, ``environment.waves.hs`` and their
         ``toward_deg``, ``environment.seabed.friction``, ``body.loads.force[0|1|2]``.
 
