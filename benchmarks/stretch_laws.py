@@ -7,9 +7,12 @@ Scenes: the shipped FPU on three chain-polyester-chain legs
 polyester is, in turn: Hooke (EA the working curve's secant at the pretension), the
 case's 9-row table, a 30-row table of the same curve (MoorDyn's largest), and Baranov's law
 (n matched at the pretension). Timed, each after a warm-up that builds (and compiles) the
-problem: ``moorsolve.solve`` with IPOPT (the default) and with the compiled Newton fast
-path, the best of ``--repeats`` rounds; and the sweep kernel (Newton, one thread) over
-``--points`` headings of the environment, time per point (best of a fifth as many rounds).
+problem: the compiled Newton kernel alone from the rest state to the loaded equilibrium
+(``problem.newton().raw``: the solve proper); ``moorsolve.solve`` with IPOPT (the
+default) and with the compiled Newton fast path, each with the full Result (51-point
+profiles drawn through the law); the best of ``--repeats`` rounds; and the sweep (Newton,
+one thread) over ``--points`` headings of the environment, time per point (best of a fifth
+as many rounds).
 Each round times every law in turn, so that load from other work on a shared machine
 does not fall on one law only. Reported: the times and each
 law's ratio to Hooke. Results go to ``benchmarks/stretch_results.json``. Timings depend on
@@ -37,6 +40,8 @@ sys.path.insert(0, str(ROOT))
 
 import moorsolve  # noqa: E402
 from moorsolve.physics.stretch import NumericLaw, StretchModel  # noqa: E402
+from moorsolve.solve.equilibrium import get_problem, rest_point  # noqa: E402
+from moorsolve.solve.problem import parameter_vector  # noqa: E402
 
 CASE = ROOT / "cases" / "fpu_polyester_table.yaml"
 HEADINGS = ("environment.wind.toward_deg", "environment.current.toward_deg")
@@ -92,12 +97,21 @@ def measure(variants_data: dict, repeats: int, points: int) -> dict:
         moorsolve.solve(case)
         moorsolve.solve(case, solver="newton")
         moorsolve.sweep(case, grid, workers=1)
-    best = {name: {"ipopt_solve_s": np.inf, "newton_solve_s": np.inf,
+    best = {name: {"kernel_s": np.inf, "ipopt_solve_s": np.inf, "newton_solve_s": np.inf,
                    "sweep_point_s": np.inf} for name in cases}
+    kernels = {}
+    for name, case in cases.items():
+        problem = get_problem(case)
+        kernels[name] = (problem.newton(), rest_point(problem, case, 1e-9),
+                         parameter_vector(case, 1.0))
     converged = {}
     for round_ in range(repeats):
         for name, case in cases.items():
             row = best[name]
+            kernel, x0, p = kernels[name]
+            t0 = time.perf_counter()
+            kernel.raw(x0, p, 1e-9)
+            row["kernel_s"] = min(row["kernel_s"], time.perf_counter() - t0)
             for key, solver in (("ipopt_solve_s", "ipopt"), ("newton_solve_s", "newton")):
                 t0 = time.perf_counter()
                 moorsolve.solve(case, solver=solver)
@@ -128,14 +142,15 @@ def main(argv=None) -> int:
         rows = measure(variants(data), args.repeats, args.points)
         hooke = rows["hooke"]
         for row in rows.values():
-            for key in ("ipopt_solve_s", "newton_solve_s", "sweep_point_s"):
+            for key in ("kernel_s", "ipopt_solve_s", "newton_solve_s", "sweep_point_s"):
                 row[key[:-2] + "_ratio_to_hooke"] = row[key] / hooke[key]
         report["scenes"][scene] = rows
         print(f"\n{scene}")
-        print(f"{'law':<18}{'IPOPT ms':>10}{'ratio':>7}{'Newton ms':>11}{'ratio':>7}"
-              f"{'sweep us/pt':>13}{'ratio':>7}")
+        print(f"{'law':<18}{'kernel us':>10}{'ratio':>7}{'IPOPT ms':>10}{'ratio':>7}"
+              f"{'Newton ms':>11}{'ratio':>7}{'sweep us/pt':>13}{'ratio':>7}")
         for name, row in rows.items():
-            print(f"{name:<18}{1e3 * row['ipopt_solve_s']:10.2f}"
+            print(f"{name:<18}{1e6 * row['kernel_s']:10.1f}{row['kernel_ratio_to_hooke']:7.2f}"
+                  f"{1e3 * row['ipopt_solve_s']:10.2f}"
                   f"{row['ipopt_solve_ratio_to_hooke']:7.2f}"
                   f"{1e3 * row['newton_solve_s']:11.2f}{row['newton_solve_ratio_to_hooke']:7.2f}"
                   f"{1e6 * row['sweep_point_s']:13.1f}{row['sweep_point_ratio_to_hooke']:7.2f}")

@@ -37,7 +37,7 @@ from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 from moorsolve.physics.catenary import (LIFTED_INPUTS, SLOPED_INPUTS, LegKind,
                                         evaluate_leg, leg_function, lifted_segment_function,
                                         sloped_leg_function, straight_segment_function)
-from moorsolve.physics.stretch import Law, StretchModel, evaluate, pchip_slopes
+from moorsolve.physics.stretch import Law, NumericLaw, StretchModel, evaluate, pchip_slopes
 
 REL = 1e-8
 
@@ -185,9 +185,28 @@ def test_horizontal_integral_is_the_quadrature(name, H):
 
 
 @pytest.mark.parametrize("name", sorted(LAWS))
-def test_descent_solves_its_equation(name):
-    """``delta (1 + mean(H, H + delta)) = w h`` to round-off, from slack to taut."""
-    model, params, f, _ = LAWS[name]
+def test_numpy_evaluation_is_the_graphs(name):
+    """Profiles evaluate the law by numpy (``NumericLaw``): the graph's numbers."""
+    model, params, _, _ = LAWS[name]
+    numeric = NumericLaw(model, tuple(params))
+    T = np.linspace(0.0, 3e6, 41)
+    Tv = np.linspace(-2e6, 3e6, 41)
+    graph = evaluate(model, params, T, T[::-1], Tv=Tv, Hg=2e5)
+    assert np.allclose(numeric.strain(T), graph["strain"], rtol=1e-14, atol=0)
+    assert np.allclose(numeric.energy(T), graph["energy"], rtol=1e-14, atol=0)
+    assert np.allclose(numeric.mean(T, T[::-1]), graph["mean"], rtol=1e-14, atol=0)
+    assert np.allclose(numeric.horizontal(2e5, Tv), graph["horizontal"], rtol=1e-13,
+                       atol=1e-18)
+    assert numeric.strain(7e5) == pytest.approx(LAWS[name][2](7e5), rel=1e-12)
+
+
+@pytest.mark.parametrize("model, params", [
+    (LAWS["table"][0], LAWS["table"][1]), (LAWS["baranov"][0], LAWS["baranov"][1]),
+    (StretchModel("baranov"), [1e-3]),                      # 32 % strain at 100 kN
+    (StretchModel("table", 3), [0.0, 0.2, 0.35, 0.0, 1e5, 4e5])])
+def test_descent_solves_its_equation(model, params):
+    """``delta (1 + mean(H, H + delta)) = w h`` to round-off, from slack to taut and up to
+    strains of 40 % (three Newton steps from the midpoint start)."""
     law = Law(model, params)
     H, rise = ca.SX.sym("H"), ca.SX.sym("r")
     d = law.descent(H, rise)

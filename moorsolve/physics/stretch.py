@@ -302,30 +302,33 @@ class _Table:
         breaks = [xp.fmax(Tk, Hg) for Tk in self.T]
         glob = [_global(c, Tk) for c, Tk in zip(self.local, self.T)]
 
-        def G(coef, c, tv):
+        def G(coef, c, tv, th):
             a0, a1, a2, a3 = coef
-            th = xp.asinh(tv / Hg)
             return (a0 * th + a1 * tv + a2 * (Hg**2 * th + tv * c) / 2
                     + a3 * (Hg**2 * tv + tv**3 / 3))
 
         # The antiderivative at every breakpoint above H (a piece below H is empty); the
-        # vertical tension there is sqrt(b^2 - H^2), exact above 1e-9 N.
-        tvb = []
+        # vertical tension there is sqrt(b^2 - H^2), exact above 1e-9 N, and the angle
+        # asinh(tv/H).
+        tvb, thb = [], []
         for b in breaks:
             x = xp.fmax((b - Hg) * (b + Hg), 0)
             tvb.append(x / xp.sqrt(xp.fmax(x, _T_FLOOR**2)))
-        P = [0]
-        for k in range(len(breaks) - 1):
-            P.append(P[-1] + G(glob[k], breaks[k + 1], tvb[k + 1])
-                     - G(glob[k], breaks[k], tvb[k]))
-        starts = [G(g, b, tv) for g, b, tv in zip(glob, breaks, tvb)]
+            thb.append(xp.asinh(tvb[-1] / Hg))
+        # D[j] = int over the pieces below j, less piece j's antiderivative at its start.
+        D, total = [], 0
+        for k in range(len(breaks)):
+            D.append(total - G(glob[k], breaks[k], tvb[k], thb[k]))
+            if k + 1 < len(breaks):
+                total = total + G(glob[k], breaks[k + 1], tvb[k + 1], thb[k + 1]) \
+                    - G(glob[k], breaks[k], tvb[k], thb[k])
         out = []
         for Tv in Tvs:
             a = xp.fabs(Tv)
             T = xp.sqrt(Hg**2 + a**2)
             pick = xp.selector(T, breaks)
             coef = [pick([g[i] for g in glob]) for i in range(4)]
-            value = pick(P) + G(coef, T, a) - pick(starts)
+            value = pick(D) + G(coef, T, a, xp.asinh(a / Hg))
             out.append(xp.sign(Tv) * value)
         return out
 
