@@ -60,8 +60,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from moorsolve.model import DEGREES_OF_FREEDOM, Body, BodyLoads, Case, Environment
-from moorsolve.solve.problem import discretised
+from moorsolve.model import DEGREES_OF_FREEDOM, BodyLoads, Case, Environment
+from moorsolve.solve.lines import discretised
 
 #: MoorPy release the benchmark was built and checked against.
 MOORPY_VERSION = "1.3.0"
@@ -97,9 +97,9 @@ def with_constant_force(case: Case, force) -> Case:
     if case.body is None:
         raise ValueError(f"{case.name}: a constant load needs a body")
     env = dataclasses.replace(case.environment, wind=None, current=None, waves=None)
-    body = Body(free=case.body.free,
-                loads=BodyLoads(force=tuple(float(f) for f in force)))
-    return dataclasses.replace(case, environment=env, body=body)
+    body = dataclasses.replace(case.body,
+                               loads=BodyLoads(force=tuple(float(f) for f in force)))
+    return dataclasses.replace(case, environment=env, bodies=(body,))
 
 
 def line_type(lt, environment: Environment, ea: float | None = None) -> dict:

@@ -108,7 +108,7 @@ def scenes() -> list[BenchScene]:
     elastic_buoy = dataclasses.replace(
         buoy, name=buoy.name + ", elastic chain (EA 1.09e8 N)",
         line_types={"chain": chain},
-        legs=tuple(dataclasses.replace(leg, segments=tuple(
+        lines=tuple(dataclasses.replace(leg, segments=tuple(
             dataclasses.replace(seg, line_type=chain) for seg in leg.segments))
             for leg in buoy.legs))
     return [
@@ -254,15 +254,14 @@ def time_kernel(scene: BenchScene, loads: list, warm: bool, *, tol: float = 1e-9
     on its outputs. A point the kernel cannot certify counts as not converged here
     (``solve`` and ``sweep`` would hand it to IPOPT).
     """
-    from moorsolve.solve.equilibrium import get_problem, initial_point
-    from moorsolve.solve.problem import environment_parameters, leg_parameters
+    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.start import initial_point
 
     col = Column("moorsolve newton kernel", "moorsolve", warm)
     cases = [scene.with_load(load) for load in loads]
     problem = get_problem(cases[0])
     kernel = problem.newton()
-    params = [np.concatenate([environment_parameters(c, 1.0), leg_parameters(c)])
-              for c in cases]
+    params = [problem.parameters(c) for c in cases]
     x_rest = initial_point(problem, cases[0])
     x_prev = x_rest.copy()
     for p in params:

@@ -14,14 +14,16 @@ from .solve import Certificate, LegResult, Result, solve
 from .studies.sweep import sweep
 from .studies.envelope import offset_envelope
 from .studies.optimise import optimise
-from .studies.study import natural_periods, restoring_curve, sensitivity, stiffness
+from .studies.sensitivity import sensitivity
+from .studies.stiffness import (body_natural_periods, coupled_stiffness, natural_periods,
+                                restoring_curve, stiffness)
 from .studies.bounds import stiffness_bounds
 
 __version__ = "0.1.0"
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
-           "offset_envelope", "stiffness", "restoring_curve", "natural_periods", "sensitivity",
-           "optimise", "stiffness_bounds",
+           "offset_envelope", "stiffness", "coupled_stiffness", "body_natural_periods",
+           "restoring_curve", "natural_periods", "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError",
            "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

@@ -460,7 +460,7 @@ ERROR_CASES = [
                                     "hull_area": 1, "hull_area_lateral": 3}}}),
      "body.loads.wind.superstructure_area_lateral", "both or neither"),
     (_with_body({"loads": {"wind": {"model": "drag", "area_x": 1, "area_y": 1,
-                                    "centre": [0, 0, 0]}}}),
+                                    "centre": [0, 0, 0, 0]}}}),
      "body.loads.wind.centre", "[x, y]"),
     (_with_body({"loads": {"wind": {"model": "drag", "area_x": 1, "area_y": 1,
                                     "table": [[0, 1, 1, 0]]}}}),
@@ -592,16 +592,18 @@ def test_junk_yields_case_or_case_error(changes):
         assert isinstance(result, Case)
 
 
-def test_free_yaw_without_any_lever_arm_is_rejected():
-    from moorsolve import CaseError, load_case
+def test_free_yaw_without_any_lever_arm_is_solved_and_reported_neutral():
+    """Issue 14: every fairlead at the body origin leaves yaw unrestrained and unloaded: not
+    an error; the solve keeps yaw at its given value and reports it as neutral."""
+    from moorsolve import load_case, solve
     data = {
         "environment": {"depth": 22.0},
         "line_types": {"c": {"weight_in_water": 200.0}},
-        "body": {"free": ["surge", "sway", "yaw"]},
+        "body": {"free": ["surge", "sway", "yaw"], "loads": {"force": [1000.0, 0.0, 0.0]}},
         "legs": [{"name": n, "anchor": [x, y], "fairlead": [0.0, 0.0, 0.0],
                   "segments": [{"type": "c", "length": 50.0}]}
                  for n, x, y in (("a", 33.0, 0.0), ("b", -16.5, 28.6), ("c", -16.5, -28.6))]}
-    with pytest.raises(CaseError, match=r"body.free: yaw is free"):
-        load_case(data)
-    data["body"]["free"] = ["surge", "sway"]
-    assert load_case(data).body.free == ("surge", "sway")
+    result = solve(load_case(data))
+    assert result.body["yaw_deg"] == 0.0
+    assert result.stability.stable and result.stability.neutral_dofs == ("body.yaw",)
+    assert result.body["x_m"] > 0

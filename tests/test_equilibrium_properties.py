@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 from moorsolve import load_case, solve
-from moorsolve.solve.equilibrium import get_problem
+from moorsolve.solve.cache import get_problem
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
 SHIPPED = sorted(CASES.glob("*.yaml"))

@@ -216,19 +216,29 @@ def _scaled(data, name, k):
 
 
 def test_sensitivity_to_a_table_ropes_stiffness_is_the_central_difference(fpu):
+    """The polyester's table and the chain's EA (Hooke segments of the multi-segment legs)
+    made stiffer by a factor: against re-solved equilibria."""
     case, result = fpu
     outputs = ["x_m", "yaw_deg", "legs[L1].fairlead_tension_N", "legs[L3].anchor_tension_N"]
     exact = moorsolve.sensitivity(result, outputs,
-                                  ["line_types[polyester160].stiffness_scale"]).matrix[:, 0]
+                                  ["line_types[polyester160].stiffness_scale",
+                                   "line_types[chain84].stiffness_scale"]).matrix
     h = 1e-4
-    values = []
-    for k in (1 + h, 1 - h):
-        r = moorsolve.solve(moorsolve.load_case(_scaled(fpu_data(), "polyester160", k)),
-                            start=result.state)
-        values.append([r.body["x_m"], r.body["yaw_deg"], r.leg("L1").fairlead_tension_N,
-                       r.leg("L3").anchor_tension_N])
-    fd = (np.array(values[0]) - np.array(values[1])) / (2 * h)
-    assert exact == pytest.approx(fd, rel=1e-5, abs=1e-9)
+    for col, edit in ((0, lambda k: _scaled(fpu_data(), "polyester160", k)),
+                      (1, lambda k: _stiffer_chain(k))):
+        values = []
+        for k in (1 + h, 1 - h):
+            r = moorsolve.solve(moorsolve.load_case(edit(k)), start=result.state)
+            values.append([r.body["x_m"], r.body["yaw_deg"], r.leg("L1").fairlead_tension_N,
+                           r.leg("L3").anchor_tension_N])
+        fd = (np.array(values[0]) - np.array(values[1])) / (2 * h)
+        assert exact[:, col] == pytest.approx(fd, rel=1e-5, abs=1e-9), col
+
+
+def _stiffer_chain(k):
+    data = fpu_data()
+    data["line_types"]["chain84"]["ea"] = float(data["line_types"]["chain84"]["ea"]) * k
+    return data
 
 
 def buoy_baranov():
@@ -265,8 +275,11 @@ def test_sensitivity_names_what_it_cannot_map(fpu):
     case, result = fpu
     with pytest.raises(ValueError, match="Baranov"):
         moorsolve.sensitivity(result, ["x_m"], ["line_types[polyester160].n"])
-    with pytest.raises(ValueError, match="multi-segment"):
-        moorsolve.sensitivity(result, ["x_m"], ["line_types[chain84].stiffness_scale"])
+    buoy = moorsolve.solve(moorsolve.load_case(buoy_baranov()))
+    with pytest.raises(ValueError, match="follows a stretch law .*stiffness_scale"):
+        moorsolve.sensitivity(buoy, ["x_m"], ["legs[R0].ea"])
+    with pytest.raises(ValueError, match="no line uses"):
+        moorsolve.sensitivity(result, ["x_m"], ["line_types[rope].stiffness_scale"])
 
 
 def test_optimisation_through_a_table_law_is_verified_and_kkt():
@@ -452,7 +465,7 @@ def test_moordyn_reads_the_exported_curve(tmp_path, quadratic, bound):
     unbalanced acceleration and 0.4 % of the force (measured), inside 1 %; reading the
     columns swapped or in kN would be off by far more."""
     pytest.importorskip("moordyn")
-    from moorsolve.studies.study import mooring_force
+    from moorsolve.studies.stiffness import mooring_force
     data = fpu_data()
     strain = np.linspace(0.0, 0.06, 30)
     data["line_types"]["polyester160"]["stretch"] = {

@@ -13,8 +13,8 @@ import pytest
 
 from moorsolve import CaseError, load_case, solve
 from moorsolve.physics.drag import current_speed, line_drag
-from moorsolve.solve.equilibrium import get_problem
-from moorsolve.solve.problem import DiscreteLegKind
+from moorsolve.solve.cache import get_problem
+from moorsolve.solve.lines import DiscreteLegKind
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
 KGF = 9.80665
@@ -150,8 +150,8 @@ def test_legs_without_drag_keep_the_analytic_block():
                          "segments": [{"type": "chain", "length": 110.0}]})
     case = load_case(data)
     problem = get_problem(case)
-    assert isinstance(problem.kinds[0], DiscreteLegKind)
-    assert not isinstance(problem.kinds[1], DiscreteLegKind)
+    assert isinstance(problem.kinds[0].block, DiscreteLegKind)
+    assert not isinstance(problem.kinds[1].block, DiscreteLegKind)
     res = solve(case)
     assert res.legs[1].horizontal_tension_N / KGF == pytest.approx(102.15617, abs=5e-6)
 

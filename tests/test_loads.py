@@ -4,6 +4,7 @@ Published tier first (Hu Lingbin and Tang Jun, "Solution and application of the 
 equation", Ship & Boat 2004 no. 1, section 3, example 1; seed 001), then properties.
 """
 
+import dataclasses
 import math
 
 import casadi
@@ -129,8 +130,8 @@ def test_drag_rotates_with_flow_and_body(toward, yaw, turn):
 @given(theta=st.floats(-3.2, 3.2))
 def test_drag_mirror_symmetry(theta):
     model = DragLoad(area_x=300.0, area_y=800.0, cx=0.9, cy=1.1)
-    fx, fy, _ = drag_load_body(model, RHO_AIR, 12.0, theta)
-    fxm, fym, _ = drag_load_body(model, RHO_AIR, 12.0, -theta)
+    fx, fy, _ = drag_load_body(dataclasses.asdict(model), RHO_AIR, 12.0, theta)
+    fxm, fym, _ = drag_load_body(dataclasses.asdict(model), RHO_AIR, 12.0, -theta)
     assert fxm == pytest.approx(fx, abs=1e-9)
     assert fym == pytest.approx(-fy, abs=1e-9)
 
@@ -168,7 +169,7 @@ def test_yawed_body_sees_wind_on_its_side():
     # force is along -y with the lateral area and coefficient; in the global frame along +x.
     model = DragLoad(area_x=300.0, area_y=800.0, cx=0.9, cy=1.1)
     lateral = 0.5 * RHO_AIR * 1.1 * 800.0 * 20.0 ** 2
-    bx, by, _ = drag_load_body(model, RHO_AIR, 20.0, 0.0 - 90.0 * DEG)
+    bx, by, _ = drag_load_body(dataclasses.asdict(model), RHO_AIR, 20.0, 0.0 - 90.0 * DEG)
     assert bx == pytest.approx(0.0, abs=1e-9)
     assert by == pytest.approx(-lateral, rel=1e-12)
     fx, fy, _ = wind_only(model, 90.0 * DEG, 20.0, 0.0)
@@ -224,7 +225,7 @@ def test_table_drag_load_and_moment():
     model = DragLoad(area_x=300.0, area_y=800.0, table=TABLE, length=100.0,
                      centre=(10.0, 2.0))
     q = 0.5 * RHO_AIR * 15.0 ** 2
-    fx, fy, mz = drag_load_body(model, RHO_AIR, 15.0, 45.0 * DEG)
+    fx, fy, mz = drag_load_body(dataclasses.asdict(model), RHO_AIR, 15.0, 45.0 * DEG)
     assert fx == pytest.approx(q * 0.5 * 300.0, rel=1e-12)
     assert fy == pytest.approx(q * 0.7 * 800.0, rel=1e-12)
     assert mz == pytest.approx(10.0 * fy - 2.0 * fx + q * 0.05 * 800.0 * 100.0, rel=1e-12)

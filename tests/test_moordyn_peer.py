@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.studies.study import mooring_force
+from moorsolve.studies.stiffness import mooring_force
 
 moordyn = pytest.importorskip("moordyn")
 

@@ -18,9 +18,10 @@ from scipy.integrate import solve_ivp
 
 from moorsolve import load_case, solve
 from moorsolve.physics.catenary import LegKind
-from moorsolve.solve.equilibrium import get_problem
-from moorsolve.solve.problem import (ENV_PARAMS, LEG_PARAMS, MultiLegKind, parameter_vector,
-                                     segment_parameters, structure_key)
+from moorsolve.solve.cache import get_problem
+from moorsolve.solve.layout import (ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS,
+                                    parameter_vector)
+from moorsolve.solve.lines import MultiLegKind
 
 CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
 
@@ -217,9 +218,11 @@ def test_scenes_without_joints_build_the_core_problem(name):
     case = load_case(str(CASES / f"{name}.yaml"))
     problem = get_problem(case)
     assert problem.n_x == problem.n_q + 2 * len(case.legs)
-    assert problem.n_p == len(ENV_PARAMS) + len(LEG_PARAMS) * len(case.legs)
-    assert segment_parameters(case).size == 0
-    assert all(isinstance(k, LegKind) for k in structure_key(case)[0])
+    # Environment, lines, the seabed and the body: no segment parameters.
+    n_body = len(BODY_PARAMS) * len(case.bodies)
+    assert problem.n_p == (len(ENV_PARAMS) + len(LEG_PARAMS) * len(case.legs)
+                           + len(SEABED_PARAMS) + n_body)
+    assert all(isinstance(k.block, LegKind) for k in problem.kinds)
     assert problem.leg_offsets == [problem.n_q + 2 * i for i in range(len(case.legs))]
     assert len(parameter_vector(case)) == problem.n_p
     assert problem.residual.size1_out(0) == problem.n_x
@@ -231,7 +234,7 @@ def test_multi_segment_problem_layout():
                                             {"clump": {"weight": 500}},
                                             {"type": "chain", "length": 30}]))
     problem = get_problem(case)
-    kind = problem.kinds[0]
+    kind = problem.kinds[0].block
     assert isinstance(kind, MultiLegKind) and kind.n_joints == 1
     # Per leg: u, V, and per joint its distance and signed force.
     assert problem.n_x == problem.n_q + 3 * 4

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.solve.equilibrium import get_problem, initial_point
+from moorsolve.solve.cache import get_problem
+from moorsolve.solve.start import initial_point
 from moorsolve.solve.newton import CONVERGED, NewtonKernel
-from moorsolve.solve.problem import environment_parameters, leg_parameters
 
 CASES = sorted(Path(__file__).parent.parent.joinpath("cases").glob("*.yaml"))
 DOCK = Path(__file__).parent.parent / "cases" / "floating_dock.yaml"
@@ -50,7 +50,7 @@ def test_newton_agrees_with_ipopt_on_every_shipped_case(path):
 def test_compiled_and_interpreted_kernels_agree():
     case = moorsolve.load_case(DOCK)
     problem = get_problem(case)
-    p = np.concatenate([environment_parameters(case, 1.0), leg_parameters(case)])
+    p = problem.parameters(case)
     x0 = initial_point(problem, case)
     compiled = problem.newton()
     interpreted = NewtonKernel(problem, compile=False)
@@ -64,7 +64,7 @@ def test_compiled_and_interpreted_kernels_agree():
 def test_kernel_reports_certificate_of_its_point():
     case = moorsolve.load_case(CASES[0])
     problem = get_problem(case)
-    p = np.concatenate([environment_parameters(case, 1.0), leg_parameters(case)])
+    p = problem.parameters(case)
     out = problem.newton().solve(initial_point(problem, case), p, 1e-10)
     ok, force, moment, relative = problem.certify(out["x"], p, 1e-10)
     assert ok

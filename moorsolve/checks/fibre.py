@@ -41,14 +41,16 @@ def segment_min_tension(leg, lr) -> list:
             node += n
         return out
     if lr.segments:
+        # Segments from the block's lower end: their line type by name.
+        types = {seg.line_type.name: seg.line_type for seg in leg.segments}
         out = []
-        for seg, s in zip(leg.segments, lr.segments):
+        for s in lr.segments:
             least = min(s["top_tension_N"], s["bottom_tension_N"])
             vertex_inside = (s["top_vertical_N"] * s["bottom_vertical_N"] < 0
                              or s["grounded_length_m"] > 0)
             if vertex_inside:
                 least = min(least, s["horizontal_tension_N"])
-            out.append((seg.line_type, least))
+            out.append((types[s["type"]], least))
         return out
     least = min(lr.fairlead_tension_N, lr.anchor_tension_N)
     if lr.grounded_length_m > 0 or lr.slack:

@@ -1,7 +1,8 @@
 """Run the mooring checks: the intact condition and each damaged condition.
 
-A damaged condition removes one leg (``dataclasses.replace`` on the case) and solves the
-body again from scratch with :func:`moorsolve.solve`. A condition without a certified
+A damaged condition removes one line, any line of a network (a bridle leg, a shared line)
+included (:func:`moorsolve.model.edit.without_line`), and solves the scene again from scratch
+with :func:`moorsolve.solve`. A condition without a certified
 equilibrium is a failed check that carries the solver's reason; it never raises.
 
 Per leg and condition:
@@ -27,6 +28,7 @@ from dataclasses import dataclass, field
 
 from ..errors import ConvergenceError
 from ..model import AnchorType, Case, Checks
+from ..model.edit import without_line
 from ..solve import Result, solve
 from .criteria import Criterion, criterion, standard_rows
 from .fibre import LOWER_LIMIT_CHECKS, fibre_items
@@ -177,7 +179,7 @@ def _damaged(value, fallback):
 
 def run_checks(case: Case, *, standard: str | None = None, tol: float | None = None,
                damaged: bool | None = None) -> CheckReport:
-    """Check ``case`` intact and with each leg removed in turn.
+    """Check ``case`` intact and with each line removed in turn.
 
     Parameters
     ----------
@@ -199,8 +201,9 @@ def run_checks(case: Case, *, standard: str | None = None, tol: float | None = N
     run_damaged = checks.damaged if damaged is None else damaged
     t0 = time.perf_counter()
     conditions = [_condition(case, checks, None, tol)]
-    if run_damaged and case.body is not None and len(case.legs) > 1:
-        # Without a body each leg ends at a fixed point: removing one leaves the others
+    movable = any(b.free for b in case.bodies) or bool(case.free_points)
+    if run_damaged and movable and len(case.legs) > 1:
+        # With nothing free each line ends at fixed points: removing one leaves the others
         # unchanged, so there is no damaged condition to solve.
         for leg in case.legs:
             conditions.append(_condition(case, checks, leg.name, tol))
@@ -214,13 +217,7 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     kind = "intact" if removed is None else "damaged"
     name = "intact" if removed is None else f"damaged: {removed} removed"
     crit = criterion(checks.standard, kind, checks.consequence_class)
-    scene = case
-    if removed is not None:
-        scene = dataclasses.replace(
-            case, legs=tuple(leg for leg in case.legs if leg.name != removed))
-        if "source" in {f.name for f in dataclasses.fields(case)}:
-            # The case-file data still lists the removed leg: drop it, not mislead.
-            scene = dataclasses.replace(scene, source=None)
+    scene = case if removed is None else without_line(case, removed)
     try:
         result = solve(scene, tol=tol, allow_overload=True)
     except ConvergenceError as exc:
@@ -229,6 +226,8 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     items = []
     for leg, lr in zip(scene.legs, result.legs):
         items.append(_tension(name, lr, crit))
+        if not leg.a.on_seabed:
+            continue        # end A is not an anchor (a bridle leg, a shared line)
         anchor = leg.anchor_type or checks.anchor
         items.append(_uplift(name, lr, anchor))
         minimum = (checks.min_grounded_length if kind == "intact"
@@ -247,12 +246,17 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
         items += fibre_items(name, leg, lr)
     limit = (checks.offset_limit if kind == "intact"
              else _damaged(checks.offset_limit_damaged, checks.offset_limit))
-    if limit is not None and result.body is not None:
-        offset = math.hypot(result.body["x_m"], result.body["y_m"])
-        items.append(CheckItem(condition=name, leg=None, check="offset", value=offset,
-                               limit=limit, unit="m", utilisation=offset / limit,
-                               passed=offset <= limit,
-                               criterion=f"horizontal offset <= {limit:.2f} m"))
+    if limit is not None:
+        for body, entry in zip(scene.bodies, result.bodies):
+            if not body.free:
+                continue
+            off = entry["offset"]
+            offset = math.hypot(off["x_m"], off["y_m"])
+            label = "offset" if len(scene.bodies) == 1 else f"offset of {body.name}"
+            items.append(CheckItem(condition=name, leg=None, check=label, value=offset,
+                                   limit=limit, unit="m", utilisation=offset / limit,
+                                   passed=offset <= limit,
+                                   criterion=f"horizontal offset <= {limit:.2f} m"))
     return ConditionResult(name=name, kind=kind, removed=removed, solved=True, reason="",
                            result=result, items=items, criterion=crit)
 

@@ -1,4 +1,5 @@
-"""``solve``, ``plot`` and ``accuracy``: one case's equilibrium and what its accuracy costs."""
+"""``solve``, ``plot``, ``stiffness`` and ``accuracy``: one case's equilibrium, its mooring
+stiffness and what its accuracy costs."""
 
 from __future__ import annotations
 
@@ -26,6 +27,14 @@ def add_commands(sub) -> None:
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
     p.set_defaults(run=run_plot)
+    p = sub.add_parser("stiffness", help="the mooring's 6x6 restoring matrix of one body "
+                                         "about its solved position")
+    p.add_argument("case", help="case file (YAML)")
+    p.add_argument("--body", default=None, help="the body's name (default: the only body)")
+    p.add_argument("--json", action="store_true", help="print the matrix as JSON")
+    p.add_argument("--tol", type=tolerance, default=None)
+    solver_option(p)
+    p.set_defaults(run=run_stiffness)
     p = sub.add_parser("accuracy", help="solve time against error over tolerances and "
                                         "model fidelity")
     p.add_argument("case", help="case file (YAML)")
@@ -54,6 +63,31 @@ def run_plot(args) -> int:
     result = solve(case, tol=args.tol, solver=args.solver)
     save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), args.output)
     print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def run_stiffness(args) -> int:
+    from .. import load_case, solve
+    from ..errors import CaseError
+    from ..model import DOFS
+    from ..report.text import format_stiffness
+    from ..studies.stiffness import stiffness
+    case = load_case(args.case)
+    names = [b.name for b in case.bodies]
+    if args.body is not None and args.body not in names:
+        raise CaseError("--body", f"{args.body!r} is not a body of the case; its bodies: "
+                                  f"{', '.join(names) or 'none'}")
+    if args.body is None and len(names) > 1:
+        raise CaseError("--body", f"the case has {len(names)} bodies "
+                                  f"({', '.join(names)}); name one")
+    result = solve(case, tol=args.tol, solver=args.solver)
+    K = stiffness(result, args.body)
+    body = args.body or (names[0] if names else None)
+    if args.json:
+        print_text(json.dumps({"body": body, "dofs": list(DOFS), "matrix": K.tolist()},
+                              indent=2))
+    else:
+        print_text(format_stiffness(K, body, case.name))
     return EXIT_OK
 
 

@@ -43,6 +43,8 @@ def add_commands(sub) -> None:
     p.add_argument("--plot", metavar="FILE", default=None,
                    help="write polar plots of offset and worst tension (.png, .pdf, .svg)")
     p.add_argument("--json", action="store_true", help="print the envelope as JSON")
+    p.add_argument("--body", default=None,
+                   help="the body whose offset is reported (a case with several bodies)")
     solver_option(p, default="newton")
     p.add_argument("--tol", type=tolerance, default=None)
     p.set_defaults(run=run_envelope)
@@ -114,10 +116,10 @@ def run_envelope(args) -> int:
         case = load_case(args.case)
         flows = None if args.flows is None else [f.strip() for f in args.flows.split(",")]
         envelope = offset_envelope(case, step_deg=args.step, flows=flows, solver=args.solver,
-                                   tol=args.tol)
+                                   tol=args.tol, body=args.body)
     except CaseError as exc:
         text = str(exc)
-        if exc.field in ("flows", "step_deg"):
+        if exc.field in ("flows", "step_deg", "body"):
             text = "--" + exc.field.split("_")[0] + text[len(exc.field):]
         return bad_input(text)
     if args.plot:

@@ -11,15 +11,17 @@ direction a wind, current or wave train travels toward, counter-clockwise from +
 """
 
 from .environment import Environment, Flow, Seabed, Waves
-from .lines import ANCHOR_KINDS, AnchorType, Clump, Leg, LineDrag, LineType, Segment
+from .bodies import DOFS, PLANAR_DOFS, Body, Hydrostatics, HullMember, Point
+from .lines import ANCHOR_KINDS, AnchorType, Clump, End, Leg, Line, LineDrag, LineType, Segment
 from .loads import (BodyLoads, DragLoad, DriftCoefficient, HuTangCurrent, HuTangDrift,
                     HuTangWind)
-from .scene import DEGREES_OF_FREEDOM, STANDARDS, Body, Case, Checks, SolverOptions
+from .scene import DEGREES_OF_FREEDOM, STANDARDS, Case, Checks, SolverOptions
 
 __all__ = ["Environment", "Flow", "Seabed", "Waves", "ANCHOR_KINDS", "AnchorType", "Clump",
-           "Leg", "LineDrag", "LineType", "Segment", "BodyLoads", "DragLoad",
+           "End", "Leg", "Line", "LineDrag", "LineType", "Segment", "DOFS", "PLANAR_DOFS",
+           "Body", "Hydrostatics", "HullMember", "Point", "BodyLoads", "DragLoad",
            "DriftCoefficient", "HuTangCurrent", "HuTangDrift", "HuTangWind",
-           "DEGREES_OF_FREEDOM", "STANDARDS", "Body", "Case", "Checks", "SolverOptions"]
+           "DEGREES_OF_FREEDOM", "STANDARDS", "Case", "Checks", "SolverOptions"]
 
 from .build import build_case  # noqa: E402  (after the dataclasses it builds)
 

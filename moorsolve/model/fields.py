@@ -154,6 +154,7 @@ def check_point(raw, path: str, sizes: tuple) -> tuple:
 
 
 def check_centre(m: dict, path: str) -> tuple:
+    """A load model's centre of action, body frame: ``[x, y]`` (at z = 0) or ``[x, y, z]``."""
     if "centre" not in m:
         return (0.0, 0.0)
-    return check_point(m["centre"], field_path(path, "centre"), (2,))
+    return check_point(m["centre"], field_path(path, "centre"), (2, 3))

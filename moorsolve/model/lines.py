@@ -133,30 +133,80 @@ class Clump:
 
 
 @dataclass(frozen=True)
-class Leg:
-    """One mooring leg from its anchor (end A) to its fairlead (end F).
+class End:
+    """One end of a line: fixed in the scene, at a named point, or on a body.
+
+    Attributes
+    ----------
+    position : tuple of 3 floats
+        A fixed end: its global position [m]. A point end: the point's position in the case
+        file (global). A body end: the attachment point in the body frame [m].
+    point : str or None
+        The point's name for a point end.
+    body : str or None
+        The body's name for a body end.
+    on_seabed : bool
+        A fixed end that rests on the seabed (an anchor): its height follows the seabed
+        under it, so moving it in x or y moves it along the seabed.
+    label : str or None
+        The name of the fixed point it was given as, for reports.
+    """
+
+    position: tuple
+    point: Optional[str] = None
+    body: Optional[str] = None
+    on_seabed: bool = False
+    label: Optional[str] = None
+
+    @property
+    def kind(self) -> str:
+        """``"fixed"``, ``"point"`` or ``"body"``."""
+        if self.body is not None:
+            return "body"
+        return "point" if self.point is not None else "fixed"
+
+    @property
+    def fixed(self) -> bool:
+        return self.body is None and self.point is None
+
+
+@dataclass(frozen=True)
+class Line:
+    """One mooring line from end A to end B, of one or more segments.
+
+    The ``body:`` + ``legs:`` form of a case makes every leg a line from its anchor (end A,
+    fixed) to its fairlead (end B, on the body, or fixed without a body).
 
     Attributes
     ----------
     name : str
-    anchor : tuple of 3 floats
-        Global position [m]. An anchor on the seabed has z = -depth; one above it (a pile
-        head, a mid-water point) gives its own z and is modelled without seabed contact.
-    fairlead : tuple of 3 floats
-        Position [m] in the body frame, or global when the case has no body.
+    a, b : End
+        End A (``from``; the anchor of a leg) and end B (``to``; the fairlead).
     segments : tuple of Segment
-        From anchor to fairlead.
+        From end A to end B.
+    anchor_type : AnchorType or None
+        What the anchor at end A allows, for the mooring checks.
     clumps : tuple of (Clump or None)
-        One entry per joint between consecutive segments (``len(segments) - 1``), from the
-        anchor up; None (or an empty tuple for all joints) is a bare joint.
+        One entry per joint between consecutive segments (``len(segments) - 1``), from end
+        A; None (or an empty tuple for all joints) is a bare joint.
     """
 
     name: str
-    anchor: tuple
-    fairlead: tuple
+    a: End
+    b: End
     segments: tuple
     anchor_type: Optional[AnchorType] = None
     clumps: tuple = ()
+
+    @property
+    def anchor(self) -> tuple:
+        """End A's position as the case gives it (global for a fixed end or a point)."""
+        return self.a.position
+
+    @property
+    def fairlead(self) -> tuple:
+        """End B's position as the case gives it (body frame for a body end)."""
+        return self.b.position
 
     @property
     def joint_clumps(self) -> tuple:
@@ -175,3 +225,7 @@ class Leg:
     @property
     def length(self) -> float:
         return sum(s.length for s in self.segments)
+
+
+#: The name the legacy ``legs:`` form gives its lines.
+Leg = Line

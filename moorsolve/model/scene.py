@@ -8,23 +8,12 @@ from typing import Optional
 
 from .environment import Environment
 from .lines import AnchorType
-from .loads import BodyLoads
+from .bodies import DOFS, Body, Point
 
-DEGREES_OF_FREEDOM = ("surge", "sway", "yaw")
+#: Degrees of freedom of a body, in the order of every 6-vector (see :mod:`.bodies`).
+DEGREES_OF_FREEDOM = DOFS
 #: Criteria tables known to ``moorsolve.checks`` (``checks.standard``).
 STANDARDS = ("api-rp-2sk", "dnv-os-e301")
-
-
-@dataclass(frozen=True)
-class Body:
-    """A rigid floating body moving in the horizontal plane.
-
-    ``free`` lists the solved degrees of freedom among surge, sway and yaw; the others are
-    held at their case-file value (zero offset).
-    """
-
-    free: tuple = DEGREES_OF_FREEDOM
-    loads: BodyLoads = field(default_factory=BodyLoads)
 
 
 @dataclass(frozen=True)
@@ -76,16 +65,50 @@ class Checks:
 
 @dataclass(frozen=True)
 class Case:
+    """A validated scene: environment, line types, bodies, points and lines.
+
+    ``form`` records which case-file form it came from: ``"legs"`` (one optional body and
+    anchor-to-fairlead legs; results keep ``body`` and ``legs``) or ``"network"``.
+    """
+
     name: str
     environment: Environment
     line_types: dict
-    legs: tuple
-    body: Optional[Body] = None
+    lines: tuple
+    bodies: tuple = ()
+    points: tuple = ()
     solver: SolverOptions = field(default_factory=SolverOptions)
     checks: Optional[Checks] = None
+    form: str = "legs"
     #: What a MoorDyn input file held that moorsolve does not use (the case file's ``moordyn``
     #: block, see ``moorsolve.model.moordyn_block``), kept for export; the solver ignores it.
     moordyn: Optional[Mapping] = field(default=None, compare=False, repr=False)
     #: The validated case-file data it was built from (for sweeps that edit it by path);
     #: None for a Case built in code.
     source: Optional[Mapping] = field(default=None, compare=False, repr=False)
+
+    @property
+    def legs(self) -> tuple:
+        """The lines (the ``legs:`` form's name for them)."""
+        return self.lines
+
+    @property
+    def body(self) -> Optional[Body]:
+        """The one body of a ``legs:``-form case (None without a body or with several)."""
+        return self.bodies[0] if len(self.bodies) == 1 else None
+
+    def body_named(self, name: str) -> Body:
+        for body in self.bodies:
+            if body.name == name:
+                return body
+        raise KeyError(name)
+
+    def point_named(self, name: str) -> Point:
+        for point in self.points:
+            if point.name == name:
+                return point
+        raise KeyError(name)
+
+    @property
+    def free_points(self) -> tuple:
+        return tuple(p for p in self.points if p.free)

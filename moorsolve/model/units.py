@@ -41,6 +41,7 @@ KINDS = {
     "density": ("kg/m**3", "kg/m^3", "a density"),
     "acceleration": ("m/s**2", "m/s^2", "an acceleration"),
     "time": ("s", "s", "a time"),
+    "moment_of_inertia": ("kg*m**2", "kg m^2", "a moment of inertia"),
     "angle": ("degree", "deg", "an angle"),
     "dimensionless": ("", "", "a plain number"),
 }
@@ -59,6 +60,7 @@ _EXAMPLES = {
     "density": "'1.2 kg/m^3'",
     "acceleration": "'9.81 m/s^2'",
     "time": "'5 s'",
+    "moment_of_inertia": "'4.2e9 kg*m^2'",
     "angle": "'30 deg'",
     "dimensionless": "'0.5'",
 }

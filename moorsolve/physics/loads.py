@@ -252,13 +252,14 @@ def _signed_square_sin(theta):
     return s * casadi.fabs(s)
 
 
-def drag_load_body(model, density, speed, heading_rad, field="drag"):
+def drag_load_body(params, density, speed, heading_rad, field="drag"):
     """Quadratic drag ``0.5 rho C A V^2`` of a wind or current, in the body frame.
 
     Parameters
     ----------
-    model : DragLoad
-        Areas, coefficients (constant or a heading table), reference length and centre.
+    params : mapping
+        The ``DragLoad`` fields (plain values): areas, coefficients (constant or a heading
+        table), reference length and centre.
     density : float
         Fluid density [kg/m^3]: air for wind, water for current.
     speed : float or casadi.SX or casadi.MX
@@ -283,26 +284,27 @@ def drag_load_body(model, density, speed, heading_rad, field="drag"):
     :mod:`moorsolve.model`; REFERENCE.md section 3.
     """
     q = 0.5 * density * speed * speed
-    if model.table is None:
-        fx = q * (model.cx * model.area_x) * _signed_square_cos(heading_rad)
-        fy = q * (model.cy * model.area_y) * _signed_square_sin(heading_rad)
-        mz = _centre_moment(model.centre, fx, fy)
+    if params["table"] is None:
+        fx = q * (params["cx"] * params["area_x"]) * _signed_square_cos(heading_rad)
+        fy = q * (params["cy"] * params["area_y"]) * _signed_square_sin(heading_rad)
+        mz = _centre_moment(params["centre"], fx, fy)
     else:
-        cx, cy, cmz = table_coefficients(model.table, heading_rad, field=f"{field}.table")
-        fx = q * model.area_x * cx
-        fy = q * model.area_y * cy
-        mz = _centre_moment(model.centre, fx, fy)
-        if model.length != 0.0:
-            mz = mz + q * model.area_y * model.length * cmz
+        cx, cy, cmz = table_coefficients(params["table"], heading_rad, field=f"{field}.table")
+        fx = q * params["area_x"] * cx
+        fy = q * params["area_y"] * cy
+        mz = _centre_moment(params["centre"], fx, fy)
+        if params["length"] != 0.0:
+            mz = mz + q * params["area_y"] * params["length"] * cmz
     return fx, fy, mz
 
 
-def hu_tang_wind_body(model, speed, heading_rad, field="wind"):
+def hu_tang_wind_body(params, speed, heading_rad, field="wind"):
     """Hu & Tang wind load in the body frame [N, N, N m].
 
     Parameters
     ----------
-    model : HuTangWind
+    params : mapping
+        The ``HuTangWind`` fields (plain values).
     speed : float or casadi.SX or casadi.MX
         Wind speed [m/s].
     heading_rad : float or casadi.SX or casadi.MX
@@ -327,30 +329,31 @@ def hu_tang_wind_body(model, speed, heading_rad, field="wind"):
     ``Fx = R1(F', F) cos|cos|``, ``Fy = R1(F'_lat, F_lat) sin|sin|``. R1 from
     :func:`hu_tang_wind_kN` (seed 001 section 3), converted to N.
     """
-    frontal = _N_PER_KN * hu_tang_wind_kN(speed, model.superstructure_area, model.hull_area)
-    lateral_given = (model.superstructure_area_lateral is not None,
-                     model.hull_area_lateral is not None)
+    frontal = _N_PER_KN * hu_tang_wind_kN(speed, params["superstructure_area"], params["hull_area"])
+    lateral_given = (params["superstructure_area_lateral"] is not None,
+                     params["hull_area_lateral"] is not None)
     if lateral_given == (False, False):
         fx = frontal * casadi.cos(heading_rad)
         fy = frontal * casadi.sin(heading_rad)
     elif lateral_given == (True, True):
-        lateral = _N_PER_KN * hu_tang_wind_kN(speed, model.superstructure_area_lateral,
-                                              model.hull_area_lateral)
+        lateral = _N_PER_KN * hu_tang_wind_kN(speed, params["superstructure_area_lateral"],
+                                              params["hull_area_lateral"])
         fx = frontal * _signed_square_cos(heading_rad)
         fy = lateral * _signed_square_sin(heading_rad)
     else:
         missing = ("superstructure_area_lateral" if lateral_given[1]
                    else "hull_area_lateral")
         raise CaseError(f"{field}.{missing}", "None; give both lateral areas or neither")
-    return fx, fy, _centre_moment(model.centre, fx, fy)
+    return fx, fy, _centre_moment(params["centre"], fx, fy)
 
 
-def hu_tang_current_body(model, speed, heading_rad):
+def hu_tang_current_body(params, speed, heading_rad):
     """Hu & Tang current load along the flow, in the body frame [N, N, N m].
 
     Parameters
     ----------
-    model : HuTangCurrent
+    params : mapping
+        The ``HuTangCurrent`` fields (plain values).
     speed : float or casadi.SX or casadi.MX
         Current speed [m/s].
     heading_rad : float or casadi.SX or casadi.MX
@@ -366,18 +369,19 @@ def hu_tang_current_body(model, speed, heading_rad):
     -----
     Seed 001 section 3; ``HuTangCurrent`` in :mod:`moorsolve.model`.
     """
-    r2 = _N_PER_KN * hu_tang_current_kN(speed, model.wetted_area, model.coefficient)
+    r2 = _N_PER_KN * hu_tang_current_kN(speed, params["wetted_area"], params["coefficient"])
     fx = r2 * casadi.cos(heading_rad)
     fy = r2 * casadi.sin(heading_rad)
-    return fx, fy, _centre_moment(model.centre, fx, fy)
+    return fx, fy, _centre_moment(params["centre"], fx, fy)
 
 
-def hu_tang_drift_body(model, hs, heading_rad):
+def hu_tang_drift_body(params, hs, heading_rad):
     """Hu & Tang mean wave drift in the body frame [N, N, N m].
 
     Parameters
     ----------
-    model : HuTangDrift
+    params : mapping
+        The ``HuTangDrift`` fields (plain values).
     hs : float or casadi.SX or casadi.MX
         Significant wave height [m].
     heading_rad : float or casadi.SX or casadi.MX
@@ -394,21 +398,22 @@ def hu_tang_drift_body(model, hs, heading_rad):
     R3 from :func:`hu_tang_drift_kN` (seed 001 section 3), converted to N. The drift
     pushes the body in the direction the waves travel.
     """
-    fx = _N_PER_KN * hu_tang_drift_kN(hs, model.beam, model.k, heading_rad)
-    if model.length is None:
+    fx = _N_PER_KN * hu_tang_drift_kN(hs, params["beam"], params["k"], heading_rad)
+    if params["length"] is None:
         fy = 0.0
     else:
-        fy = (_N_PER_KN * hu_tang_drift_kN(hs, model.length, model.k, 0.0)
+        fy = (_N_PER_KN * hu_tang_drift_kN(hs, params["length"], params["k"], 0.0)
               * casadi.sin(heading_rad))
-    return fx, fy, _centre_moment(model.centre, fx, fy)
+    return fx, fy, _centre_moment(params["centre"], fx, fy)
 
 
-def drift_coefficient_body(model, water_density, gravity, hs, heading_rad):
+def drift_coefficient_body(params, water_density, gravity, hs, heading_rad):
     """Mean wave drift from drift coefficients, in the body frame [N, N, N m].
 
     Parameters
     ----------
-    model : DriftCoefficient
+    params : mapping
+        The ``DriftCoefficient`` fields (plain values).
     water_density : float
         [kg/m^3].
     gravity : float
@@ -432,9 +437,9 @@ def drift_coefficient_body(model, water_density, gravity, hs, heading_rad):
     """
     amplitude = 0.25 * hs
     scale = water_density * gravity * amplitude * amplitude
-    fx = scale * (model.cx * model.length_x) * casadi.cos(heading_rad)
-    fy = scale * (model.cy * model.length_y) * casadi.sin(heading_rad)
-    return fx, fy, _centre_moment(model.centre, fx, fy)
+    fx = scale * (params["cx"] * params["length_x"]) * casadi.cos(heading_rad)
+    fy = scale * (params["cy"] * params["length_y"]) * casadi.sin(heading_rad)
+    return fx, fy, _centre_moment(params["centre"], fx, fy)
 
 
 def body_to_global(fx_body, fy_body, yaw):

@@ -27,19 +27,43 @@ def format_table(result: Result) -> str:
     """A plain-text summary: body offset, certificate and one row per leg."""
     c = result.certificate
     lines = [f"{result.case_name}" if result.case_name else "equilibrium"]
-    if result.body is not None:
+    if result.form == "legs" and result.body is not None:
         b = result.body
         lines.append(f"body offset  x {b['x_m']:+.3f} m   y {b['y_m']:+.3f} m   "
                      f"yaw {b['yaw_deg']:+.4f} deg")
+    else:
+        for b in result.bodies:
+            lines.append(f"body {b['name']:<8} x {b['x_m']:+.3f} m  y {b['y_m']:+.3f} m  "
+                         f"z {b['z_m']:+.3f} m  roll {b['roll_deg']:+.4f}  pitch "
+                         f"{b['pitch_deg']:+.4f}  yaw {b['yaw_deg']:+.4f} deg")
+        for pt in result.points:
+            lines.append(f"point {pt['name']:<7} x {pt['x_m']:+.3f} m  y {pt['y_m']:+.3f} m  "
+                         f"z {pt['z_m']:+.3f} m" + (
+                             f"  seabed reaction {pt['seabed_reaction_N'] / 1e3:.2f} kN"
+                             if pt["seabed_reaction_N"] > 0 else ""))
     lines.append(f"certificate  force residual {c.force_N:.2e} N ({c.relative:.1e} of max "
                  f"tension), moment residual {c.moment_Nm:.2e} N m")
     lines.append(f"solver       {result.solver}: {c.status}, {c.iterations} iterations, "
                  f"{c.solve_time_s * 1e3:.1f} ms")
     lines.append("effects      " + ", ".join(result.effects))
-    for name, (fx, fy, mz) in result.loads.items():
+    st = result.stability
+    if st is not None and (st.dofs or not st.stable):
+        text = "stable" if st.stable else "UNSTABLE in " + ", ".join(st.unstable_dofs)
+        if st.neutral_dofs:
+            text += f"; neutral (indifferent): {', '.join(st.neutral_dofs)}"
+        lines.append(f"stability    {text} (smallest stiffness eigenvalue "
+                     f"{st.min_eigenvalue:.3g})")
+    for name, load in result.loads.items():
+        if len(load) == 6:
+            lines.append(f"load         {name:<15} F [{load[0] / 1e3:.2f}, {load[1] / 1e3:.2f}, "
+                         f"{load[2] / 1e3:.2f}] kN  M [{load[3] / 1e3:.1f}, "
+                         f"{load[4] / 1e3:.1f}, {load[5] / 1e3:.1f}] kN m")
+            continue
+        fx, fy, mz = load
         lines.append(f"load         {name:<15} Fx {fx / 1e3:10.2f} kN  Fy {fy / 1e3:10.2f} kN  "
                      f"Mz {mz / 1e3:12.1f} kN m")
-    header = (f"{'leg':<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
+    word = "leg" if result.form == "legs" else "line"
+    header = (f"{word:<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
               f"{'V_anch kN':>11}{'grounded m':>12}{'util':>7}  state")
     lines += ["", header, "-" * len(header)]
     for leg in result.legs:
@@ -54,4 +78,20 @@ def format_table(result: Result) -> str:
             f"{leg.grounded_length_m:12.2f}{util:>7}  {state}")
     for note in result.notes:
         lines.append(f"note: {note}")
+    return "\n".join(lines)
+
+
+def format_stiffness(K, body, case_name: str = "") -> str:
+    """The 6x6 stiffness as a labelled table: rows and columns surge ... yaw, units per row
+    and column (N/m, N/rad, N m/m, N m/rad)."""
+    dofs = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+    unit_col = ("m", "m", "m", "rad", "rad", "rad")
+    unit_row = ("N", "N", "N", "N m", "N m", "N m")
+    lines = [f"{case_name}: mooring stiffness of {body or 'the fairlead frame'} about its "
+             "solved position (K = -dF/dq, global axes)"]
+    lines.append(f"{'':<16}" + "".join(f"{d + ' [' + u + ']':>16}" for d, u in
+                                         zip(dofs, unit_col)))
+    for i, d in enumerate(dofs):
+        lines.append(f"{d + ' [' + unit_row[i] + ']':<16}" + "".join(
+            f"{K[i, j]:16.5g}" for j in range(6)))
     return "\n".join(lines)

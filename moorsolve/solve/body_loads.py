@@ -6,6 +6,8 @@ model classes and picks the formula for each declared load model.
 
 from __future__ import annotations
 
+import dataclasses
+
 from ..errors import CaseError
 from ..model import (BodyLoads, DragLoad, DriftCoefficient, Environment, HuTangCurrent,
                      HuTangDrift, HuTangWind)
@@ -98,10 +100,12 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
         theta = wind_toward - yaw
         model = loads.wind
         if isinstance(model, DragLoad):
-            body = drag_load_body(model, environment.air_density, wind_speed, theta,
+            body = drag_load_body(dataclasses.asdict(model), environment.air_density, wind_speed,
+                                  theta,
                                   field="body.loads.wind")
         elif isinstance(model, HuTangWind):
-            body = hu_tang_wind_body(model, wind_speed, theta, field="body.loads.wind")
+            body = hu_tang_wind_body(dataclasses.asdict(model), wind_speed, theta,
+                                     field="body.loads.wind")
         else:
             raise CaseError("body.loads.wind", f"{type(model).__name__} is not a wind load "
                             "model; expected DragLoad or HuTangWind")
@@ -110,10 +114,11 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
         theta = current_toward - yaw
         model = loads.current
         if isinstance(model, DragLoad):
-            body = drag_load_body(model, environment.water_density, current_speed, theta,
+            body = drag_load_body(dataclasses.asdict(model), environment.water_density,
+                                  current_speed, theta,
                                   field="body.loads.current")
         elif isinstance(model, HuTangCurrent):
-            body = hu_tang_current_body(model, current_speed, theta)
+            body = hu_tang_current_body(dataclasses.asdict(model), current_speed, theta)
         else:
             raise CaseError("body.loads.current", f"{type(model).__name__} is not a current "
                             "load model; expected DragLoad or HuTangCurrent")
@@ -122,9 +127,9 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
         theta = wave_toward - yaw
         model = loads.wave_drift
         if isinstance(model, HuTangDrift):
-            body = hu_tang_drift_body(model, wave_hs, theta)
+            body = hu_tang_drift_body(dataclasses.asdict(model), wave_hs, theta)
         elif isinstance(model, DriftCoefficient):
-            body = drift_coefficient_body(model, environment.water_density,
+            body = drift_coefficient_body(dataclasses.asdict(model), environment.water_density,
                                           environment.gravity, wave_hs, theta)
         else:
             raise CaseError("body.loads.wave_drift", f"{type(model).__name__} is not a wave "
@@ -142,3 +147,38 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
                             "[Fx N, Fy N, Mz N m]")
         effects["force"] = values
     return effects
+
+
+def body_loads_3d(loads: BodyLoads, environment: Environment, R, yaw, wind_speed, wind_toward,
+                  current_speed, current_toward, wave_hs, wave_toward) -> dict:
+    """Force and moment (about the body-frame origin, global axes) of every flow load model.
+
+    The same models as :func:`body_loads`, applied in three dimensions: each model's
+    body-frame horizontal force (turned to the global frame by the yaw) acts at its
+    ``centre`` (body frame ``[x, y]`` at z = 0, or ``[x, y, z]``) on the body at its actual
+    orientation ``R``, so heel and trim move the point of action and a centre above the
+    waterline heels the body. A table's pure yaw-moment coefficient adds a moment about the
+    vertical. The relative heading is ``toward - yaw``. The constant force is not included
+    (the problem places it). Returns ``name -> (force 3-vector, moment 3-vector)``.
+    """
+    import casadi as ca
+
+    from ..physics.kinematics import cross
+    from ..physics.loads import _centre_moment
+
+    planar = body_loads(dataclasses.replace(loads, force=None), environment, yaw,
+                        wind_speed, wind_toward, current_speed, current_toward, wave_hs,
+                        wave_toward)
+    models = {"wind": loads.wind, "current": loads.current, "wave_drift": loads.wave_drift}
+    out = {}
+    for name, (gx, gy, mz) in planar.items():
+        centre = tuple(models[name].centre)
+        c3 = ca.vertcat(centre[0], centre[1], centre[2] if len(centre) > 2 else 0.0)
+        # The body-frame force again, to separate the model's own (table) moment from the
+        # lever arm of its centre.
+        cy_, sy_ = ca.cos(yaw), ca.sin(yaw)
+        fx_b, fy_b = cy_ * gx + sy_ * gy, -sy_ * gx + cy_ * gy
+        pure = mz - _centre_moment(centre, fx_b, fy_b)
+        force = ca.vertcat(gx, gy, 0)
+        out[name] = (force, cross(R @ c3, force) + ca.vertcat(0, 0, pure))
+    return out

@@ -35,7 +35,8 @@ import casadi as ca
 
 from ..physics.drag import current_speed, line_drag
 from ..physics.stretch import Law
-from .problem import DISCRETE_PARAMS, SEABED_PARAMS  # noqa: F401  (layout documented there)
+from .layout import DISCRETE_PARAMS
+from .lines import LineBlock
 
 #: Columns of ``EquilibriumProblem.node_report``: per node of a discretised leg (anchor
 #: first), its position [m], the line tension there [N] (the end resultant at the anchor and
@@ -56,8 +57,9 @@ def _node_share(loads, j):
     return share
 
 
-def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z):
-    """Residuals, the report row and the node rows of discretised leg ``i``."""
+def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair) -> LineBlock:
+    """The block of lumped-node line ``i`` (the module notes), its nodes from end A
+    (``anchor``) to end B (``fair``), both global 3-vectors [m]."""
     fs, ls = problem.force_scale, problem.length_scale
     k_N = fs / ls
     rho = problem.case.environment.water_density
@@ -75,9 +77,7 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     def bed(px, py):
         return -depth + gx * px + gy * py
 
-    # Nodes 0 (anchor) .. n (fairlead).
-    anchor = ca.vertcat(P["anchor_x"], P["anchor_y"], P["anchor_z"])
-    fair = ca.vertcat(fair_xy[0], fair_xy[1], P["fair_z"])
+    # Nodes 0 (end A) .. n (end B).
     nodes, zeta = [anchor], []
     for j in range(1, n):
         px, py, zj = x[base + 3 * (j - 1)], x[base + 3 * (j - 1) + 1], x[base + 3 * (j - 1) + 2]
@@ -90,7 +90,7 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     count = 0
     laws = kind.laws or (None,) * nseg
     for k, m in enumerate(kind.elements):
-        law = None if laws[k] is None else Law(laws[k], problem._laws[i][k])
+        law = None if laws[k] is None else Law(laws[k], problem.line_laws[i][k])
         for _ in range(m):
             props.append((seg[k], seg[k]["length"] / m, kind.elastic_segments[k], law))
         count += m
@@ -139,8 +139,8 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     on_fair = -T[-1] * tau[-1] + loads[-1] / 2
     on_anchor = T[0] * tau[0] + loads[0] / 2
     tol = 1e-9 * ca.fmax(depth, 1)
-    anchor_down = ca.if_else(P["anchor_z"] <= bed(P["anchor_x"], P["anchor_y"]) + tol, 1, 0)
-    fair_down = ca.if_else(P["fair_z"] <= bed(fair_xy[0], fair_xy[1]) + tol, 1, 0)
+    anchor_down = ca.if_else(anchor[2] <= bed(anchor[0], anchor[1]) + tol, 1, 0)
+    fair_down = ca.if_else(fair[2] <= bed(fair[0], fair[1]) + tol, 1, 0)
     flags = [anchor_down] + grounded_node + [fair_down]
     grounded = 0
     run, touchdown = anchor_down, 0
@@ -155,9 +155,10 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
     for m in mismatch[1:]:
         worst = ca.fmax(worst, m)
     H = ca.sqrt(on_fair[0]**2 + on_fair[1]**2 + _FLOOR**2)
+    X = ca.sqrt((fair[0] - anchor[0])**2 + (fair[1] - anchor[1])**2 + _FLOOR**2)
     row = dict(H=H, VF=-on_fair[2], HA=ca.sqrt(on_anchor[0]**2 + on_anchor[1]**2),
                VA=on_anchor[2], grounded=grounded, suspended_x=X - touchdown, rX=worst,
-               rZ=0 * worst, J=ca.DM([1.0, 0.0, 0.0, 1.0]), fx=on_fair[0], fy=on_fair[1])
+               rZ=0 * worst, J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=fair[2] - anchor[2])
     rows = []
     for j in range(n + 1):
         if j == 0:
@@ -167,4 +168,4 @@ def discrete_leg(problem, i, kind, x, iu, P, values, seabed, current, fair_xy, X
         else:
             tension, reaction = (T[j - 1] + T[j]) / 2, reactions[j - 1]
         rows.append(ca.vertcat(i, j, nodes[j], tension, reaction, flags[j]))
-    return res, row, rows
+    return LineBlock(res, on_anchor, on_fair, worst, row, [], rows)

@@ -19,14 +19,15 @@ _ON_SEABED = 1e-6
 
 def fibre_grounded(case, leg, result) -> float | None:
     """Unstretched length [m] of ``leg``'s fibre rope on the seabed in its ``result``."""
-    types = [seg.line_type for seg in leg.segments]
-    if not any(lt.fibre for lt in types):
+    types = {seg.line_type.name: seg.line_type for seg in leg.segments}
+    if not any(lt.fibre for lt in types.values()):
         return None
     if not leg.multi_segment and not result.segments:
         return float(result.grounded_length_m)
     if result.segments and "elements" not in result.segments[0]:
-        return float(sum(s["grounded_length_m"] for s, lt in zip(result.segments, types)
-                         if lt.fibre))
+        # Segments from the block's lower end: picked by their type's name.
+        return float(sum(s["grounded_length_m"] for s in result.segments
+                         if types[s["type"]].fibre))
     # A lumped-node line: an element rests on the seabed when both its nodes do.
     p = result.profile
     env = case.environment
@@ -46,7 +47,7 @@ def fibre_grounded(case, leg, result) -> float | None:
 def fibre_notes(case, results) -> list[str]:
     """A note per leg whose fibre rope touches the seabed."""
     notes = []
-    for leg, lr in zip(case.legs, results):
+    for leg, lr in zip(case.lines, results):
         g = lr.fibre_grounded_m
         if g:
             names = sorted({seg.line_type.name for seg in leg.segments if seg.line_type.fibre})

@@ -15,7 +15,7 @@ Iteration, on the scaled unknowns of :class:`~.problem.EquilibriumProblem`:
 2. ``d = J \\ g`` (sparse QR), scaled so that no component moves by more than
    :data:`STEP_LIMIT` (one depth in position, one typical tension, one radian).
 3. Backtrack ``x - a d``, ``a = 1, 1/2, ...``, projected onto the bounds (hanging lines
-   keep ``u >= 0`` so ``H >= 0``; yaw within +-90 deg), until the squared residual norm
+   keep ``u >= 0`` so ``H >= 0``), until the squared residual norm
    drops by the Armijo factor ``1 - 2e-4 a``. No acceptable step: the method has stalled.
 
 The exact certificate of the final point (:meth:`EquilibriumProblem.certify`) is part of
@@ -27,6 +27,8 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
+#: Most node unknowns whose Schur complement is solved symbolically (beyond: sparse QR).
+_ARROW_NODES = 24
 #: Largest change of any scaled unknown in one Newton step.
 STEP_LIMIT = 1.0
 #: Unrolled iterations; a point still unconverged after them reports status 2.
@@ -56,7 +58,7 @@ def newton_step_function(problem) -> ca.Function:
     J = ca.SX.sym("J", sp)
     rows, cols = sp.get_triplet()
     # Multi-segment legs (issue 4) have more unknowns per leg: no arrow structure then.
-    arrow = problem.n_x == n_q + 2 * n_legs and all(
+    arrow = problem.n_x == n_q + 2 * n_legs and n_q <= _ARROW_NODES and all(
         c < n_q or r >= 2 * n_legs or (c - n_q) // 2 == r // 2 for r, c in zip(rows, cols))
     if not arrow:
         Jm, gm = ca.MX.sym("J", sp), ca.MX.sym("g", n)
@@ -111,10 +113,10 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
             du = block[1, 1] * g[r] - block[0, 1] * g[r + 1]
             dv = -block[1, 0] * g[r] + block[0, 0] * g[r + 1]
             forces.append(fs * ca.hypot(du, dv) / ca.fabs(det))
-        for k, d in enumerate(problem.free):
+        for k, rotational in enumerate(problem.rotational):
             value = ca.fabs(g[2 * n_legs + k])
-            if d == "yaw":
-                moment = value * problem.moment_scale
+            if rotational:
+                moment = ca.fmax(moment, value * problem.moment_scale)
             else:
                 forces.append(value * fs)
         xp = x * ca.DM(problem.x_scale)
@@ -238,3 +240,20 @@ class NewtonKernel:
         out["status"] = int(out["status"][0])
         out["iterations"] = int(out["iterations"][0])
         return out
+
+
+class KernelPool:
+    """Newton kernels of one problem, one per concurrently running caller: each clone has
+    its own buffers over the same compiled library."""
+
+    def __init__(self, kernel: NewtonKernel):
+        import threading
+        self._base, self._free, self._lock = kernel, [kernel], threading.Lock()
+
+    def acquire(self) -> NewtonKernel:
+        with self._lock:
+            return self._free.pop() if self._free else self._base.clone()
+
+    def release(self, kernel: NewtonKernel) -> None:
+        with self._lock:
+            self._free.append(kernel)

@@ -1,586 +1,461 @@
-"""Build the coupled equilibrium of a body and its legs as one CasADi problem.
+"""Build the coupled equilibrium of a scene (bodies, points, lines) as one CasADi problem.
 
-Unknowns: the body's free degrees of freedom (surge = global x, sway = global y
-displacement of the body origin, yaw about the vertical) and, per leg, the signed tension
-variable ``u`` and the fairlead vertical tension ``V`` of :mod:`moorsolve.physics.catenary`.
-Equations: each leg's two span residuals, and the force and moment balance of each free
-degree of freedom. The problem is square; IPOPT solves it as a feasibility NLP.
+Unknowns, in this order:
 
-Everything that may change between solves of one scene is a parameter (environment speeds
-and headings, a load factor, the constant force, and per leg the anchor, fairlead, length,
-weight, compliance and friction), so one build serves a whole sweep.
+- the *nodes*: every free degree of freedom of every body (its pose ``x, y, z`` [m] and
+  ``roll, pitch, yaw`` [rad], absolute, starting from the case-file pose) and every free
+  point's ``x, y`` and a signed height ``zeta`` above the seabed: the point is at
+  ``z = seabed + max(zeta, 0)`` and the seabed pushes it up with ``max(-zeta, 0)`` times the
+  scene's stiffness scale (exact complementarity, the device of the lumped-node lines);
+- then every line's own unknowns (:mod:`.lines`).
 
-Multi-segment legs
-------------------
-A leg of several segments (chain-polyester-chain, clump weights, buoys) stays in the
-vertical plane through its anchor and fairlead: every load on it (weights, clumps, buoys,
-the seabed's reaction) is vertical and friction acts along the line, so the horizontal
-tension is the same in every segment and no force leaves the plane. The 2-D model is exact.
-Its unknowns are ``u`` (shared by all segments), the fairlead's ``V`` and per joint
+Equations: every line's residuals first, then the balance of every node: for a body the
+generalized forces of its free DOFs (:func:`~moorsolve.physics.kinematics.generalized_forces`:
+force components and moments about the axes its angles turn about), for a point the three
+force components. The problem is square; IPOPT solves it as a feasibility NLP and the
+compiled Newton kernel (:mod:`.newton`) solves the same residuals.
 
-- ``xi``: the joint's horizontal distance from the anchor in the leg's plane [m];
-- ``sigma``: a signed force [N]. ``max(sigma, 0)`` is the vertical tension at the top of the
-  segment below the joint, ``max(-sigma, 0)`` the seabed's reaction on the joint.
-
-The joint's height is not an unknown: the segment below puts it there (its height
-equation defines it). Equations: each segment's span residual ``rX``, the top segment's
-``rZ``, and each joint's vertical balance ``VA_above - V_below - W_clump + N = 0``.
-
-Contact of a joint with the seabed is therefore the complementarity ``N * V_below = 0``
-written exactly with one signed unknown, the same device as the leg block's ``u`` (no
-penalty stiffness, no relaxation parameter, no MPCC). It was chosen over a contact
-complementarity on the joint's height because a segment lying flat up to a joint has
-``Z ~ V |V| / (2 H w)``: with ``V`` and the height as separate unknowns the Jacobian is
-singular exactly where a clump rests on the seabed. Here the segment below a grounded joint
-has ``V = 0`` and the reaction takes over linearly. A sinking segment's lower end may be
-lifted (a buoyed joint, a pile-head anchor): it then uses the two-sided touchdown block
-(:func:`~moorsolve.physics.catenary.lifted_segment_equations`), which also covers the U
-between two points above or on the seabed. When the fairlead itself rests on the seabed the
-top segment is solved from that end (``MultiLegKind.reversed_top``) for the same reason.
-Limits: a joint rests on the seabed only with the segment below arriving along it (not
-hanging down into it); seabed friction acts on the anchor segment only; a buoy's lift is
-constant (fully submerged). Scenes without multi-segment legs build exactly the core problem.
+On a body act: the lines attached to it (at ``r + R p``), its weight at the centre of
+gravity, its hydrostatics (the linear model or exact hull members,
+:mod:`moorsolve.physics.hydrostatics`), its extra springs, its flow load models at their
+centres (:func:`.body_loads.body_loads_3d`) and its constant force. On a free point: its
+lines, its net weight ``g (m - rho V)`` and the seabed. Everything that may change between
+solves of one structure is a parameter (:mod:`.layout`), so one build serves a whole sweep.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
-from typing import Optional
+import threading
 
 import casadi as ca
 import numpy as np
 
-from ..model import DEGREES_OF_FREEDOM, Case, Leg
+from ..model import DOFS, Case
+from ..physics.hydrostatics import linear_buoyancy, member_buoyancy, weight
+from ..physics.kinematics import cross, generalized_forces, rotation_matrix
 from . import body_loads as body_load_models
-from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
-                                sloped_leg_function, straight_segment_function)
-from ..physics.stretch import StretchModel
-from .stretch_params import law_model, split_stretch_parameters, stretch_parameters
+from .concurrency import SYMBOLIC_LOCK
+from .discrete import discrete_leg
+from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
+                     build_layout, parameter_vector)
+from .stretch_params import line_laws
+from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
+                    seabed_height, single_block)
 
-#: Environment parameter layout (angles in radians).
-ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
-              "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor")
-#: Per-leg parameter layout.
-LEG_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
-              "length", "weight", "ea_inv", "friction")
-
-#: Per-segment parameters of a multi-segment leg, and per joint the clump's net weight.
-SEGMENT_PARAMS = ("length", "weight", "ea_inv")
-#: Per-segment parameters of a discretised leg.
-DISCRETE_PARAMS = ("length", "weight", "ea_inv", "diameter", "normal", "tangential", "side")
-#: Seabed parameters, present when some leg has joints (free nodes that may rest on it).
-SEABED_PARAMS = ("depth", "gradient_x", "gradient_y")
-
-#: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment leg, its
-#: tensions [N] (top H and V, pull on its lower end HA and signed VA), grounded length and
-#: horizontal extents [m], span residuals [m] and spans [m], its lower node (height above
-#: the seabed, distance from the anchor, z), the unbalanced vertical force and seabed
-#: reaction of the joint at its top [N] (0 for the top segment), and its mismatch as a force.
-SEGMENT_COLUMNS = ("leg", "segment", "H", "VF", "HA", "VA", "grounded", "suspended_x",
-                   "descent_x", "rX", "rZ", "X", "Z", "lower_h", "lower_xi", "lower_z",
-                   "joint_unbalanced", "joint_reaction", "mismatch_N")
-
-#: Yaw is bounded to keep the solver away from the mirrored equilibrium with the lines
-#: crossing under the hull (yaw near 180 deg, REFERENCE.md section 1).
-YAW_LIMIT = math.pi / 2
-_X_FLOOR = 1e-12
+#: Columns of the lines table of ``EquilibriumProblem.report``: the horizontal and vertical
+#: tension at end B (``H``, ``VF``: the upward force B exerts on the line), the horizontal
+#: pull on end A and its upward pull (``HA``, ``VA``); the grounded length and the
+#: horizontal extent of the part rising to the upper end [m]; the line's mismatch as a force
+#: and 0 (multi-segment and lumped lines) or its span residuals [m]; its spans ``X``, ``Z``;
+#: end B's global x, y; the horizontal force on end B; the 2x2 block of a single line
+#: (column-major); end A's global position and end B's z; the forces on A and B [N].
+LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X", "Z",
+                "bx", "by", "fx", "fy", "J00", "J10", "J01", "J11",
+                "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz")
+ROTATIONS = ("roll", "pitch", "yaw")
+POINT_DOFS = ("x", "y", "zeta")
 
 
-@dataclass(frozen=True)
-class SegmentKind:
-    """Which block a segment of a multi-segment leg uses.
-
-    ``block`` is ``"leg"`` (the leg block of :func:`leg_function` with ``leg``: a buoyant
-    segment that never touches the seabed), ``"lifted"`` (a sinking segment whose lower end
-    may be above the seabed; ``friction`` for the anchor segment) or ``"straight"``
-    (weightless).
-    """
-
-    block: str
-    elastic: bool
-    leg: Optional[LegKind] = None
-    friction: bool = False
-    law: Optional[StretchModel] = None
-
-
-@dataclass(frozen=True)
-class MultiLegKind:
-    """The physics of a multi-segment leg: one :class:`SegmentKind` per segment.
-
-    ``reversed_top``: the fairlead rests on the seabed and the top segment sinks, so that
-    segment is solved from the fairlead end (its block's lower end), where the line may lie
-    flat; the unknown ``V`` is then its vertical tension at the joint below.
-    """
-
-    segments: tuple
-    reversed_top: bool = False
-
-    @property
-    def n_joints(self) -> int:
-        return len(self.segments) - 1
-
-    @property
-    def contact(self) -> bool:
-        return any(s.block == "lifted" or (s.leg is not None and s.leg.contact)
-                   for s in self.segments)
-
-    @property
-    def friction(self) -> bool:
-        return any(s.friction for s in self.segments)
-
-    @property
-    def elastic(self) -> bool:
-        return any(s.elastic for s in self.segments)
-
-    @property
-    def neutral(self) -> bool:
-        return False
-
-
-def _can_ground(kind: SegmentKind) -> bool:
-    """Whether a segment's top can arrive along the seabed (a sinking segment)."""
-    return kind.block == "lifted" or (kind.leg is not None and kind.leg.contact)
-
-
-def _on_seabed(case: Case, leg: Leg) -> bool:
-    bed = case.environment.seabed_z(leg.anchor[0], leg.anchor[1])
-    return leg.anchor[2] <= bed + 1e-9 * max(case.environment.depth, 1.0)
-
-
-@dataclass(frozen=True)
-class DiscreteLegKind:
-    """A leg discretised into lumped nodes because a current drags on its line.
-
-    ``elements`` holds the number of elements of each segment (anchor first);
-    ``elastic_segments`` whether each segment stretches; ``profile_rows`` the number of rows
-    of the current profile (0: uniform current); ``side`` whether any segment has a
-    side-force coefficient.
-    """
-
-    elements: tuple
-    elastic_segments: tuple
-    profile_rows: int = 0
-    side: bool = False
-    laws: tuple = ()
-
-    @property
-    def elastic(self) -> bool:
-        return any(self.elastic_segments)
-
-    @property
-    def n_elements(self) -> int:
-        return sum(self.elements)
-
-    @property
-    def contact(self) -> bool:
-        return True
-
-    friction = False
-    neutral = False
-    sloped = False
-
-
-def discretised(case: Case, leg: Leg) -> bool:
-    """Whether a leg is modelled as a lumped-node line: the case has a current and one of
-    its line types gives drag data."""
-    return case.environment.current is not None and any(
-        seg.line_type.drag is not None for seg in leg.segments)
-
-
-def leg_kind(case: Case, leg: Leg):
-    """The physics a leg needs, from what the case declares.
-
-    A :class:`LegKind` for a one-segment leg (the core problem, unchanged), a
-    :class:`MultiLegKind` for a leg of several segments, a :class:`DiscreteLegKind` for a
-    leg whose line feels the current.
-    """
-    if discretised(case, leg):
-        n = case.solver.line_elements
-        counts = tuple(max(1, round(n * seg.length / leg.length)) for seg in leg.segments)
-        profile = case.environment.current.profile
-        return DiscreteLegKind(
-            elements=counts,
-            elastic_segments=tuple(seg.line_type.elastic for seg in leg.segments),
-            profile_rows=len(profile) if profile else 0,
-            side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
-                     for seg in leg.segments),
-            laws=tuple(law_model(seg.line_type) for seg in leg.segments))
-    if leg.multi_segment:
-        return _multi_leg_kind(case, leg)
-    lt = leg.line_type
-    w = lt.weight_in_water
-    contact = _on_seabed(case, leg) and w > 0
-    return LegKind(elastic=lt.elastic, contact=contact,
-                   friction=contact and case.environment.seabed.friction > 0,
-                   neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
-                   law=law_model(lt))
-
-
-def _multi_leg_kind(case: Case, leg: Leg) -> MultiLegKind:
-    kinds = []
-    for k, seg in enumerate(leg.segments):
-        lt = seg.line_type
-        w = lt.weight_in_water
-        law = law_model(lt)
-        if w == 0:
-            kinds.append(SegmentKind("straight", lt.elastic, law=law))
-        elif w < 0:
-            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False,
-                                                                 law=law), law=law))
-        else:
-            # Friction acts on the anchor segment's grounded length only (README).
-            friction = k == 0 and _on_seabed(case, leg) and case.environment.seabed.friction > 0
-            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction, law=law))
-    fairlead_on_seabed = leg.fairlead[2] <= -case.environment.depth + 1e-9
-    return MultiLegKind(tuple(kinds), reversed_top=fairlead_on_seabed and kinds[-1].block
-                        == "lifted")
-
-
-def structure_key(case: Case) -> tuple:
-    """What decides the shape of the built problem (not its parameter values)."""
-    body = case.body
-    return (
-        tuple(leg_kind(case, leg) for leg in case.legs),
-        None if body is None else tuple(body.free),
-        None if body is None else dataclasses.replace(body.loads, force=None),
-        None if body is None else body.loads.force is not None,
-        case.environment.wind is not None, case.environment.current is not None,
-        case.environment.waves is not None,
-        case.environment.air_density, case.environment.water_density,
-        case.environment.gravity,
-    )
-
-
-def environment_parameters(case: Case, load_factor: float = 1.0) -> np.ndarray:
-    env = case.environment
-    force = (case.body.loads.force if case.body is not None and case.body.loads.force
-             is not None else (0.0, 0.0, 0.0))
-    wind, current, waves = env.wind, env.current, env.waves
-    return np.array([
-        wind.speed if wind else 0.0, math.radians(wind.toward_deg) if wind else 0.0,
-        current.speed if current else 0.0, math.radians(current.toward_deg) if current else 0.0,
-        waves.hs if waves else 0.0, math.radians(waves.toward_deg) if waves else 0.0,
-        force[0], force[1], force[2], load_factor], dtype=float)
-
-
-def leg_parameters(case: Case) -> np.ndarray:
-    mu = case.environment.seabed.friction
-    rows = []
-    for leg in case.legs:
-        lt = leg.line_type
-        rows.append([*leg.anchor, *leg.fairlead, leg.length, lt.weight_in_water,
-                     1.0 / lt.ea if lt.ea else 0.0, mu])
-    return np.asarray(rows, dtype=float).reshape(-1)
-
-
-def segment_parameters(case: Case) -> np.ndarray:
-    """Seabed and multi-segment parameters (empty for a flat scene of one-segment legs).
-
-    The seabed (``SEABED_PARAMS``), then per multi-segment leg ``SEGMENT_PARAMS`` for each
-    segment and the net clump weight [N] of each joint.
-    """
-    kinds = [leg_kind(case, leg) for leg in case.legs]
-    multi = [leg for leg, k in zip(case.legs, kinds) if isinstance(k, MultiLegKind)]
-    discrete = [leg for leg, k in zip(case.legs, kinds) if isinstance(k, DiscreteLegKind)]
-    if not multi and not discrete and not case.environment.seabed.sloped:
-        return np.zeros(0)
-    values = [case.environment.depth, *case.environment.seabed.gradient]
-    for leg in multi:
-        for seg in leg.segments:
-            lt = seg.line_type
-            values += [seg.length, lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0]
-        values += [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
-    for leg in discrete:
-        for seg in leg.segments:
-            lt = seg.line_type
-            drag = lt.drag
-            values += [seg.length, lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0,
-                       lt.diameter or 0.0, drag.normal if drag else 0.0,
-                       drag.tangential if drag else 0.0, drag.side if drag else 0.0]
-        values += [c.weight if c is not None else 0.0 for c in leg.joint_clumps]
-    if discrete and case.environment.current.profile:
-        values += [v for row in case.environment.current.profile for v in row]
-    return np.asarray(values, dtype=float)
-
-
-def parameter_vector(case: Case, load_factor: float = 1.0) -> np.ndarray:
-    """The full parameter vector ``p`` of ``case``'s problem: environment, legs, segments,
-    stretch laws (:mod:`.stretch_params`)."""
-    return np.concatenate([environment_parameters(case, load_factor), leg_parameters(case),
-                           segment_parameters(case), stretch_parameters(case)])
+def _body_radius(case: Case) -> float:
+    arms = [math.hypot(end.position[0], end.position[1])
+            for line in case.lines for end in (line.a, line.b) if end.body is not None]
+    return max([1.0] + arms)
 
 
 class EquilibriumProblem:
-    """The symbolic problem of one case structure, built once.
+    """The symbolic problem of one scene structure, built once.
 
     Attributes
     ----------
+    kinds : list of LineKind
+    layout : ParameterLayout
+    nodes : list of (str, int, str)
+        The node unknowns: ``("body", body index, dof)`` or ``("point", free-point index,
+        "x" | "y" | "zeta")``, in order.
     free : tuple of str
-        Solved degrees of freedom, in ``DEGREES_OF_FREEDOM`` order.
-    kinds : list of LegKind or MultiLegKind
-    n_q, n_x, n_p : int
-        Numbers of body unknowns, all unknowns and parameters.
-    leg_offsets : list of int
-        Index in ``x`` of each leg's first unknown. A one-segment leg has ``(u, V)``; a
-        multi-segment leg has ``u`` and the fairlead's ``V``, then per joint its horizontal
-        distance from the anchor ``xi`` [m] in the leg's plane and a signed force ``sigma``
-        [N]: the top vertical tension of the segment below is ``max(sigma, 0)`` and the
-        seabed's reaction on the joint ``max(-sigma, 0)`` (see the module notes).
-    residual : casadi.Function
-        ``(x, p) -> g`` scaled residuals (legs first, then body balance).
-    report : casadi.Function
-        ``(x, p) ->`` per-leg end forces, spans and Jacobian blocks, and the body's
-        unbalanced load, used for the certificate and the result. For a multi-segment leg
-        the row holds the top segment's tensions, the anchor segment's anchor forces, the
-        total grounded length and the leg's spans; its residual columns (6, 7) hold the
-        largest force mismatch [N] of its segments and joints and its Jacobian block
-        (14-17) is the identity, so that ``solve(J, e)`` is that force.
-    segment_report : casadi.Function
-        ``(x, p) ->`` one row per segment of the multi-segment legs (``SEGMENT_COLUMNS``).
+        The DOF name of every node unknown (``"x"``, ``"y"``, ``"zeta"`` for points).
+    rotational : tuple of bool
+        Whether each node unknown is an angle (its balance is a moment).
+    n_q, n_x, n_p, n_legs : int
+        Numbers of node unknowns, all unknowns, parameters and lines.
+    line_offsets : list of int
+        Index in ``x`` of each line's first unknown (also ``leg_offsets``).
+    residual, jacobian, residual_jacobian, report, segment_report, node_report, certificate,
+    summary : casadi.Function
+        Of ``(x, p)`` with ``x`` scaled by ``x_scale``. ``report`` gives the lines table
+        (:data:`LINE_COLUMNS`), the unbalanced generalized forces of every body (6 each)
+        and free point (3 each), every load (force and moment, 6 each), every body's pose
+        (6 each: m and rad), every free point's position, every body's resultant
+        wrench (force and moment about its origin, global axes, 6 each), and per exact hull
+        member 1 where its buoyancy formula is exact at the pose, else 0.
     effects : list of str
         The physical effects this problem simulates.
     """
 
     def __init__(self, case: Case, force_scale: float, length_scale: float):
         self.case = case
-        body = case.body
-        self.free = tuple(d for d in DEGREES_OF_FREEDOM if body is not None and d in body.free)
-        self.kinds = [leg_kind(case, leg) for leg in case.legs]
-        self.n_legs = len(case.legs)
-        self.n_q = len(self.free)
+        self.kinds = line_kinds(case)
+        self.layout = build_layout(case, self.kinds)
+        self.n_legs = len(case.lines)
         self.force_scale = force_scale
         self.length_scale = length_scale
         self.moment_scale = force_scale * max(length_scale, _body_radius(case))
-        scale = [length_scale if d != "yaw" else 1.0 for d in self.free]
-        self.leg_offsets = []
+        self.nodes, scale = [], []
+        for bi, body in enumerate(case.bodies):
+            for dof in DOFS:
+                if dof in body.free:
+                    self.nodes.append(("body", bi, dof))
+                    scale.append(1.0 if dof in ROTATIONS else length_scale)
+        for pi, _ in enumerate(case.free_points):
+            for dof in POINT_DOFS:
+                self.nodes.append(("point", pi, dof))
+                scale.append(length_scale)
+        self.free = tuple(dof for _, _, dof in self.nodes)
+        self.rotational = tuple(dof in ROTATIONS for dof in self.free)
+        self.n_q = len(scale)
+        self.line_offsets = []
         for kind in self.kinds:
-            self.leg_offsets.append(len(scale))
-            if isinstance(kind, MultiLegKind):
-                scale += [force_scale] * 2 + [length_scale, force_scale] * kind.n_joints
-            elif isinstance(kind, DiscreteLegKind):
-                scale += [force_scale] * kind.n_elements
-                scale += [length_scale] * (3 * (kind.n_elements - 1))
-            else:
-                scale += [force_scale] * 2
+            self.line_offsets.append(len(scale))
+            scale += kind.scales(force_scale, length_scale)
+        self.leg_offsets = self.line_offsets
         self.n_x = len(scale)
         self.x_scale = np.array(scale, dtype=float)
+        self.n_p = self.layout.size
+        #: Parameter entries that only scale with the load factor (not in the rest state).
+        self.load_mask = self.layout.load_mask()
         self.effects = self._effects()
-        self._build()
+        self._lock = threading.RLock()
+        self._nlp_solvers = {}
+        self._newton = None
+        #: Closed-form starting points by parameters (see :mod:`.start`); guarded by
+        #: :attr:`lock`.
+        self.start_cache: dict = {}
+        self._kernel_pool = None
+        with SYMBOLIC_LOCK:
+            self._build()
+
+    @property
+    def lock(self) -> threading.RLock:
+        """Guards this problem's caches and its CasADi solver objects."""
+        return self._lock
 
     # -- construction ---------------------------------------------------------------
-    def _effects(self) -> list[str]:
+    def _effects(self) -> list:
         case = self.case
+        kinds = self.kinds
         effects = []
-        if any(k.elastic for k in self.kinds):
+        if any(k.elastic for k in kinds):
             effects.append("elastic")
-        if not all(k.elastic for k in self.kinds):
+        if not all(k.elastic for k in kinds):
             effects.append("inextensible")
-        types = [seg.line_type for leg in case.legs for seg in leg.segments]
-        if any(lt.stretch is not None for lt in types):
+        if any(seg.line_type.stretch is not None for line in case.lines
+               for seg in line.segments):
             effects.append("nonlinear_stretch")
-        if any(k.contact for k in self.kinds):
+        if any(k.contact for k in kinds):
             effects.append("seabed_contact")
-        if any(k.friction for k in self.kinds):
+        if any(k.friction for k in kinds):
             effects.append("seabed_friction")
-        if any(getattr(k, "sloped", False) for k in self.kinds):
+        if any(k.sloped for k in kinds):
             effects.append("sloped_seabed")
+        types = [seg.line_type for line in case.lines for seg in line.segments]
         if any(lt.weight_in_water < 0 for lt in types):
             effects.append("buoyant_line")
-        if any(k.neutral for k in self.kinds) or any(
-                s.block == "straight" for k in self.kinds if isinstance(k, MultiLegKind)
-                for s in k.segments):
+        if any(k.neutral for k in kinds) or any(
+                s.block == "straight" for k in kinds if k.multi for s in k.block.segments):
             effects.append("neutral_line")
         if any(lt.sealed for lt in types):
             effects.append("wall_tension")
-        if any(leg.multi_segment for leg in case.legs):
+        if any(line.multi_segment for line in case.lines):
             effects.append("multi_segment")
-        if any(isinstance(k, DiscreteLegKind) for k in self.kinds):
+        if any(k.discrete for k in kinds):
             effects.append("line_drag")
-        if case.body is not None:
-            effects += [("constant_force" if e == "force" else e)
-                        for e in body_load_models.effect_names(case.body.loads, case.environment)]
-        return effects
+        if case.free_points:
+            effects.append("free_points")
+        if len(case.bodies) > 1:
+            effects.append("several_bodies")
+        if any(b.mass is not None for b in case.bodies):
+            effects.append("body_weight")
+        if any(b.hydrostatics is not None for b in case.bodies):
+            effects.append("hydrostatics")
+        if any(b.hull for b in case.bodies):
+            effects.append("exact_hydrostatics")
+        if any(b.stiffness is not None for b in case.bodies):
+            effects.append("springs")
+        names = []
+        for body in case.bodies:
+            for e in body_load_models.effect_names(body.loads, case.environment):
+                e = "constant_force" if e == "force" else e
+                if e not in names:
+                    names.append(e)
+        return effects + names
 
     def _build(self):
         case = self.case
+        env = case.environment
+        layout = self.layout
         xs = ca.SX.sym("x", self.n_x)
         x = xs * ca.DM(self.x_scale)
-        env = ca.SX.sym("env", len(ENV_PARAMS))
-        legp = ca.SX.sym("legp", len(LEG_PARAMS) * self.n_legs)
-        n_seg_params = len(segment_parameters(case))
-        segp = ca.SX.sym("segp", n_seg_params)
-        lawp = ca.SX.sym("lawp", len(stretch_parameters(case)))
-        p = ca.vertcat(env, legp, segp, lawp)
-        # Stretch-law parameters per leg and segment (None: Hooke or inextensible).
-        self._laws = split_stretch_parameters(case, ca.vertsplit(lawp))
-        self.n_p = p.numel()
-        E = dict(zip(ENV_PARAMS, ca.vertsplit(env)))
-        seg_values = ca.vertsplit(segp) if n_seg_params else []
-        seabed = dict(zip(SEABED_PARAMS, seg_values[:len(SEABED_PARAMS)]))
-        seg_cursor = len(SEABED_PARAMS)
-        n_multi = sum(3 * len(k.segments) + k.n_joints for k in self.kinds
-                      if isinstance(k, MultiLegKind))
-        disc_cursor = seg_cursor + n_multi
-        n_disc = sum(len(DISCRETE_PARAMS) * len(k.elements) + len(k.elements) - 1
-                     for k in self.kinds if isinstance(k, DiscreteLegKind))
-        profile = None
-        rows = next((k.profile_rows for k in self.kinds if isinstance(k, DiscreteLegKind)), 0)
-        if rows:
-            flat = seg_values[disc_cursor + n_disc: disc_cursor + n_disc + 2 * rows]
-            profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
-        current = dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
-                       factor=E["load_factor"])
+        p = ca.SX.sym("p", self.n_p)
 
-        q = {d: 0 for d in DEGREES_OF_FREEDOM}
-        for i, d in enumerate(self.free):
-            q[d] = x[i]
-        cy, sy = ca.cos(q["yaw"]), ca.sin(q["yaw"])
+        def par(name):
+            return p[layout.slice(name)]
 
-        fx_total, fy_total, mz_total = 0, 0, 0
-        leg_res, leg_out, seg_rows, node_rows = [], [], [], []
-        leg_force, tensions, line_weights = [], [], []
-        for i, kind in enumerate(self.kinds):
-            P = dict(zip(LEG_PARAMS, ca.vertsplit(legp[i * len(LEG_PARAMS):
-                                                       (i + 1) * len(LEG_PARAMS)])))
-            iu = self.leg_offsets[i]
-            if case.body is not None:
-                rx = cy * P["fair_x"] - sy * P["fair_y"]
-                ry = sy * P["fair_x"] + cy * P["fair_y"]
-                gx, gy = q["surge"] + rx, q["sway"] + ry
+        E = {k: p[layout.index("env." + k)] for k in ENV_PARAMS}
+        seabed = {k: p[layout.index("seabed." + k)] for k in SEABED_PARAMS}
+        lf = E["load_factor"]
+
+        # -- node positions -------------------------------------------------------------
+        poses, rotations = [], []
+        for bi, body in enumerate(case.bodies):
+            q = list(ca.vertsplit(par(f"body[{body.name}].pose")))
+            poses.append(q)
+        points = []
+        k_contact = self.force_scale / self.length_scale
+        for j, (kind, index, dof) in enumerate(self.nodes):
+            if kind == "body":
+                poses[index][DOFS.index(dof)] = x[j]
+        for pi, point in enumerate(case.free_points):
+            j0 = self.nodes.index(("point", pi, "x"))
+            px, py, zeta = x[j0], x[j0 + 1], x[j0 + 2]
+            pos = ca.vertcat(px, py, seabed_height(seabed, px, py) + ca.fmax(zeta, 0))
+            points.append(dict(position=pos, zeta=zeta, force=ca.SX.zeros(3)))
+        for q in poses:
+            rotations.append(rotation_matrix(q[3], q[4], q[5]))
+        body_force = [ca.SX.zeros(3) for _ in case.bodies]
+        body_moment = [ca.SX.zeros(3) for _ in case.bodies]
+        body_index = {b.name: i for i, b in enumerate(case.bodies)}
+        point_index = {pt.name: i for i, pt in enumerate(case.free_points)}
+
+        def end_position(end, coords):
+            if end.body is not None:
+                bi = body_index[end.body]
+                r = ca.vertcat(*poses[bi][:3])
+                return r + rotations[bi] @ coords
+            if end.point is not None:
+                return points[point_index[end.point]]["position"]
+            if end.on_seabed:
+                return ca.vertcat(coords[0], coords[1],
+                                  seabed_height(seabed, coords[0], coords[1]))
+            return coords
+
+        def apply(end, position, force):
+            if end.body is not None:
+                bi = body_index[end.body]
+                r = ca.vertcat(*poses[bi][:3])
+                body_force[bi] = body_force[bi] + force
+                body_moment[bi] = body_moment[bi] + cross(position - r, force)
+            elif end.point is not None:
+                pt = points[point_index[end.point]]
+                pt["force"] = pt["force"] + force
+
+        # -- lines ------------------------------------------------------------------------
+        seg_values = self._segment_values(p)
+        # Stretch-law parameters per line and segment (None: Hooke or inextensible).
+        self.line_laws = line_laws(case, layout, p)
+        line_res, line_rows, seg_rows, node_rows = [], [], [], []
+        closing, tensions, line_weights = [], [], []
+        current = self._current(E, p)
+        for i, (line, kind) in enumerate(zip(case.lines, self.kinds)):
+            P = {k: par(f"line[{line.name}].{k}") for k in LINE_PARAMS}
+            coords_a = ca.vertcat(P["anchor_x"], P["anchor_y"], P["anchor_z"])
+            coords_b = ca.vertcat(P["fair_x"], P["fair_y"], P["fair_z"])
+            pos_a = end_position(line.a, coords_a)
+            pos_b = end_position(line.b, coords_b)
+            lower, upper = (pos_b, pos_a) if kind.flipped else (pos_a, pos_b)
+            iu = self.line_offsets[i]
+            if kind.discrete:
+                block = discrete_leg(self, i, kind.block, x, iu, seg_values[line.name],
+                                     seabed, current, pos_a, pos_b)
+                node_rows += block.node_rows
+            elif kind.multi:
+                block = multi_block(self, i, kind, xs, x, iu, seg_values[line.name], P,
+                                    seabed, lower, upper)
+                seg_rows += block.segment_rows
             else:
-                rx = ry = 0
-                gx, gy = P["fair_x"], P["fair_y"]
-            dx, dy = gx - P["anchor_x"], gy - P["anchor_y"]
-            # The tiny floor keeps derivatives finite for a vertical leg (X = 0); it moves
-            # X by less than 1e-18 m at any span that matters.
-            X = ca.sqrt(dx**2 + dy**2 + _X_FLOOR**2)
-            Z = P["fair_z"] - P["anchor_z"]
-            if isinstance(kind, MultiLegKind):
-                n_par = 3 * len(kind.segments) + kind.n_joints
-                values = seg_values[seg_cursor: seg_cursor + n_par]
-                seg_cursor += n_par
-                res, row, rows = self._multi_leg(i, kind, x, xs, iu, P, values, seabed, X, Z)
-                leg_res += res
-                seg_rows += rows
-                H = row["H"]
-            elif isinstance(kind, DiscreteLegKind):
-                n_par = len(DISCRETE_PARAMS) * len(kind.elements) + len(kind.elements) - 1
-                values = seg_values[disc_cursor: disc_cursor + n_par]
-                disc_cursor += n_par
-                res, row, rows = self._discrete_leg(i, kind, x, iu, P, values, seabed,
-                                                    current, (gx, gy), X, Z)
-                leg_res += res
-                node_rows += rows
-                H = row["H"]
-            else:
-                u, V = x[iu], x[iu + 1]
-                args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"],
-                            ea_inv=P["ea_inv"], mu=P["friction"])
-                if kind.law is not None:
-                    args["law"] = ca.vertcat(*self._laws[i][0])
-                if kind.sloped:
-                    # The seabed's rise per metre along the leg, anchor toward fairlead.
-                    args["t"] = (seabed["gradient_x"] * dx + seabed["gradient_y"] * dy) / X
-                    out = sloped_leg_function(kind.elastic, kind.friction,
-                                              kind.law).call(args)
-                else:
-                    out = leg_function(kind).call(args)
-                scale = 1.0 / P["length"]
-                leg_res += [out["rX"] * scale, out["rZ"] * scale]
-                J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
-                                ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
-                row = dict(out, J=ca.reshape(J, 4, 1))
-                H = out["H"]
-            # The line pulls the fairlead horizontally toward the anchor with H (a
-            # discretised line in a current also sideways: it gives its own force).
-            fx, fy = (row["fx"], row["fy"]) if "fx" in row else (-H * dx / X, -H * dy / X)
-            fx_total, fy_total = fx_total + fx, fy_total + fy
-            mz_total = mz_total + rx * fy - ry * fx
-            if isinstance(kind, (MultiLegKind, DiscreteLegKind)):
-                # The row's residual is already the largest mismatch force of the leg.
-                leg_force.append(row["rX"])
-            else:
-                leg_force.append(_closing_force(J, out["rX"], out["rZ"]))
-            tensions.append(ca.vertcat(ca.hypot(row["H"], row["VF"]),
-                                       ca.hypot(row["HA"], row["VA"])))
-            # A scale for the certificate when every line is slack (the first line
-            # type's weight over the whole length for a multi-segment leg).
+                block = single_block(self, i, kind, xs, x, iu, P, seabed, lower, upper)
+            line_res += block.residuals
+            apply(line.a, pos_a, block.force_a)
+            apply(line.b, pos_b, block.force_b)
+            closing.append(block.closing)
+            fa, fb = block.force_a, block.force_b
+            tensions.append(ca.vertcat(ca.norm_2(fb), ca.norm_2(fa)))
+            # A scale for the certificate when every line is slack.
             line_weights.append(ca.fabs(P["weight"]) * P["length"])
-            leg_out.append(ca.vertcat(row["H"], row["VF"], row["HA"], row["VA"],
-                                      row["grounded"], row["suspended_x"], row["rX"],
-                                      row["rZ"], X, Z, gx, gy, fx, fy, row["J"]))
+            row = block.row
+            J = row["J"] if row["J"].shape == (4, 1) else ca.reshape(row["J"], 4, 1)
+            line_rows.append(ca.vertcat(
+                row["H"], row["VF"], row["HA"], row["VA"], row["grounded"],
+                row["suspended_x"], row["rX"], row["rZ"], row["X"], row["Z"],
+                pos_b[0], pos_b[1], fb[0], fb[1], J,
+                pos_a, pos_b[2], fa, fb))
 
-        loads = {}
-        if case.body is not None:
-            applied = dataclasses.replace(case.body.loads, force=None)
-            lf = E["load_factor"]
-            loads = body_load_models.body_loads(
-                applied, case.environment, q["yaw"], E["wind_speed"], E["wind_toward"],
+        # -- body loads -------------------------------------------------------------------
+        load_vectors, self.load_names = [], []
+        rho, g = env.water_density, env.gravity
+        body_scale = []
+        generalized, wrenches, hull_range = [], [], []
+        for bi, body in enumerate(case.bodies):
+            q = poses[bi]
+            R = rotations[bi]
+            r = ca.vertcat(*q[:3])
+            F, M = body_force[bi], body_moment[bi]
+            name = f"body[{body.name}]"
+            if body.mass is not None:
+                wf, wm = weight(r, R, mass=par(name + ".mass"),
+                                centre_of_gravity=ca.vertsplit(par(name + ".centre_of_gravity")),
+                                gravity=g)
+                F, M = F + wf, M + wm
+                body_scale.append(par(name + ".mass") * g)
+            if body.hydrostatics is not None:
+                bf, bm = linear_buoyancy(
+                    r, R, displaced_volume=par(name + ".displaced_volume"),
+                    metacentre=ca.vertsplit(par(name + ".metacentre")),
+                    waterplane_area=par(name + ".waterplane_area"),
+                    water_density=rho, gravity=g)
+                F, M = F + bf, M + bm
+                body_scale.append(rho * g * par(name + ".displaced_volume"))
+            for j, member in enumerate(body.hull):
+                mp = dict(zip(MEMBER_PARAMS, ca.vertsplit(par(f"{name}.hull[{j}]"))))
+                out = member_buoyancy(r, R, shape=member.shape, bottom=mp["bottom"],
+                                      top=mp["top"], radius=mp["radius"],
+                                      length=mp["length"], width=mp["width"],
+                                      centre=(mp["centre_x"], mp["centre_y"]),
+                                      water_density=rho, gravity=g)
+                F, M = F + out["force"], M + out["moment"]
+                body_scale.append(out["force"][2])
+                hull_range.append(out["in_range"])
+            loads = body_load_models.body_loads_3d(
+                body.loads, env, R, q[5], E["wind_speed"], E["wind_toward"],
                 E["current_speed"], E["current_toward"], E["wave_hs"], E["wave_toward"])
-            loads = {k: tuple(lf * c for c in v) for k, v in loads.items()}
-            if case.body.loads.force is not None:
-                loads["constant_force"] = (lf * E["force_x"], lf * E["force_y"],
-                                           lf * E["moment_z"])
-        load_x = sum((v[0] for v in loads.values()), ca.SX(0))
-        load_y = sum((v[1] for v in loads.values()), ca.SX(0))
-        load_m = sum((v[2] for v in loads.values()), ca.SX(0))
-        self.load_names = list(loads)
+            for key, (lfor, lmom) in loads.items():
+                F, M = F + lf * lfor, M + lf * lmom
+                load_vectors.append(ca.vertcat(lf * lfor, lf * lmom))
+                self.load_names.append(key if len(case.bodies) == 1 else f"{body.name}.{key}")
+            if body.loads.force is not None:
+                if case.form == "legs" and bi == 0:
+                    cf = ca.vertcat(E["force_x"], E["force_y"], 0)
+                    cm = ca.vertcat(0, 0, E["moment_z"])
+                else:
+                    f6 = par(name + ".force")
+                    cf, cm = f6[:3], f6[3:]
+                F, M = F + lf * cf, M + lf * cm
+                load_vectors.append(ca.vertcat(lf * cf, lf * cm))
+                self.load_names.append("constant_force" if len(case.bodies) == 1
+                                       else f"{body.name}.constant_force")
+            wrenches.append(ca.vertcat(F, M))
+            Q = generalized_forces(F, M, q[4], q[5])
+            if body.stiffness is not None:
+                K = ca.reshape(par(name + ".stiffness"), 6, 6).T
+                q0 = par(name + ".pose")
+                Q = Q - K @ (ca.vertcat(*q) - q0)
+            generalized.append(Q)
 
-        unbalanced = {"surge": fx_total + load_x, "sway": fy_total + load_y,
-                      "yaw": mz_total + load_m}
-        body_res = [unbalanced[d] / (self.moment_scale if d == "yaw" else self.force_scale)
-                    for d in self.free]
-        g = ca.vertcat(*leg_res, *body_res)
-        self.residual = ca.Function("residual", [xs, p], [g])
-        load_vec = ca.vertcat(*[ca.vertcat(*v) for v in loads.values()]) if loads else ca.DM()
+        point_forces = []
+        for pi, point in enumerate(case.free_points):
+            name = f"point[{point.name}]"
+            net = g * (par(name + ".mass") - rho * par(name + ".volume"))
+            pt = points[pi]
+            gx, gy = seabed["gradient_x"], seabed["gradient_y"]
+            normal = ca.vertcat(-gx, -gy, 1) / ca.sqrt(1 + gx**2 + gy**2)
+            N = ca.fmax(-pt["zeta"], 0) * k_contact
+            force = pt["force"] + ca.vertcat(0, 0, -net) + N * normal
+            point_forces.append(force)
+            body_scale.append(ca.fabs(net))
+
+        # -- residuals ----------------------------------------------------------------------
+        node_res, node_force, node_moment = [], [], []
+        for kind, index, dof in self.nodes:
+            if kind == "body":
+                value = generalized[index][DOFS.index(dof)]
+            else:
+                value = point_forces[index][POINT_DOFS.index(dof)]
+            if dof in ROTATIONS:
+                node_res.append(value / self.moment_scale)
+                node_moment.append(ca.fabs(value))
+            else:
+                node_res.append(value / self.force_scale)
+                node_force.append(ca.fabs(value))
+        g_all = ca.vertcat(*line_res, *node_res)
+        self.residual = ca.Function("residual", [xs, p], [g_all])
+        self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g_all, xs)])
+        # One graph for both, so the Newton kernel evaluates the shared terms once.
+        self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
+                                             [g_all, ca.jacobian(g_all, xs)])
+
+        unbalanced = ca.vertcat(*generalized, *point_forces) if (generalized or point_forces) \
+            else ca.SX(0, 1)
+        pose_vec = ca.vertcat(*[ca.vertcat(*q) for q in poses]) if poses else ca.SX(0, 1)
+        point_vec = ca.vertcat(*[pt["position"] for pt in points]) if points else ca.SX(0, 1)
+        load_vec = ca.vertcat(*load_vectors) if load_vectors else ca.SX(0, 1)
+        wrench_vec = ca.vertcat(*wrenches) if wrenches else ca.SX(0, 1)
+        range_vec = ca.vertcat(*hull_range) if hull_range else ca.SX(0, 1)
         self.report = ca.Function(
             "report", [xs, p],
-            [ca.horzcat(*leg_out).T if leg_out else ca.DM(),
-             ca.vertcat(unbalanced["surge"], unbalanced["sway"], unbalanced["yaw"]),
-             ca.vertcat(load_x, load_y, load_m), load_vec])
+            [ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS)),
+             unbalanced, load_vec, pose_vec, point_vec, wrench_vec, range_vec])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.node_report = ca.Function(
             "node_report", [xs, p], [ca.horzcat(*node_rows).T if node_rows else ca.DM()])
-        self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g, xs)])
-        # One graph for both, so the Newton kernel evaluates the shared terms once.
-        self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
-                                             [g, ca.jacobian(g, xs)])
-        self._build_certificate(xs, p, unbalanced, leg_force, tensions, q, line_weights)
-        self._xs, self._p, self._g = xs, p, g
-        self._nlp_solvers = {}
-        self._newton = None
-        #: Closed-form starting points by leg parameters (see equilibrium.initial_point).
-        self.start_cache: dict[bytes, np.ndarray] = {}
 
-    def _build_certificate(self, xs, p, unbalanced, leg_force, tensions, q, line_weights=()):
-        """``certificate(x, p) -> [force_N, moment_Nm, t_max_N]`` and the sweep summary.
-
-        The force is the largest unbalanced force on a free degree of freedom or, per leg,
-        the fairlead force that would close its span mismatch (one Newton step of that leg
-        alone with its own 2x2 stiffness), so a mismatch anywhere shows up as force.
-        ``t_max`` is the largest tension, but never less than 1e-3 of the weight of the
-        heaviest line: with every line slack (tensions near zero) the residual is judged
-        against the forces the scene carries, not against a vanishing tension.
-        """
-        forces = [ca.fabs(unbalanced[d]) for d in self.free if d != "yaw"] + leg_force
+        # -- certificate ----------------------------------------------------------------------
+        forces = node_force + closing
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.SX(0)
-        moment = ca.fabs(unbalanced["yaw"]) if "yaw" in self.free else ca.SX(0)
+        moment = ca.mmax(ca.vertcat(*node_moment)) if node_moment else ca.SX(0)
         all_t = ca.vertcat(*tensions) if tensions else ca.SX(0)
         t_max = ca.mmax(all_t) if tensions else ca.SX(0)
         if line_weights:
             t_max = ca.fmax(t_max, 1e-3 * ca.mmax(ca.vertcat(*line_weights)))
+        # The largest force in any body's balance (weight, buoyancy, applied loads) also
+        # sets the scale: a floating body's residual is judged against what it carries.
+        carried = [ca.fabs(v) for v in body_scale] + [ca.norm_2(v[:3]) for v in load_vectors]
+        if carried:
+            t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*carried)))
         self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
                                        ["x", "p"], ["force", "moment", "t_max"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
+        first = self._first_body_summary(poses, p)
         self.summary = ca.Function(
-            "summary", [xs, p],
-            [ca.vertcat(q["surge"], q["sway"], q["yaw"]), T[:, 0], T[:, 1]],
+            "summary", [xs, p], [first, T[:, 0], T[:, 1]],
             ["x", "p"], ["body", "fairlead_tension", "anchor_tension"])
+        self._xs, self._p, self._g = xs, p, g_all
 
-    def certify(self, x, p, tol: float) -> tuple[bool, float, float, float]:
+    def _first_body_summary(self, poses, p):
+        """``[x, y, yaw]`` of the first body (displacement from its case pose), then, in a
+        network case, every body's absolute pose (6 each, m and rad)."""
+        if not poses:
+            return ca.SX.zeros(3)
+        q = poses[0]
+        q0 = p[self.layout.slice(f"body[{self.case.bodies[0].name}].pose")]
+        first = ca.vertcat(q[0] - q0[0], q[1] - q0[1], q[5] - q0[5])
+        if self.case.form != "network":
+            return first
+        return ca.vertcat(first, *[ca.vertcat(*pose) for pose in poses])
+
+    def _segment_values(self, p) -> dict:
+        """Each multi-segment or lumped line's segment parameters (line order)."""
+        out = {}
+        for line, kind in zip(self.case.lines, self.kinds):
+            if kind.multi or kind.discrete:
+                names = [n for n in self.layout.names
+                         if n.startswith(f"line[{line.name}].segment[")
+                         or n.startswith(f"line[{line.name}].clump[")]
+                out[line.name] = [p[self.layout.index(n)] for n in names]
+        return out
+
+    def _current(self, E, p) -> dict:
+        rows = next((k.block.profile_rows for k in self.kinds if k.discrete), 0)
+        profile = None
+        if rows:
+            flat = ca.vertsplit(p[self.layout.slice("current.profile")])
+            profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
+        return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
+                    factor=E["load_factor"])
+
+    # -- certificate ------------------------------------------------------------------
+    def certify(self, x, p, tol: float) -> tuple:
         """``(certified, force_N, moment_Nm, relative)`` of the scaled point ``x``."""
         if not np.all(np.isfinite(x)):
             return False, math.inf, math.inf, math.inf
@@ -590,8 +465,9 @@ class EquilibriumProblem:
     def judge(self, force: float, moment: float, t_max: float, tol: float):
         """``(certified, force, moment, relative)`` from the certificate's three numbers.
 
-        The force must be within ``tol`` of the largest tension, and the moment within
-        ``tol`` of that tension times the scene's moment arm.
+        The force must be within ``tol`` of the largest force in the balance (the largest
+        line tension, or a body's weight, buoyancy or applied load where larger), and the
+        moment within ``tol`` of that force times the scene's moment arm.
         """
         scale = t_max if t_max > 0 else self.force_scale
         relative = force / scale
@@ -600,161 +476,88 @@ class EquilibriumProblem:
                   and moment_ok)
         return ok, force, moment, relative
 
-    def _multi_leg(self, i, kind, x, xs, iu, P, values, seabed, X, Z):
-        """Residuals and report rows of a multi-segment leg (see the module notes)."""
-        n = len(kind.segments)
-        nj = kind.n_joints
-        seg = [dict(zip(SEGMENT_PARAMS, values[3 * k: 3 * k + 3])) for k in range(n)]
-        clump = values[3 * n: 3 * n + nj]
-        u, V_top = x[iu], x[iu + 1]
-        xi = [x[iu + 2 + 2 * j] for j in range(nj)]
-        sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
-        z_bed = -seabed["depth"]
-        Vs, N = [], []
-        for j in range(nj):
-            if _can_ground(kind.segments[j]):
-                Vs.append(ca.fmax(sigma[j], 0))
-                N.append(ca.fmax(-sigma[j], 0))
-            else:
-                Vs.append(sigma[j])
-                N.append(0 * sigma[j])
-        Vs.append(V_top)
-        node_xi = [0] + xi + [X]
-        node_z = [P["anchor_z"]]
-        outs, res, mismatch = [], [], []
-        for k, sk in enumerate(kind.segments):
-            Xk = node_xi[k + 1] - node_xi[k]
-            top = k == n - 1
-            # A joint's height is where its lower segment puts it: that segment's height
-            # equation defines it instead of being a residual.
-            Zk = P["fair_z"] - node_z[k] if top else 0
-            h = ca.fmax(node_z[k] - z_bed, 0)
-            if top and kind.reversed_top:
-                # Solved from the fairlead (on the seabed) toward the joint below.
-                Zk = node_z[k] - P["fair_z"]
-                h = ca.fmax(P["fair_z"] - z_bed, 0)
-            L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
-            law = {} if sk.law is None else {"law": ca.vertcat(*self._laws[i][k])}
-            if sk.block == "leg":
-                o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
-                                                   ea_inv=c, mu=P["friction"], **law))
-                o["descent_x"] = 0 * u
-            elif sk.block == "lifted":
-                o = lifted_segment_function(sk.elastic, sk.friction, sk.law).call(dict(
-                    X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"],
-                    **law))
-            else:
-                o = straight_segment_function(sk.elastic, sk.law).call(dict(
-                    X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c, **law))
-            if top:
-                res += [o["rX"] / L, o["rZ"] / L]
-                e = ca.vertcat(o["rX"], o["rZ"])
-                J = ca.jacobian(e, ca.vertcat(xs[iu], xs[iu + 1])) / self.force_scale
-                det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
-                delta = ca.vertcat(J[1, 1] * e[0] - J[0, 1] * e[1],
-                                   -J[1, 0] * e[0] + J[0, 0] * e[1]) / det
-                mismatch.append(ca.norm_2(delta))
-            else:
-                res.append(o["rX"] / L)
-                node_z.append(node_z[k] + o["rZ"])
-                o["rZ"] = 0 * u
-                dX = ca.jacobian(o["rX"], xs[iu]) / self.force_scale
-                # An inextensible segment lying straight on the seabed has dX = 0: use the
-                # scene's own stiffness scale then.
-                mismatch.append(ca.fabs(o["rX"]) / ca.fmax(
-                    ca.fabs(dX), self.length_scale / self.force_scale))
-            if top and kind.reversed_top:
-                # Back to the leg's orientation: the fairlead's vertical tension is minus the
-                # block's pull on its lower end; the joint is pulled down by the block's V.
-                o = dict(o, VF=-o["VA"], VA=-o["VF"])
-                Zk, h = -Zk, ca.fmax(node_z[k] - z_bed, 0)
-            outs.append((o, Xk, node_z[k + 1] - node_z[k] if not top else Zk, h))
-        joint_force = []
-        for j in range(nj):
-            # Joint j joins segment j (below) and j + 1 (above): the upper segment pulls it
-            # with its signed lower-end force VA, the lower one down with its top tension.
-            unbalanced = outs[j + 1][0]["VA"] - Vs[j] - clump[j] + N[j]
-            res.append(unbalanced / self.force_scale)
-            mismatch.append(ca.fabs(unbalanced))
-            joint_force.append(unbalanced)
-        worst = mismatch[0]
-        for m in mismatch[1:]:
-            worst = ca.fmax(worst, m)
-        top, bottom = outs[-1][0], outs[0][0]
-        grounded = sum((o["grounded"] for o, _, _, _ in outs), 0 * u)
-        row = dict(H=top["H"], VF=top["VF"], HA=bottom["HA"], VA=bottom["VA"],
-                   grounded=grounded, suspended_x=top["suspended_x"], rX=worst, rZ=0 * u,
-                   J=ca.DM([1.0, 0.0, 0.0, 1.0]))
-        rows = []
-        for k, (o, Xk, Zk, h) in enumerate(outs):
-            rows.append(ca.vertcat(
-                i, k, o["H"], o["VF"], o["HA"], o["VA"], o["grounded"], o["suspended_x"],
-                o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
-                joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k]))
-        return res, row, rows
-
-    def _discrete_leg(self, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z):
-        """Residuals and report rows of a lumped-node leg (see :mod:`.discrete` notes)."""
-        from .discrete import discrete_leg
-        return discrete_leg(self, i, kind, x, iu, P, values, seabed, current, fair_xy, X, Z)
-
     # -- solvers --------------------------------------------------------------------
     def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
-        """An IPOPT solver for the feasibility NLP, cached per setting."""
+        """An IPOPT solver for the feasibility NLP, cached per setting.
+
+        A CasADi solver object is not safe to run from two threads at once: callers hold
+        :attr:`lock` while they run it.
+        """
         key = (tol, max_iter, max_time_s)
-        if key not in self._nlp_solvers:
-            nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
-            opts = {
-                "print_time": False,
-                "error_on_fail": False,
-                # A NaN or inf met on the way (absurd input) is reported by the certificate
-                # and ConvergenceError; CasADi's own per-evaluation warnings are noise.
-                "show_eval_warnings": False, "calc_lam_p": False,
-                "ipopt": {
-                    "print_level": 0, "sb": "yes", "tol": tol,
-                    "constr_viol_tol": tol, "max_iter": max_iter,
-                    "max_wall_time": max_time_s, "nlp_scaling_method": "none",
-                    "mu_strategy": "adaptive",
-                },
-            }
-            self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
-        return self._nlp_solvers[key]
+        with self._lock:
+            if key not in self._nlp_solvers:
+                nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
+                opts = {
+                    "print_time": False,
+                    "error_on_fail": False,
+                    # A NaN or inf met on the way (absurd input) is reported by the
+                    # certificate and ConvergenceError; CasADi's per-evaluation warnings are
+                    # noise.
+                    "show_eval_warnings": False, "calc_lam_p": False,
+                    "ipopt": {
+                        "print_level": 0, "sb": "yes", "tol": tol,
+                        "constr_viol_tol": tol, "max_iter": max_iter,
+                        "max_wall_time": max_time_s, "nlp_scaling_method": "none",
+                        "mu_strategy": "adaptive",
+                    },
+                }
+                with SYMBOLIC_LOCK:
+                    self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
+            return self._nlp_solvers[key]
 
     def newton(self):
         """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
-        if self._newton is None:
-            from .newton import NewtonKernel
-            self._newton = NewtonKernel(self)
-        return self._newton
+        with self._lock:
+            if self._newton is None:
+                from .newton import NewtonKernel
+                with SYMBOLIC_LOCK:
+                    self._newton = NewtonKernel(self)
+            return self._newton
 
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def kernel_pool(self):
+        """Clones of the Newton kernel, one per concurrently running caller (sweeps)."""
+        with self._lock:
+            if self._kernel_pool is None:
+                from .newton import KernelPool
+                self._kernel_pool = KernelPool(self.newton())
+            return self._kernel_pool
+
+    def bounds(self) -> tuple:
         lb = np.full(self.n_x, -np.inf)
         ub = np.full(self.n_x, np.inf)
-        for i, d in enumerate(self.free):
-            if d == "yaw":
-                lb[i], ub[i] = -YAW_LIMIT, YAW_LIMIT
+        for j, (_, _, dof) in enumerate(self.nodes):
+            if dof == "pitch":
+                # z-y-x angles are singular at +-90 deg of pitch.
+                lb[j], ub[j] = -0.49 * math.pi, 0.49 * math.pi
         for i, kind in enumerate(self.kinds):
-            if not kind.contact and not kind.neutral:
-                lb[self.leg_offsets[i]] = 0.0   # a hanging catenary cannot go slack
+            if kind.single and not kind.contact and not kind.neutral:
+                lb[self.line_offsets[i]] = 0.0   # a hanging catenary cannot go slack
         return lb, ub
 
-
-def _closing_force(J, rX, rZ):
-    """Size of the fairlead force change that closes a leg's span mismatch ``(rX, rZ)``.
-
-    ``J`` is the leg's 2x2 derivative of the spans by ``(u, V)``; a singular ``J`` with a
-    nonzero mismatch gives infinity (the leg cannot be closed by a finite force).
-    """
-    a, b, c, d = J[0, 0], J[0, 1], J[1, 0], J[1, 1]
-    det = a * d - b * c
-    du = d * rX - b * rZ
-    dV = -c * rX + a * rZ
-    mismatch = ca.fabs(rX) + ca.fabs(rZ)
-    return ca.if_else(det != 0, ca.hypot(du, dV) / ca.fabs(det),
-                      ca.if_else(mismatch > 0, ca.inf, 0))
+    def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:
+        """The parameter vector of ``case`` (same structure) for this problem."""
+        return parameter_vector(case, load_factor, self.kinds)
 
 
-def _body_radius(case: Case) -> float:
-    if case.body is None or not case.legs:
-        return 1.0
-    return max(1.0, max(math.hypot(leg.fairlead[0], leg.fairlead[1]) for leg in case.legs))
+def structure_key(case: Case) -> tuple:
+    """What decides the shape of the built problem (not its parameter values)."""
+    bodies = tuple(
+        (b.name, tuple(b.free), b.mass is not None, b.hydrostatics is not None,
+         tuple(m.shape for m in b.hull), b.stiffness is not None,
+         dataclasses.replace(b.loads, force=None), b.loads.force is not None)
+        for b in case.bodies)
+    ends = tuple((line.a.kind, line.a.on_seabed, line.a.point, line.a.body,
+                  line.b.kind, line.b.on_seabed, line.b.point, line.b.body)
+                 for line in case.lines)
+    return (
+        tuple(line_kinds(case)), ends, bodies, tuple(p.name for p in case.free_points),
+        case.form,
+        case.environment.wind is not None, case.environment.current is not None,
+        case.environment.waves is not None,
+        case.environment.air_density, case.environment.water_density,
+        case.environment.gravity,
+    )
+
+
+__all__ = ["EquilibriumProblem", "structure_key", "LINE_COLUMNS", "LineKind",
+           "plane_geometry", "closing_force", "BODY_PARAMS"]

@@ -15,10 +15,12 @@ class Certificate:
     Attributes
     ----------
     force_N : float
-        Largest unbalanced force [N]: on a free body degree of freedom, or at a fairlead,
-        where a leg's span mismatch is converted to the force that would close it.
+        Largest unbalanced force [N]: on a free body degree of freedom, on a free point, or
+        at a line end, where a line's span mismatch is converted to the force that would
+        close it.
     moment_Nm : float
-        Largest unbalanced yaw moment [N m] (0 when yaw is not solved).
+        Largest unbalanced moment [N m] about a free rotation axis of any body (0 when no
+        rotation is solved).
     relative : float
         ``force_N`` divided by the largest line tension.
     tolerance : float
@@ -52,10 +54,11 @@ class LegResult:
     and bottom tension, horizontal tension, grounded length, largest tension, utilisation)
     and ``joints`` (per joint: position, height above the seabed, seabed reaction, clump
     weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
-    segment utilisation. ``fairlead_force`` is the force [N] the line exerts on its
-    fairlead, global ``(Fx, Fy, Fz)``: along the leg's plane for an analytic leg, with a
-    sideways part for a line in a current. ``fibre_grounded_m`` is the length of fibre
-    rope lying on the seabed [m] (None for a leg without fibre rope).
+    segment utilisation. ``fairlead_force`` and ``anchor_force`` are the forces [N] the
+    line exerts on its ends B and A, global ``(Fx, Fy, Fz)``: in the line's vertical plane
+    for an analytic line, with a sideways part for a line in a current.
+    ``fibre_grounded_m`` is the length of fibre rope lying on the seabed [m] (None for a
+    line without fibre rope).
     """
 
     name: str
@@ -79,6 +82,7 @@ class LegResult:
     segments: tuple = ()
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
+    anchor_force: Optional[tuple] = None
     fibre_grounded_m: Optional[float] = None
 
     @property
@@ -115,6 +119,8 @@ class LegResult:
         }
         if self.fairlead_force is not None:
             d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
+        if self.anchor_force is not None:
+            d["anchor_force_N"] = [float(v) for v in self.anchor_force]
         if self.fibre_grounded_m is not None:
             d["fibre_grounded_length_m"] = self.fibre_grounded_m
         if self.segments:
@@ -124,6 +130,39 @@ class LegResult:
             d["profile"] = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
                             for k, v in self.profile.items()}
         return d
+
+
+@dataclass(frozen=True)
+class Stability:
+    """Static stability of an equilibrium, from the total tangent stiffness.
+
+    Attributes
+    ----------
+    stable : bool
+        Every eigenvalue of the condensed stiffness ``K = -dQ/dq`` of the free body DOFs has
+        a positive real part (zero ones decided by finite perturbations).
+    min_eigenvalue : float
+        The smallest real part [mixed units: N/m and N m/rad].
+    unstable_dofs : tuple of str
+        ``"body.dof"`` most involved in each unstable mode.
+    neutral_dofs : tuple of str
+        DOFs with a zero eigenvalue whose restoring force at finite perturbation is zero
+        (indifferent: nothing restrains or loads them); they keep their given value.
+    eigenvalues : tuple of complex
+    dofs : tuple of str
+    """
+
+    stable: bool
+    min_eigenvalue: float
+    unstable_dofs: tuple = ()
+    neutral_dofs: tuple = ()
+    eigenvalues: tuple = ()
+    dofs: tuple = ()
+
+    def to_dict(self) -> dict:
+        return {"stable": self.stable, "min_eigenvalue": self.min_eigenvalue,
+                "unstable_dofs": list(self.unstable_dofs),
+                "neutral_dofs": list(self.neutral_dofs)}
 
 
 @dataclass(frozen=True)
@@ -138,15 +177,17 @@ class Result:
     effects : list of str
         The physical effects the problem simulated.
     body : dict or None
-        ``x_m``, ``y_m`` displacement of the body origin and ``yaw_deg``; None without body.
+        ``x_m``, ``y_m`` displacement of the body origin and ``yaw_deg``; None without body
+        (the ``legs:`` form; a network case with one body also fills it).
     legs : list of LegResult
+        Every line (end A as ``anchor_*``, end B as ``fairlead_*``); also ``lines``.
     loads : dict
         Each simulated body load, ``name -> [Fx N, Fy N, Mz N m]`` in the global frame.
     case_name : str
     state : numpy.ndarray
         The solution vector (scaled), for warm starts.
     case : Case or None
-        The case solved, for the study functions (:mod:`moorsolve.studies.study`).
+        The case solved, for the study functions (:mod:`moorsolve.studies`).
     """
 
     converged: bool
@@ -160,6 +201,24 @@ class Result:
     state: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
     notes: tuple = ()
     case: Optional[object] = field(default=None, repr=False, compare=False)
+    #: Per body: name, pose (``x_m`` ... ``yaw_deg``, absolute in the scene) and the
+    #: displacement from its case pose (``offset``).
+    bodies: tuple = ()
+    #: Per free point: name and position ``x_m``, ``y_m``, ``z_m``, and its seabed reaction.
+    points: tuple = ()
+    stability: Optional[Stability] = None
+    form: str = "legs"
+    warnings: tuple = ()
+
+    @property
+    def lines(self) -> list:
+        return self.legs
+
+    def body_named(self, name: str) -> dict:
+        for b in self.bodies:
+            if b["name"] == name:
+                return b
+        raise KeyError(name)
 
     @property
     def iterations(self) -> int:
@@ -178,7 +237,7 @@ class Result:
     def to_dict(self, profiles: bool = True) -> dict:
         """The result as JSON-ready data (CONTRACT.md "Result"), plus extensions."""
         c = self.certificate
-        return {
+        out = {
             "converged": self.converged,
             "solver": self.solver,
             "iterations": c.iterations,
@@ -193,3 +252,11 @@ class Result:
             "notes": list(self.notes),
             "case": self.case_name,
         }
+        if self.form == "network" or len(self.bodies) > 1 or self.points:
+            out["bodies"] = [dict(b) for b in self.bodies]
+            out["points"] = [dict(pt) for pt in self.points]
+        if self.stability is not None:
+            out["stability"] = self.stability.to_dict()
+        if self.warnings:
+            out["warnings"] = list(self.warnings)
+        return out

@@ -1,23 +1,25 @@
-"""Stretch-law parameters of a case: a block of the problem's parameter vector.
+"""Stretch-law parameters of a case: the last block of the problem's parameter vector.
 
 A line type with a stretch law other than Hooke's (Baranov, a tension-strain table) gives
 its values (:meth:`~moorsolve.model.stretch.StretchLaw.parameters`) to every segment of that
-type. They follow the environment, leg and segment blocks of the parameter vector, segment
-by segment in case order (legs, then their segments from the anchor), and only for
-segments with such a law; Hooke lines keep their compliance in the leg and segment blocks.
+type. They close the parameter vector (:mod:`.layout`, block 7, named
+``line[NAME].law[k]``), segment by segment in case order (lines, then their
+segments from end A), and only for segments with such a law; Hooke lines keep their
+compliance in the line and segment blocks.
 The law's structure (which law, the table's number of rows) is part of the leg kind, so a
 sweep, a sensitivity or an optimisation may change the values without a rebuild.
 """
 
 from __future__ import annotations
 
+import casadi as ca
 import numpy as np
 
 from ..model import Case
 from ..physics.stretch import BARANOV, TABLE, NumericLaw, StretchModel
 
-__all__ = ["law_model", "stretch_parameters", "split_stretch_parameters", "numeric_law",
-           "start_ea"]
+__all__ = ["law_model", "stretch_parameters", "law_slot", "line_laws", "numeric_law",
+           "start_ea", "stiffness_scale_column", "baranov_n_column"]
 
 
 def law_model(line_type) -> StretchModel | None:
@@ -32,27 +34,23 @@ def law_model(line_type) -> StretchModel | None:
 
 def stretch_parameters(case: Case) -> np.ndarray:
     """The stretch-law block of the parameter vector (empty when every line is Hooke's)."""
-    values = [v for leg in case.legs for seg in leg.segments
+    values = [v for line in case.lines for seg in line.segments
               if seg.line_type.stretch is not None
               for v in seg.line_type.stretch.parameters()]
     return np.asarray(values, dtype=float)
 
 
-def split_stretch_parameters(case: Case, block) -> list:
-    """Cut the block (a sequence of scalars, e.g. SX) into ``[leg][segment]`` parameter
-    lists (None for a Hooke or inextensible segment), in :func:`stretch_parameters` order."""
-    out, cursor = [], 0
-    for leg in case.legs:
-        row = []
-        for seg in leg.segments:
-            model = law_model(seg.line_type)
-            if model is None:
-                row.append(None)
-                continue
-            row.append(list(block[cursor: cursor + model.n_params]))
-            cursor += model.n_params
-        out.append(row)
-    return out
+def law_slot(line, k: int) -> str:
+    """The layout name of segment ``k``'s law parameters (:mod:`.layout`)."""
+    return f"line[{line.name}].law[{k}]"
+
+
+def line_laws(case: Case, layout, p) -> list:
+    """The law parameters of every segment, ``[line][segment]`` (lists of scalars of the
+    symbolic ``p``; None for a Hooke or inextensible segment), from end A."""
+    return [[list(ca.vertsplit(p[layout.slice(law_slot(line, k))]))
+             if seg.line_type.stretch is not None else None
+             for k, seg in enumerate(line.segments)] for line in case.lines]
 
 
 def numeric_law(line_type) -> NumericLaw | None:
@@ -74,66 +72,55 @@ def start_ea(line_type) -> float | None:
     return law.secant_ea(T)
 
 
-def stiffness_scale_column(case: Case, n_p: int, line_type: str) -> np.ndarray:
+def stiffness_scale_column(case: Case, layout, line_type: str) -> np.ndarray:
     """``dp/dk``: how the parameter vector moves when every tension of ``line_type``'s
     stretch law is scaled by ``k`` (at ``k = 1``), i.e. the rope made ``k`` times stiffer.
 
-    Hooke: ``1/EA -> 1/(k EA)``; Baranov: ``n -> n / sqrt(k)``; table: each tension
-    ``T_i -> k T_i``. Covers the stretch-law block for every segment, and Hooke's
-    compliance of one-segment legs (their slot in the leg block).
+    Hooke: ``1/EA -> 1/(k EA)`` (a one-segment line's compliance, or a segment's);
+    Baranov: ``n -> n / sqrt(k)``; table: each tension ``T_i -> k T_i``. Every segment of
+    the type, in every line.
 
     Raises
     ------
     ValueError
-        A Hooke segment inside a multi-segment or lumped-node leg (its compliance sits in
-        the segment block, not mapped here), or a line type no leg uses.
+        No line uses the type, or it is inextensible.
     """
-    from .problem import ENV_PARAMS, LEG_PARAMS, segment_parameters
-    col = np.zeros(n_p)
-    base = len(ENV_PARAMS) + len(LEG_PARAMS) * len(case.legs) + len(segment_parameters(case))
-    cursor, used = 0, False
-    for i, leg in enumerate(case.legs):
-        for seg in leg.segments:
+    col = np.zeros(layout.size)
+    used = False
+    for line in case.lines:
+        for k, seg in enumerate(line.segments):
             lt = seg.line_type
+            if lt.name != line_type:
+                continue
+            used = True
             law = lt.stretch
-            mine = lt.name == line_type
-            used = used or mine
             if law is not None:
-                size = len(law.parameters())
-                if mine:
-                    if law.model == "baranov":
-                        col[base + cursor] = -law.n / 2
-                    else:
-                        rows = law.rows
-                        col[base + cursor + rows: base + cursor + 2 * rows] = law.tension
-                cursor += size
-            elif mine and lt.ea is not None:
-                if leg.multi_segment or len(leg.segments) != 1:
-                    raise ValueError(f"line_types[{line_type}].stiffness_scale: a Hooke "
-                                     f"segment of the multi-segment leg {leg.name} is not "
-                                     "mapped (give it a stretch law, or use legs[].ea)")
-                col[len(ENV_PARAMS) + i * len(LEG_PARAMS) + LEG_PARAMS.index("ea_inv")] = \
-                    -1.0 / lt.ea
+                s = layout.slice(law_slot(line, k))
+                if law.model == "baranov":
+                    col[s.start] = -law.n / 2
+                else:
+                    col[s.start + law.rows: s.stop] = law.tension
+            elif lt.ea is not None:
+                name = f"line[{line.name}].segment[{k}].ea_inv"
+                slot = name if name in layout.names else f"line[{line.name}].ea_inv"
+                col[layout.index(slot)] = -1.0 / lt.ea
+            else:
+                raise ValueError(f"line_types[{line_type}].stiffness_scale: the line type "
+                                 "is inextensible")
     if not used:
-        raise ValueError(f"line_types[{line_type}]: no leg uses this line type")
+        raise ValueError(f"line_types[{line_type}]: no line uses this line type")
     return col
 
 
-def baranov_n_column(case: Case, n_p: int, line_type: str) -> np.ndarray:
+def baranov_n_column(case: Case, layout, line_type: str) -> np.ndarray:
     """``dp/dn`` for the Baranov coefficient ``n`` of ``line_type`` (every segment of it)."""
-    from .problem import ENV_PARAMS, LEG_PARAMS, segment_parameters
-    col = np.zeros(n_p)
-    base = len(ENV_PARAMS) + len(LEG_PARAMS) * len(case.legs) + len(segment_parameters(case))
-    cursor = 0
-    for leg in case.legs:
-        for seg in leg.segments:
+    col = np.zeros(layout.size)
+    for line in case.lines:
+        for k, seg in enumerate(line.segments):
             law = seg.line_type.stretch
-            if law is None:
-                continue
-            if seg.line_type.name == line_type and law.model == "baranov":
-                col[base + cursor] = 1.0
-            cursor += len(law.parameters())
+            if seg.line_type.name == line_type and law is not None and law.model == "baranov":
+                col[layout.slice(law_slot(line, k)).start] = 1.0
     if not col.any():
-        raise ValueError(f"line_types[{line_type}].n: no leg uses a Baranov line type of "
+        raise ValueError(f"line_types[{line_type}].n: no line uses a Baranov line type of "
                          "that name (n is Baranov's coefficient)")
     return col

@@ -79,7 +79,7 @@ def _fidelity_variants(case: Case):
             leg, segments=tuple(dataclasses.replace(
                 seg, line_type=dataclasses.replace(seg.line_type, ea=None, stretch=None))
                 for seg in leg.segments)) for leg in case.legs)
-        yield "inextensible lines", dataclasses.replace(case, line_types=types, legs=legs)
+        yield "inextensible lines", dataclasses.replace(case, line_types=types, lines=legs)
     if case.environment.seabed.friction > 0:
         env = dataclasses.replace(case.environment, seabed=dataclasses.replace(
             case.environment.seabed, friction=0.0))
@@ -100,7 +100,7 @@ def _fidelity_variants(case: Case):
                 seg, line_type=dataclasses.replace(seg.line_type, drag=None))
                 for seg in leg.segments)) for leg in case.legs)
         yield "analytic legs, no line drag", dataclasses.replace(case, line_types=types,
-                                                                 legs=legs)
+                                                                 lines=legs)
 
 
 def _measure(case, reference, ladder, setting, solver, tol, repeats) -> Rung:

@@ -118,13 +118,13 @@ class BoundsResult:
 
 def _with_line_types(case: Case, types: dict) -> Case:
     """``case`` with the line types named in ``types`` replaced (every segment of them)."""
-    legs = tuple(dataclasses.replace(leg, segments=tuple(
+    lines = tuple(dataclasses.replace(line, segments=tuple(
         dataclasses.replace(seg, line_type=types.get(seg.line_type.name, seg.line_type))
-        for seg in leg.segments)) for leg in case.legs)
+        for seg in line.segments)) for line in case.lines)
     line_types = {name: types.get(name, lt) for name, lt in case.line_types.items()}
     # The case-file data no longer describes the scene: drop it (as the checks do).
     extra = {"source": None} if "source" in {f.name for f in dataclasses.fields(case)} else {}
-    return dataclasses.replace(case, line_types=line_types, legs=legs, **extra)
+    return dataclasses.replace(case, line_types=line_types, lines=lines, **extra)
 
 
 def _at(lt, spec, ea_dynamic: float | None):
@@ -138,7 +138,7 @@ def _at(lt, spec, ea_dynamic: float | None):
 def _mean_loads(case: Case, result: Result, names) -> dict:
     """The largest tension [N] of each named line type in ``result`` (its mean load)."""
     loads = dict.fromkeys(names, 0.0)
-    for leg, lr in zip(case.legs, result.legs):
+    for leg, lr in zip(case.lines, result.legs):
         if lr.segments:
             for seg, s in zip(leg.segments, lr.segments):
                 if seg.line_type.name in loads:
@@ -222,7 +222,7 @@ def stiffness_bounds(case: Case, *, tol: float | None = None,
     """
     bounded = {name: lt for name, lt in case.line_types.items()
                if lt.stiffness_bounds is not None}
-    used = {seg.line_type.name for leg in case.legs for seg in leg.segments}
+    used = {seg.line_type.name for line in case.lines for seg in line.segments}
     bounded = {name: lt for name, lt in bounded.items() if name in used}
     if not bounded:
         raise CaseError("line_types", "no line type in use gives stiffness_bounds (a "

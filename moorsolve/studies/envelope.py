@@ -90,7 +90,7 @@ def _f(value) -> Optional[float]:
 def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, *,
                     step_deg: float = 10.0, flows: Optional[Sequence[str]] = None,
                     solver: str = "newton", tol: Optional[float] = None,
-                    workers: Optional[int] = None) -> Envelope:
+                    workers: Optional[int] = None, body: Optional[str] = None) -> Envelope:
     """The equilibrium of ``case`` with its environment turned to every heading.
 
     Parameters
@@ -106,12 +106,23 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         Which flows turn (default: every one the case has).
     solver, tol, workers
         As for :func:`moorsolve.sweep`.
+    body : str, optional
+        The body whose offset (from its case pose) and yaw the envelope reports; default
+        the only body (a case with several bodies must name one; the worst tension is over
+        every line).
 
     Returns
     -------
     Envelope
     """
     env = case.environment
+    names_b = [b.name for b in case.bodies]
+    if body is None and len(names_b) > 1:
+        raise CaseError("body", f"the case has {len(names_b)} bodies ({', '.join(names_b)}); "
+                                "name the one whose offset the envelope reports")
+    if body is not None and body not in names_b:
+        raise CaseError("body", f"{body!r} is not a body of the case; its bodies: "
+                                f"{', '.join(names_b) or 'none'}")
     present = [f for f in FLOWS if getattr(env, f) is not None]
     if flows is None:
         flows = present
@@ -152,7 +163,14 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
     solved = np.isfinite(tension).all(axis=1)          # an overloaded equilibrium too
     worst_index = np.argmax(np.where(np.isfinite(tension), tension, -np.inf), axis=1)
     worst = np.where(solved, tension[np.arange(len(table)), worst_index], np.nan)
-    if case.body is not None:
+    if case.form == "network" and names_b:
+        target = case.body_named(body or names_b[0])
+        x0, y0, _ = target.position
+        yaw0 = target.orientation_deg[2]
+        x = np.where(solved, table[f"{target.name}.x_m"].to_numpy(float) - x0, np.nan)
+        y = np.where(solved, table[f"{target.name}.y_m"].to_numpy(float) - y0, np.nan)
+        yaw = np.where(solved, table[f"{target.name}.yaw_deg"].to_numpy(float) - yaw0, np.nan)
+    elif case.body is not None:
         x = np.where(solved, table["x_m"].to_numpy(float), np.nan)
         y = np.where(solved, table["y_m"].to_numpy(float), np.nan)
         yaw = np.where(solved, table["yaw_deg"].to_numpy(float), np.nan)

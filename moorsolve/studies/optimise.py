@@ -54,9 +54,9 @@ import numpy as np
 from ..model.study import Limits, Study
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
-from ..physics.catenary import LegKind
-from ..solve.equilibrium import get_problem, solve
-from ..solve.problem import ENV_PARAMS, LEG_PARAMS, parameter_vector
+from ..solve.cache import get_problem
+from ..solve.equilibrium import solve
+from ..solve.layout import ENV_PARAMS, LEG_PARAMS, parameter_vector
 
 log = logging.getLogger(__name__)
 
@@ -463,7 +463,7 @@ def _check_design_legs(problem, study: Study, index: dict, lc_name: str) -> None
     for j, var in enumerate(study.variables):
         for name in var.legs:
             kind = problem.kinds[index[name]]
-            if not isinstance(kind, LegKind):
+            if not kind.single:
                 raise CaseError(f"variables.{var.name}.legs",
                                 f"leg {name!r} is modelled as a discretised line in load case "
                                 f"{lc_name!r} (a current drags on it); design variables "
@@ -506,7 +506,7 @@ def _constraints(k: int, lc, scene: Case, problem, table, p, body) -> tuple:
                 show=lambda t, mbl=mbl: mbl / t if t > 0 else math.inf,
                 margin=lambda t, mbl=mbl, sf=limits.safety_factor:
                     (mbl / t if t > 0 else math.inf) - sf))
-        simple = (isinstance(kind, LegKind) and kind.contact and not kind.sloped
+        simple = (kind.single and kind.block.contact and not kind.sloped
                   and leg.line_type.weight_in_water > 0)
         wanted = [key for key in ("max_anchor_uplift", "min_grounded_length")
                   if getattr(limits, key) is not None]

@@ -35,7 +35,6 @@ import math
 import os
 import sys
 import threading
-import weakref
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 
@@ -43,8 +42,12 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
-from ..solve.equilibrium import get_problem, initial_point, solve
-from ..solve.problem import parameter_vector, structure_key
+from ..solve.cache import get_problem
+from ..solve.equilibrium import solve
+from ..solve.stability import assess
+from ..solve.start import initial_point
+from ..solve.layout import parameter_vector
+from ..solve.problem import structure_key
 
 _PARALLEL_MIN_POINTS = 64
 _MIN_CHUNK = 64
@@ -52,7 +55,6 @@ _MAX_CHUNKS = 64
 
 # Full solves and the problem cache are not for concurrent threads of one process.
 _SOLVE_LOCK = threading.RLock()
-_KERNEL_POOLS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | None = None,
@@ -143,7 +145,7 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
     if sink is not None:
         return sink.finish()
     if not frames:
-        return plan.frame(np.zeros(0, int), _Table(0, plan.names).columns())
+        return plan.frame(np.zeros(0, int), _Table(0, plan.names, plan.body_names).columns())
     points = np.concatenate([p for p, _ in frames])
     order = np.argsort(points, kind="stable")
     columns = {}
@@ -182,6 +184,7 @@ class SweepPlan:
         self.shape = tuple(len(values) for _, values in self.axes)
         self.n_points = math.prod(self.shape)
         self.names = [leg.name for leg in case.legs]
+        self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
         self._with_values, self._load_case = with_values, load_case
 
         # Each axis value validated once, as a case of its own.
@@ -250,7 +253,7 @@ class SweepPlan:
         return [p for paths, _ in self.axes for p in paths]
 
     def result_columns(self) -> list[str]:
-        return list(_Table(0, self.names).columns())
+        return list(_Table(0, self.names, self.body_names).columns())
 
     def grid_record(self) -> dict:
         """The grid as plain data, for the record beside an output file."""
@@ -289,7 +292,7 @@ class SweepPlan:
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
         """Solve ``points`` (snake order) and return them with their result columns."""
         points = np.asarray(points, dtype=int)
-        table = _Table(len(points), self.names)
+        table = _Table(len(points), self.names, self.body_names)
         if self.fast:
             self.prepare()
             problem = self._problem
@@ -436,11 +439,17 @@ def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:
 # ---- solving a chunk ------------------------------------------------------------------------
 
 
+#: Per body of a network case: its absolute pose columns ``<body>.<field>``.
+_POSE_FIELDS = ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg")
+
+
 class _Table:
     """Results of ``n`` points, one array per column, filled by row."""
 
-    def __init__(self, n: int, names: list[str]):
+    def __init__(self, n: int, names: list[str], bodies: tuple = ()):
         self.names = names
+        self.bodies = tuple(bodies)
+        self.poses = np.full((n, 6 * len(self.bodies)), np.nan)
         self.done = np.zeros(n, bool)
         self.converged = np.zeros(n, bool)
         self.reason = [""] * n
@@ -460,6 +469,8 @@ class _Table:
         self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
         if result.body is not None:
             self.body[i] = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
+        for k, b in enumerate(result.bodies[:len(self.bodies)]):
+            self.poses[i, 6 * k: 6 * k + 6] = [b[f] for f in _POSE_FIELDS]
         self.t_fair[i] = [leg.fairlead_tension_N for leg in result.legs]
         self.t_anchor[i] = [leg.anchor_tension_N for leg in result.legs]
 
@@ -468,43 +479,34 @@ class _Table:
                "iterations": self.iterations, "residual_N": self.residual[:, 0],
                "residual_Nm": self.residual[:, 1], "residual_relative": self.residual[:, 2],
                "x_m": self.body[:, 0], "y_m": self.body[:, 1], "yaw_deg": self.body[:, 2]}
+        for k, name in enumerate(self.bodies):
+            for j, field in enumerate(_POSE_FIELDS):
+                out[f"{name}.{field}"] = self.poses[:, 6 * k + j]
         for k, name in enumerate(self.names):
             out[f"{name}.fairlead_tension_N"] = self.t_fair[:, k]
             out[f"{name}.anchor_tension_N"] = self.t_anchor[:, k]
         return out
 
 
-class _KernelPool:
-    """Newton kernels of one problem, one per concurrently running chunk."""
-
-    def __init__(self, kernel):
-        self._base, self._free, self._lock = kernel, [kernel], threading.Lock()
-
-    def acquire(self):
-        with self._lock:
-            return self._free.pop() if self._free else self._base.clone()
-
-    def release(self, kernel) -> None:
-        with self._lock:
-            self._free.append(kernel)
-
-
-def _kernel_pool(problem) -> _KernelPool:
-    with _SOLVE_LOCK:
-        pool = _KERNEL_POOLS.get(problem)
-        if pool is None:
-            pool = _KERNEL_POOLS[problem] = _KernelPool(problem.newton())
-        return pool
+def _kernel_pool(problem):
+    return problem.kernel_pool()
 
 
 def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
     n_p = problem.n_p
+    # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
+    check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
         x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
         ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
         if not ok:
             continue            # left for the IPOPT pass
+        if check_stability:
+            with problem.lock:
+                stable = assess(problem, x, vectors[i, :n_p]).stable
+            if not stable:
+                continue        # the full solve looks for the stable equilibrium
         x_prev[:] = x
         mbl = vectors[i, n_p:]
         over = np.maximum(tf, ta) > mbl
@@ -515,6 +517,10 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
         table.residual[row] = (force, moment, relative)
         if has_body:
             table.body[row] = (body[0], body[1], math.degrees(body[2]))
+        if table.bodies:
+            pose = np.asarray(body[3:], dtype=float).reshape(-1, 6).copy()
+            pose[:, 3:] = np.degrees(pose[:, 3:])
+            table.poses[row] = pose.ravel()
         table.t_fair[row], table.t_anchor[row] = tf, ta
         if over.any():
             table.reason[row] = "overload: " + "; ".join(
@@ -527,20 +533,19 @@ def _solve_each(rows, points, table, point_case, tol):
     """Full solves (IPOPT strategy), warm-started while the structure stays the same."""
     previous = {}
     for row in rows:
-        with _SOLVE_LOCK:
-            pc = point_case(int(points[row]))
-            key = id(get_problem(pc))        # a state is only meaningful to its own problem
-            try:
-                result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
-            except ConvergenceError as err:
-                if err.result is not None and err.result.converged:
-                    table.from_result(row, err.result, reason=err.reason)   # e.g. overload
-                else:
-                    table.done[row] = True
-                    table.reason[row], table.solver[row] = err.reason, "ipopt"
-                    table.iterations[row] = err.iterations
-                    table.residual[row, :2] = (err.residual_N, err.residual_Nm)
-                continue
+        pc = point_case(int(points[row]))
+        key = id(get_problem(pc))        # a state is only meaningful to its own problem
+        try:
+            result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
+        except ConvergenceError as err:
+            if err.result is not None and err.result.converged:
+                table.from_result(row, err.result, reason=err.reason)   # e.g. overload
+            else:
+                table.done[row] = True
+                table.reason[row], table.solver[row] = err.reason, "ipopt"
+                table.iterations[row] = err.iterations
+                table.residual[row, :2] = (err.residual_N, err.residual_Nm)
+            continue
         previous[key] = result.state
         table.from_result(row, result)
 

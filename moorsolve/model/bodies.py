@@ -1,0 +1,133 @@
+"""Rigid bodies and connection points of a scene.
+
+A body's pose is ``(x, y, z, roll, pitch, yaw)``: the position of its body-frame origin in the
+scene and its orientation, with ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (REFERENCE.md section 7;
+the z-y-x convention of MoorPy, MoorDyn and OpenFAST). ``free`` names the degrees of freedom
+the solver finds; the others are held at the case-file pose.
+
+Hydrostatics: the linear model MoorPy and MoorDyn use (:class:`Hydrostatics`), or the exact
+buoyancy of simple hull members (:class:`HullMember`) integrated at the actual pose.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+from .loads import BodyLoads
+
+#: All six degrees of freedom of a rigid body, in the order of every 6-vector and 6x6 matrix.
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+#: The planar degrees of freedom: what the ``body:`` + ``legs:`` form may free.
+PLANAR_DOFS = ("surge", "sway", "yaw")
+#: Degrees of freedom whose balance needs mass and hydrostatics (weight against buoyancy).
+VERTICAL_DOFS = ("heave", "roll", "pitch")
+
+
+@dataclass(frozen=True)
+class Hydrostatics:
+    """The linear hydrostatic model of a floating body (CONTRACT.md, REFERENCE.md section 7).
+
+    Buoyancy ``rho g V`` acts upward at the ``metacentre`` (body frame, rotates with the
+    body); the heave restoring force is ``-rho g A_wp z`` with z the height of the body-frame
+    origin. Small-angle stiffness ``K33 = rho g A_wp`` and ``K44 = K55 = rho g V z_M - m g z_G``.
+    """
+
+    displaced_volume: float
+    metacentre: tuple = (0.0, 0.0, 0.0)
+    waterplane_area: float = 0.0
+
+
+HULL_SHAPES = ("cylinder", "box")
+
+
+@dataclass(frozen=True)
+class HullMember:
+    """A vertical prism of the hull whose buoyancy is integrated exactly at the actual pose.
+
+    A ``cylinder`` of ``radius`` or a ``box`` of ``length`` (along body x) by ``width``
+    (body y), with its axis along body z through ``centre`` (body frame x, y), from
+    ``bottom`` to ``top`` (body-frame z). Its submerged volume and centre of buoyancy are
+    exact while the waterplane cuts its side walls or the member is fully submerged
+    (:mod:`moorsolve.physics.hydrostatics`).
+    """
+
+    shape: str
+    bottom: float
+    top: float
+    radius: float = 0.0
+    length: float = 0.0
+    width: float = 0.0
+    centre: tuple = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body: its pose in the case, which degrees of freedom are solved, and its
+    mass, hydrostatics, extra springs and load models.
+
+    Attributes
+    ----------
+    name : str
+    free : tuple of str
+        Solved degrees of freedom, a subset of :data:`DOFS` in that order.
+    position : tuple of 3 floats
+        Body-frame origin in the scene [m] (the case-file pose).
+    orientation_deg : tuple of 3 floats
+        Roll, pitch, yaw [deg].
+    mass : float or None
+        [kg]; its weight acts at ``centre_of_gravity``.
+    centre_of_gravity : tuple of 3 floats
+        Body frame [m].
+    hydrostatics : Hydrostatics or None
+        The linear model.
+    hull : tuple of HullMember
+        Members whose buoyancy is integrated exactly (instead of ``hydrostatics``).
+    stiffness : tuple of 6 tuples of 6 floats, or None
+        Extra linear springs about the case-file pose, ``F = -K (q - q0)`` (SI, rotations in
+        rad).
+    loads : BodyLoads
+    added_mass : tuple of 6 tuples or None
+        Added mass [kg, kg m, kg m^2] for natural periods.
+    inertia : tuple of 3 floats or None
+        Moments of inertia about the centre of gravity [kg m^2] (roll, pitch, yaw axes).
+    """
+
+    name: str = "body"
+    free: tuple = PLANAR_DOFS
+    position: tuple = (0.0, 0.0, 0.0)
+    orientation_deg: tuple = (0.0, 0.0, 0.0)
+    mass: Optional[float] = None
+    centre_of_gravity: tuple = (0.0, 0.0, 0.0)
+    hydrostatics: Optional[Hydrostatics] = None
+    hull: tuple = ()
+    stiffness: Optional[tuple] = None
+    loads: BodyLoads = field(default_factory=BodyLoads)
+    added_mass: Optional[tuple] = None
+    inertia: Optional[tuple] = None
+
+    @property
+    def pose(self) -> tuple:
+        """The case-file pose ``(x, y, z, roll, pitch, yaw)`` [m, deg]."""
+        return tuple(self.position) + tuple(self.orientation_deg)
+
+    @property
+    def buoyant(self) -> bool:
+        """Whether the body has a hydrostatic model (linear or exact)."""
+        return self.hydrostatics is not None or bool(self.hull)
+
+
+@dataclass(frozen=True)
+class Point:
+    """A connection point: fixed in the scene, or free (a bridle apex, a buoy, a clump).
+
+    ``mass`` [kg] and ``volume`` [m^3] give its net weight in water
+    ``g (mass - rho volume)`` (negative: it floats up); a free point is held only by its
+    lines and, when it sinks onto it, by the seabed.
+    """
+
+    name: str
+    position: tuple
+    free: bool = False
+    mass: float = 0.0
+    volume: float = 0.0

@@ -1,0 +1,231 @@
+"""Line types, segments, clumps and anchor types of a case file (both forms)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from ..errors import CaseError
+from .fields import (MAX_EA,
+                     MAX_LINE_LENGTH, MAX_WEIGHT, MIN_EA,
+                     MIN_LINE_LENGTH, MIN_WEIGHT, check_bounds, check_list,
+                     check_mapping, field_path,
+                     nullable_quantity, optional_quantity, quantity)
+from .units import format_si, show_value, weight_per_length_to_si
+from .. import catalog as line_catalog
+from ..constants import SEAWATER_DENSITY
+from .environment import Environment
+from .lines import ANCHOR_KINDS, AnchorType, Clump, LineDrag, LineType, Segment
+from .stretch import LINE_TYPE_KEYS, line_type_fields
+
+
+# ---- line types -------------------------------------------------------------------------
+
+
+def _line_drag(raw, path: str) -> LineDrag:
+    m = check_mapping(raw, path, required=("normal",), optional=("tangential", "side"))
+    normal = quantity(m["normal"], field_path(path, "normal"), "dimensionless", ge=0, le=10)
+    tangential = optional_quantity(m, path, "tangential", "dimensionless", 0.0, ge=0, le=10)
+    side = optional_quantity(m, path, "side", "dimensionless", 0.0, ge=-10, le=10)
+    return LineDrag(normal=normal, tangential=tangential, side=side)
+
+
+def _line_type_drag(m: dict, path: str, diameter):
+    """The optional ``drag`` of a line type; it needs the diameter."""
+    drag = None if m.get("drag") is None else _line_drag(m["drag"], field_path(path, "drag"))
+    if drag is not None and diameter is None:
+        raise CaseError(field_path(path, "diameter"),
+                        "a line type with drag needs a diameter (the flow force scales with "
+                        "it); give diameter > 0 [m]")
+    return drag
+
+
+def _line_type(name: str, raw, path: str, gravity: float,
+               water_density: float = SEAWATER_DENSITY) -> LineType:
+    if isinstance(raw, Mapping) and "catalog" in raw:
+        return _catalog_line_type(name, raw, path, gravity, water_density)
+    m = check_mapping(raw, path, required=("weight_in_water",),
+                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag")
+                 + LINE_TYPE_KEYS)
+    wpath = field_path(path, "weight_in_water")
+    weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
+    if abs(weight) > MAX_WEIGHT:
+        raise CaseError(wpath, f"{format_si(weight, 'force_per_length')} must be between "
+                               f"-{MAX_WEIGHT:g} and {MAX_WEIGHT:g} N/m (a unit mistake?)")
+    if 0 < abs(weight) < MIN_WEIGHT:
+        raise CaseError(wpath, f"{format_si(weight, 'force_per_length')} is too small to "
+                               f"hang as a catenary; give 0 for a neutrally buoyant line or "
+                               f"at least {MIN_WEIGHT:g} N/m in magnitude")
+    ea = nullable_quantity(m, path, "ea", "force", gt=0, le=MAX_EA)
+    if ea is not None:
+        check_bounds(m["ea"], ea, "force", field_path(path, "ea"), ge=MIN_EA)
+    mbl = nullable_quantity(m, path, "mbl", "force", gt=0)
+    diameter = nullable_quantity(m, path, "diameter", "length", gt=0)
+    sealed = _sealed(m, path, diameter)
+    return LineType(name=name, weight_in_water=weight, mbl=mbl, diameter=diameter,
+                    sealed=sealed, drag=_line_type_drag(m, path, diameter),
+                    **line_type_fields(m, path, ea))
+
+
+def _sealed(m: dict, path: str, diameter) -> bool:
+    sealed = False
+    if "sealed" in m:
+        sealed = m["sealed"]
+        if not isinstance(sealed, bool):
+            raise CaseError(field_path(path, "sealed"),
+                            f"{show_value(sealed)} is not true or false")
+    if sealed and diameter is None:
+        raise CaseError(field_path(path, "diameter"),
+                        "sealed line needs a diameter (its wall tension depends on the outer "
+                        "area); give diameter > 0 [m]")
+    return sealed
+
+
+def _catalog_line_type(name: str, raw, path: str, gravity: float,
+                       water_density: float) -> LineType:
+    """A line type from the catalogue: ``{catalog: studless_r3, diameter: 81 mm, ...}``.
+
+    ``weight_in_water``, ``ea`` and ``mbl`` given beside ``catalog`` replace the catalogue
+    values (e.g. a maker's certificate); ``corrosion_allowance`` reduces the diameter used
+    for the catalogue MBL.
+    """
+    m = check_mapping(raw, path, required=("catalog", "diameter"),
+                 optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
+                           "drag") + LINE_TYPE_KEYS)
+    known = line_catalog.entries()
+    entry = m["catalog"]
+    if not isinstance(entry, str) or entry not in known:
+        raise CaseError(field_path(path, "catalog"),
+                        f"unknown catalogue entry {show_value(entry)}; "
+                                                f"known entries: {', '.join(known)}")
+    diameter = quantity(m["diameter"], field_path(path, "diameter"), "length", gt=0, le=1.0)
+    allowance = optional_quantity(m, path, "corrosion_allowance", "length", 0.0, ge=0)
+    if allowance >= diameter:
+        raise CaseError(field_path(path, "corrosion_allowance"),
+                        f"{format_si(allowance, 'length')} must be smaller than the diameter "
+                        f"({format_si(diameter, 'length')})")
+    props = line_catalog.line_properties(entry, diameter, water_density=water_density,
+                                         gravity=gravity, corrosion_allowance=allowance)
+    weight = props.weight_in_water
+    if m.get("weight_in_water") is not None:
+        weight = weight_per_length_to_si(m["weight_in_water"], gravity,
+                                         field_path(path, "weight_in_water"))
+    ea = nullable_quantity(m, path, "ea", "force", gt=0)
+    mbl = nullable_quantity(m, path, "mbl", "force", gt=0)
+    if mbl is not None and "corrosion_allowance" in m:
+        raise CaseError(field_path(path, "corrosion_allowance"),
+                        "applies to the catalogue MBL only; with an explicit mbl give the "
+                        "corroded value directly")
+    return LineType(name=name, weight_in_water=weight,
+                    mbl=props.mbl if mbl is None else mbl,
+                    diameter=diameter, sealed=_sealed(m, path, diameter), catalog=entry,
+                    drag=_line_type_drag(m, path, diameter),
+                    corrosion_allowance=allowance, source=props.source,
+                    **line_type_fields(m, path, props.ea if ea is None else ea,
+                                       catalogue=props))
+
+
+def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_DENSITY) -> dict:
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; line_types maps each line type "
+                              "name to its properties")
+    if not raw:
+        raise CaseError(path, "no line types; at least one is required")
+    types = {}
+    for name, spec in raw.items():
+        if not isinstance(name, str) or not name.strip():
+            raise CaseError(path, f"line type name {show_value(name)} is not a non-empty string")
+        types[name] = _line_type(name, spec, field_path(path, name), gravity, water_density)
+    return types
+
+
+# ---- legs -------------------------------------------------------------------------------
+
+
+def _segment(raw, path: str, line_types: dict) -> Segment:
+    m = check_mapping(raw, path, required=("type", "length"))
+    type_name = m["type"]
+    if not isinstance(type_name, str) or type_name not in line_types:
+        raise CaseError(field_path(path, "type"), f"unknown line type {show_value(type_name)}; "
+                                             f"known line types: {', '.join(line_types)}")
+    lpath = field_path(path, "length")
+    length = quantity(m["length"], lpath, "length", gt=0, le=MAX_LINE_LENGTH)
+    check_bounds(m["length"], length, "length", lpath, ge=MIN_LINE_LENGTH)
+    return Segment(line_type=line_types[type_name], length=length)
+
+
+def _clump(raw, path: str, environment: Environment) -> Clump:
+    """``{mass: kg, volume: m^3}`` (net weight in water) or ``{weight: N}`` (negative: buoy)."""
+    m = check_mapping(raw, path, optional=("mass", "volume", "weight"))
+    if "weight" in m:
+        for key in ("mass", "volume"):
+            if key in m:
+                raise CaseError(field_path(path, key),
+                                f"{key} is not used with weight; give either "
+                                                  "weight [N] or mass [kg] and volume [m^3]")
+        weight = quantity(m["weight"], field_path(path, "weight"), "force")
+        return Clump(weight=weight)
+    if "mass" not in m:
+        raise CaseError(field_path(path, "mass"), "a clump needs mass [kg] (and optionally volume "
+                                             "[m^3]) or a net weight [N]")
+    mass = quantity(m["mass"], field_path(path, "mass"), "mass", ge=0)
+    volume = optional_quantity(m, path, "volume", "volume", 0.0, ge=0)
+    weight = environment.gravity * (mass - environment.water_density * volume)
+    return Clump(weight=weight, mass=mass, volume=volume)
+
+
+def _segments(raw, path: str, environment: Environment, line_types: dict):
+    """Segments from anchor to fairlead, with optional ``{clump: ...}`` items between them."""
+    items = check_list(raw, path, "a list of {type, length} segments from the anchor, with "
+                                 "optional {clump: {...}} items between them")
+    if not items:
+        raise CaseError(path, "no segments; a leg needs one segment {type, length}")
+    segments, clumps = [], []
+    for j, item in enumerate(items):
+        ipath = field_path(path, j)
+        if isinstance(item, Mapping) and "clump" in item:
+            check_mapping(item, ipath, required=("clump",))
+            if not segments or len(clumps) != len(segments) - 1:
+                raise CaseError(ipath, "a clump must sit between two segments (after a "
+                                       "segment, not first and not after another clump)")
+            clumps.append(_clump(item["clump"], field_path(ipath, "clump"), environment))
+            continue
+        if segments and len(clumps) < len(segments):
+            clumps.append(None)
+        segments.append(_segment(item, ipath, line_types))
+    if len(clumps) == len(segments):
+        raise CaseError(field_path(path, len(items) - 1),
+                        "a clump must sit between two segments; this one ends the leg")
+    return tuple(segments), tuple(clumps)
+
+
+# ---- mooring checks ---------------------------------------------------------------------
+
+_ANCHOR_KEYS = {"drag": (), "deadweight": ("allowed_uplift",),
+                "pile": ("allowed_uplift_angle_deg",)}
+
+
+def _anchor_type(raw, path: str) -> AnchorType:
+    """``{type: drag}``, ``{type: deadweight, allowed_uplift}`` or ``{type: pile,
+    allowed_uplift_angle_deg}``."""
+    allowed = ", ".join(ANCHOR_KINDS)
+    if not isinstance(raw, Mapping):
+        raise CaseError(path, f"{show_value(raw)} is not a mapping; give {{type: ...}} with type "
+                              f"one of {allowed}")
+    kind = raw.get("type")
+    if not isinstance(kind, str) or kind not in ANCHOR_KINDS:
+        raise CaseError(field_path(path, "type"),
+                        f"unknown anchor type {show_value(kind)}; allowed: "
+                                             f"{allowed}")
+    keys = _ANCHOR_KEYS[kind]
+    m = check_mapping(raw, path, required=("type",) + keys)
+    if kind == "deadweight":
+        uplift = quantity(m["allowed_uplift"], field_path(path, "allowed_uplift"), "force", ge=0)
+        return AnchorType(kind=kind, allowed_uplift=uplift)
+    if kind == "pile":
+        angle = quantity(m["allowed_uplift_angle_deg"], field_path(path,
+                                                                   "allowed_uplift_angle_deg"),
+                          "angle", ge=0, lt=90)
+        return AnchorType(kind=kind, allowed_uplift_angle_deg=angle)
+    return AnchorType(kind=kind)
+
+

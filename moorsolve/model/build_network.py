@@ -1,0 +1,346 @@
+"""The network form of a case file: ``bodies``, ``points`` and ``lines`` between any two ends.
+
+Schema (SI units; see CONTRACT.md "The scene as a network")::
+
+    bodies:                                   optional list
+      - name: str                             required, unique among bodies
+        position: [x, y, z]                   body-frame origin in the scene [m]; default 0
+        orientation_deg: [roll, pitch, yaw]   default 0
+        free: [surge, sway, heave, roll, pitch, yaw]   any subset, [] = held; default all six
+                                              with mass and hydrostatics, else surge, sway, yaw
+        mass: > 0 [kg]                        needed when heave, roll or pitch is free
+        centre_of_gravity: [x, y, z]          body frame [m]
+        hydrostatics: {displaced_volume >= 0 [m^3], metacentre: [x, y, z],
+                       waterplane_area >= 0 [m^2]}
+        hull: [{shape: cylinder, radius, bottom, top, centre: [x, y]}
+               | {shape: box, length, width, bottom, top, centre}]   exact buoyancy instead
+        stiffness: 6x6                        extra linear springs about the case pose [SI]
+        added_mass: 6x6, inertia: [Ixx, Iyy, Izz]   for natural periods only
+        loads: {force: [Fx, Fy, Mz] or [Fx, Fy, Fz, Mx, My, Mz], wind, current, wave_drift}
+    points:                                   optional list
+      - {name, position: [x, y, z] or [x, y] (on the seabed), free: bool, mass >= 0 [kg],
+         volume >= 0 [m^3]}
+    lines:                                    required, non-empty
+      - name: str
+        from: END                             end A
+        to: END                               end B
+        segments: [...]                       as in a leg, from end A
+        anchor_type: ANCHOR                   optional, for an end A on the seabed
+    END: a point name | [x, y] (on the seabed) | [x, y, z] fixed | {body: NAME, at: [x, y, z]}
+
+Beyond the schema: names are unique; every end names a known body or point; a free point or
+a free body that no line (nor spring nor hydrostatics) holds is refused; a body free in heave,
+roll or pitch needs a mass and hydrostatics; fixed ends lie on or above the seabed; an
+inextensible line between fixed ends is long enough to reach.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+from ..errors import CaseError
+from .bodies import DOFS, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, Hydrostatics, \
+    HullMember, Point
+from .build_lines import _anchor_type, _segments
+from .build_loads import _loads
+from .environment import Environment
+from .fields import (FAIRLEAD_Z_MAX, MAX_AREA, check_list, check_mapping, check_name,
+                     check_point, field_path, nullable_quantity, optional_quantity, quantity)
+from .lines import End, Line
+from .loads import BodyLoads
+from .units import format_si, show_value
+
+_BODY_KEYS = ("position", "orientation_deg", "free", "mass", "centre_of_gravity",
+              "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads")
+
+
+def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """``Rz(yaw) Ry(pitch) Rx(roll)`` [rad] as a numpy array (for checks at the case pose)."""
+    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
+                              math.sin(pitch), math.cos(yaw), math.sin(yaw))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def _matrix6(raw, path: str) -> tuple:
+    rows = check_list(raw, path, "a 6x6 matrix (a list of 6 rows of 6 numbers, SI)")
+    if len(rows) != 6:
+        raise CaseError(path, f"{len(rows)} rows; a 6x6 matrix has 6 rows of 6 numbers")
+    out = []
+    for i, row_raw in enumerate(rows):
+        rpath = field_path(path, i)
+        row = check_list(row_raw, rpath, "a row of 6 numbers")
+        if len(row) != 6:
+            raise CaseError(rpath, f"{show_value(row_raw)} has {len(row)} values; a row of a 6x6 "
+                                   "matrix has 6")
+        out.append(tuple(quantity(v, field_path(rpath, j), "dimensionless")
+                         for j, v in enumerate(row)))
+    return tuple(out)
+
+
+def _free_dofs(raw, path: str) -> tuple:
+    items = check_list(raw, path, f"a list drawn from {', '.join(DOFS)}")
+    seen = set()
+    for i, item in enumerate(items):
+        if not isinstance(item, str) or item not in DOFS:
+            raise CaseError(field_path(path, i), f"unknown degree of freedom {show_value(item)}; "
+                                                 f"allowed: {', '.join(DOFS)}")
+        if item in seen:
+            raise CaseError(field_path(path, i), f"{item!r} is listed twice")
+        seen.add(item)
+    return tuple(d for d in DOFS if d in seen)
+
+
+def _hydrostatics(raw, path: str) -> Hydrostatics:
+    m = check_mapping(raw, path, required=("displaced_volume",),
+                      optional=("metacentre", "waterplane_area"))
+    volume = quantity(m["displaced_volume"], field_path(path, "displaced_volume"), "volume",
+                      ge=0)
+    metacentre = ((0.0, 0.0, 0.0) if "metacentre" not in m
+                  else check_point(m["metacentre"], field_path(path, "metacentre"), (3,)))
+    area = optional_quantity(m, path, "waterplane_area", "area", 0.0, ge=0, le=MAX_AREA)
+    return Hydrostatics(displaced_volume=volume, metacentre=metacentre, waterplane_area=area)
+
+
+def _hull_member(raw, path: str) -> HullMember:
+    shape = raw.get("shape") if isinstance(raw, Mapping) else None
+    if shape not in HULL_SHAPES:
+        raise CaseError(field_path(path, "shape"), f"unknown hull shape {show_value(shape)}; "
+                                                   f"allowed: {', '.join(HULL_SHAPES)}")
+    size = ("radius",) if shape == "cylinder" else ("length", "width")
+    m = check_mapping(raw, path, required=("shape", "bottom", "top") + size,
+                      optional=("centre",))
+    bottom = quantity(m["bottom"], field_path(path, "bottom"), "length")
+    top = quantity(m["top"], field_path(path, "top"), "length", gt=bottom)
+    dims = {k: quantity(m[k], field_path(path, k), "length", gt=0) for k in size}
+    centre = (0.0, 0.0) if "centre" not in m else check_point(m["centre"],
+                                                              field_path(path, "centre"), (2,))
+    return HullMember(shape=shape, bottom=bottom, top=top, centre=centre, **dims)
+
+
+def _body(raw, path: str) -> Body:
+    m = check_mapping(raw, path, required=("name",), optional=_BODY_KEYS)
+    name = check_name(m["name"], field_path(path, "name"), "body name")
+    position = ((0.0, 0.0, 0.0) if "position" not in m
+                else check_point(m["position"], field_path(path, "position"), (3,)))
+    orientation = (0.0, 0.0, 0.0)
+    if "orientation_deg" in m:
+        opath = field_path(path, "orientation_deg")
+        items = check_list(m["orientation_deg"], opath, "[roll, pitch, yaw] [deg]")
+        if len(items) != 3:
+            raise CaseError(opath, f"{show_value(m['orientation_deg'])} has {len(items)} values; "
+                                   "it must be [roll, pitch, yaw] [deg]")
+        orientation = tuple(quantity(v, field_path(opath, i), "angle")
+                            for i, v in enumerate(items))
+        if abs(orientation[1]) >= 90.0:
+            raise CaseError(field_path(opath, 1), f"pitch {orientation[1]:g} deg must be between "
+                                                  "-90 and 90 deg (z-y-x angles)")
+    mass = nullable_quantity(m, path, "mass", "mass", gt=0)
+    cg = ((0.0, 0.0, 0.0) if "centre_of_gravity" not in m
+          else check_point(m["centre_of_gravity"], field_path(path, "centre_of_gravity"), (3,)))
+    hydro = (None if m.get("hydrostatics") is None
+             else _hydrostatics(m["hydrostatics"], field_path(path, "hydrostatics")))
+    hull = ()
+    if m.get("hull") is not None:
+        hpath = field_path(path, "hull")
+        items = check_list(m["hull"], hpath, "a list of hull members {shape, ...}")
+        hull = tuple(_hull_member(item, field_path(hpath, i)) for i, item in enumerate(items))
+        if hydro is not None and hull:
+            raise CaseError(hpath, "give either hydrostatics (the linear model) or hull (exact "
+                                   "buoyancy of its members), not both")
+    stiffness = (None if m.get("stiffness") is None
+                 else _matrix6(m["stiffness"], field_path(path, "stiffness")))
+    added = (None if m.get("added_mass") is None
+             else _matrix6(m["added_mass"], field_path(path, "added_mass")))
+    inertia = None
+    if m.get("inertia") is not None:
+        ipath = field_path(path, "inertia")
+        items = check_list(m["inertia"], ipath, "[Ixx, Iyy, Izz] [kg m^2]")
+        if len(items) != 3:
+            raise CaseError(ipath, f"{show_value(m['inertia'])} has {len(items)} values; it must "
+                                   "be [Ixx, Iyy, Izz] [kg m^2] about the centre of gravity")
+        inertia = tuple(quantity(v, field_path(ipath, i), "moment_of_inertia", ge=0)
+                        for i, v in enumerate(items))
+    buoyant = hydro is not None or bool(hull)
+    if "free" in m:
+        free = _free_dofs(m["free"], field_path(path, "free"))
+    else:
+        free = DOFS if (mass is not None and buoyant) else PLANAR_DOFS
+    for dof in free:
+        if dof in VERTICAL_DOFS:
+            missing = [k for k, ok in (("mass", mass is not None),
+                                       ("hydrostatics (or hull)", buoyant)) if not ok]
+            if missing:
+                raise CaseError(field_path(path, "free"),
+                                f"body {name!r} is free in {dof} but has no "
+                                f"{' and no '.join(missing)}: heave, roll and pitch balance "
+                                "weight against buoyancy; give them or hold that DOF")
+    loads = (BodyLoads() if m.get("loads") is None
+             else _loads(m["loads"], field_path(path, "loads"), (3, 6)))
+    return Body(name=name, free=free, position=position, orientation_deg=orientation,
+                mass=mass, centre_of_gravity=cg, hydrostatics=hydro, hull=hull,
+                stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia)
+
+
+def _point(raw, path: str, environment: Environment) -> Point:
+    m = check_mapping(raw, path, required=("name", "position"),
+                      optional=("free", "mass", "volume"))
+    name = check_name(m["name"], field_path(path, "name"), "point name")
+    ppath = field_path(path, "position")
+    position = _fixed_position(m["position"], ppath, environment)
+    free = m.get("free", False)
+    if not isinstance(free, bool):
+        raise CaseError(field_path(path, "free"), f"{show_value(free)} is not true or false")
+    mass = optional_quantity(m, path, "mass", "mass", 0.0, ge=0)
+    volume = optional_quantity(m, path, "volume", "volume", 0.0, ge=0)
+    if not free:
+        for key in ("mass", "volume"):
+            if key in m:
+                raise CaseError(field_path(path, key), f"a fixed point's {key} has no effect; "
+                                                       "give it only with free: true")
+    return Point(name=name, position=position, free=free, mass=mass, volume=volume)
+
+
+def _fixed_position(raw, path: str, environment: Environment) -> tuple:
+    """``[x, y]`` on the seabed or ``[x, y, z]`` on or above it (clamped onto it by ulps)."""
+    xyz = check_point(raw, path, (2, 3))
+    bed = environment.seabed_z(xyz[0], xyz[1])
+    if len(xyz) == 2:
+        if bed >= 0:
+            raise CaseError(path, f"the seabed is at z = {format_si(bed, 'length')} here, not "
+                                  "under water; give [x, y, z]")
+        return xyz + (bed,)
+    tol = 1e-9 * max(environment.depth, 1.0)
+    if xyz[2] < bed - tol:
+        raise CaseError(field_path(path, 2), f"z = {format_si(xyz[2], 'length')} is below the "
+                                             f"seabed (z = {format_si(bed, 'length')} here); it "
+                                             "must be on or above the seabed")
+    if xyz[2] > FAIRLEAD_Z_MAX:
+        raise CaseError(field_path(path, 2), f"z = {format_si(xyz[2], 'length')} must be <= "
+                                             f"{format_si(FAIRLEAD_Z_MAX, 'length')}")
+    return xyz[:2] + (max(xyz[2], bed),)
+
+
+def _on_seabed(xyz: tuple, environment: Environment) -> bool:
+    return xyz[2] <= environment.seabed_z(xyz[0], xyz[1]) + 1e-9 * max(environment.depth, 1.0)
+
+
+def _end(raw, path: str, environment: Environment, bodies: dict, points: dict) -> End:
+    if isinstance(raw, str):
+        if raw not in points:
+            known = ", ".join(points) or "none"
+            raise CaseError(path, f"unknown point {raw!r}; known points: {known}")
+        point = points[raw]
+        if point.free:
+            return End(point.position, point=raw)
+        return End(point.position, label=raw,
+                   on_seabed=_on_seabed(point.position, environment))
+    if isinstance(raw, Mapping):
+        m = check_mapping(raw, path, required=("body", "at"))
+        name = m["body"]
+        if not isinstance(name, str) or name not in bodies:
+            known = ", ".join(bodies) or "none"
+            raise CaseError(field_path(path, "body"), f"unknown body {show_value(name)}; known "
+                                                      f"bodies: {known}")
+        at = check_point(m["at"], field_path(path, "at"), (3,))
+        body = bodies[name]
+        R = rotation(*(math.radians(a) for a in body.orientation_deg))
+        xyz = np.asarray(body.position) + R @ np.asarray(at)
+        bed = environment.seabed_z(xyz[0], xyz[1])
+        if xyz[2] < bed - 1e-9 * max(environment.depth, 1.0):
+            raise CaseError(field_path(path, "at"), f"this point of body {name!r} is at z = "
+                                                    f"{format_si(float(xyz[2]), 'length')}, below "
+                                                    f"the seabed ({format_si(bed, 'length')})")
+        return End(at, body=name)
+    if isinstance(raw, (list, tuple)):
+        xyz = _fixed_position(raw, path, environment)
+        return End(xyz, on_seabed=_on_seabed(xyz, environment))
+    raise CaseError(path, f"{show_value(raw)} is not a line end; give a point name, [x, y] on "
+                          "the seabed, [x, y, z], or {body: NAME, at: [x, y, z]}")
+
+
+def end_position(end: End, bodies: dict) -> np.ndarray:
+    """Global position [m] of an end at the case-file pose."""
+    if end.body is None:
+        return np.asarray(end.position, dtype=float)
+    body = bodies[end.body]
+    R = rotation(*(math.radians(a) for a in body.orientation_deg))
+    return np.asarray(body.position) + R @ np.asarray(end.position)
+
+
+def _line(raw, path: str, environment: Environment, line_types: dict, bodies: dict,
+          points: dict) -> Line:
+    m = check_mapping(raw, path, required=("name", "from", "to", "segments"),
+                      optional=("anchor_type",))
+    name = check_name(m["name"], field_path(path, "name"), "line name")
+    a = _end(m["from"], field_path(path, "from"), environment, bodies, points)
+    b = _end(m["to"], field_path(path, "to"), environment, bodies, points)
+    spath = field_path(path, "segments")
+    segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    anchor_type = (None if m.get("anchor_type") is None
+                   else _anchor_type(m["anchor_type"], field_path(path, "anchor_type")))
+    if a.fixed and b.fixed and not any(seg.line_type.elastic for seg in segments):
+        distance = math.dist(a.position, b.position)
+        length = sum(seg.length for seg in segments)
+        if distance > length:
+            raise CaseError(spath, f"the line ({format_si(length, 'length')}) cannot reach "
+                                   f"between its fixed ends ({format_si(distance, 'length')} "
+                                   "apart); an inextensible line must be at least that long")
+    if a == b and a.fixed:
+        raise CaseError(field_path(path, "to"), "both ends are the same fixed point")
+    return Line(name=name, a=a, b=b, segments=segments,
+                clumps=clumps if any(c is not None for c in clumps) else (),
+                anchor_type=anchor_type)
+
+
+def _unique(items, path: str, what: str) -> dict:
+    out, first = {}, {}
+    for i, item in enumerate(items):
+        if item.name in out:
+            raise CaseError(field_path(field_path(path, i), "name"),
+                            f"duplicate {what} name {item.name!r} (already used by "
+                            f"{path}[{first[item.name]}]); {what} names must be unique")
+        out[item.name] = item
+        first[item.name] = i
+    return out
+
+
+def build_network(m: Mapping, environment: Environment, line_types: dict) -> tuple:
+    """``(bodies, points, lines)`` of a network-form case mapping (see the module notes)."""
+    body_items = [] if m.get("bodies") is None else check_list(
+        m["bodies"], "bodies", "a list of bodies {name, ...}")
+    bodies = _unique([_body(raw, field_path("bodies", i)) for i, raw in enumerate(body_items)],
+                     "bodies", "body")
+    point_items = [] if m.get("points") is None else check_list(
+        m["points"], "points", "a list of points {name, position, ...}")
+    points = _unique([_point(raw, field_path("points", i), environment)
+                      for i, raw in enumerate(point_items)], "points", "point")
+    line_items = check_list(m["lines"], "lines", "a list of lines {name, from, to, segments}")
+    if not line_items:
+        raise CaseError("lines", "no lines; at least one line is required")
+    lines = _unique([_line(raw, field_path("lines", i), environment, line_types, bodies, points)
+                     for i, raw in enumerate(line_items)], "lines", "line")
+    attached = {}
+    for line in lines.values():
+        for end in (line.a, line.b):
+            key = end.point or end.body
+            if key is not None:
+                attached[key] = attached.get(key, 0) + 1
+    for i, point in enumerate(points.values()):
+        if point.free and point.name not in attached:
+            raise CaseError(field_path(field_path("points", i), "free"),
+                            f"free point {point.name!r} is not attached to any line: nothing "
+                            "holds it; attach a line or make it fixed")
+    for i, body in enumerate(bodies.values()):
+        held_by_springs = body.stiffness is not None
+        horizontal = [d for d in body.free if d not in VERTICAL_DOFS]
+        if horizontal and body.name not in attached and not held_by_springs:
+            raise CaseError(field_path(field_path("bodies", i), "free"),
+                            f"body {body.name!r} is free in {', '.join(horizontal)} but no line "
+                            "or spring holds it; attach a line, give a stiffness, or hold "
+                            "those degrees of freedom")
+    return tuple(bodies.values()), tuple(points.values()), tuple(lines.values())

@@ -1,0 +1,513 @@
+"""Line kinds behind one protocol: what each line needs, and its block in the problem.
+
+Every line, whatever its kind, enters the equilibrium the same way: it has its own unknowns
+(scaled by :meth:`LineKind.scales`), it adds its residuals, and it pulls on its two ends with
+forces that the assembly (:mod:`.problem`) adds to the bodies and points those ends belong
+to. :func:`line_block` builds that for a kind from the ends' global positions (symbols):
+
+- ``single``: one segment, in the vertical plane through its ends: the catenary leg block of
+  :mod:`moorsolve.physics.catenary` (anchored on the seabed, on a sloped seabed, suspended,
+  weightless) or, for a sinking line whose lower end is above the seabed or moves (a free
+  point, a body), the lifted block that can touch down between its ends;
+- ``multi``: several segments with clumps and buoys at the joints, still in one vertical
+  plane (every load on it is vertical), with each joint a free node of the line;
+- ``discrete``: a lumped-node line in a current, which leaves its vertical plane
+  (:mod:`.discrete`).
+
+The catenary blocks solve from their lower end: the end on the seabed if one is (an anchor),
+otherwise the end lower in the case. A line whose end B is that lower end is *flipped*: its
+blocks run from B, and its forces are mapped back to A and B.
+
+Multi-segment lines
+-------------------
+A leg of several segments (chain-polyester-chain, clump weights, buoys) stays in the
+vertical plane through its ends: every load on it (weights, clumps, buoys, the seabed's
+reaction) is vertical and friction acts along the line, so the horizontal tension is the same
+in every segment and no force leaves the plane. The 2-D model is exact. Its unknowns are
+``u`` (shared by all segments), the top end's ``V`` and per joint
+
+- ``xi``: the joint's horizontal distance from the lower end in the line's plane [m];
+- ``sigma``: a signed force [N]. ``max(sigma, 0)`` is the vertical tension at the top of the
+  segment below the joint, ``max(-sigma, 0)`` the seabed's reaction on the joint.
+
+The joint's height is not an unknown: the segment below puts it there (its height
+equation defines it). Equations: each segment's span residual ``rX``, the top segment's
+``rZ``, and each joint's vertical balance ``VA_above - V_below - W_clump + N = 0``.
+
+Contact of a joint with the seabed is therefore the complementarity ``N * V_below = 0``
+written exactly with one signed unknown, the same device as the leg block's ``u`` (no
+penalty stiffness, no relaxation parameter, no MPCC). It was chosen over a contact
+complementarity on the joint's height because a segment lying flat up to a joint has
+``Z ~ V |V| / (2 H w)``: with ``V`` and the height as separate unknowns the Jacobian is
+singular exactly where a clump rests on the seabed. Here the segment below a grounded joint
+has ``V = 0`` and the reaction takes over linearly. A sinking segment's lower end may be
+lifted (a buoyed joint, a pile-head anchor): it then uses the two-sided touchdown block
+(:func:`~moorsolve.physics.catenary.lifted_segment_equations`), which also covers the U
+between two points above or on the seabed. When the top end itself rests on the seabed the
+top segment is solved from that end (``MultiLegKind.reversed_top``) for the same reason.
+Limits: a joint rests on the seabed only with the segment below arriving along it (not
+hanging down into it); seabed friction acts on the anchor segment only; a buoy's lift is
+constant (fully submerged); the seabed under a multi-segment line is flat.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+import casadi as ca
+
+from ..model import Case, Line
+from ..model.build_network import end_position
+from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
+                                sloped_leg_function, straight_segment_function)
+from ..physics.stretch import StretchModel
+from .stretch_params import law_model
+
+#: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment line
+#: (from its lower end), its tensions [N] (top H and V, pull on its lower end HA and signed
+#: VA), grounded length and horizontal extents [m], span residuals [m] and spans [m], its
+#: lower node (height above the seabed, distance from the lower end, z), the unbalanced
+#: vertical force and seabed reaction of the joint at its top [N] (0 for the top segment),
+#: and its mismatch as a force.
+SEGMENT_COLUMNS = ("leg", "segment", "H", "VF", "HA", "VA", "grounded", "suspended_x",
+                   "descent_x", "rX", "rZ", "X", "Z", "lower_h", "lower_xi", "lower_z",
+                   "joint_unbalanced", "joint_reaction", "mismatch_N")
+
+#: Keeps derivatives finite for a vertical line (X = 0); moves X by less than 1e-18 m.
+_X_FLOOR = 1e-12
+
+
+@dataclass(frozen=True)
+class SegmentKind:
+    """Which block a segment of a multi-segment line uses.
+
+    ``block`` is ``"leg"`` (the leg block of :func:`leg_function` with ``leg``: a buoyant
+    segment that never touches the seabed), ``"lifted"`` (a sinking segment whose lower end
+    may be above the seabed; ``friction`` for the anchor segment) or ``"straight"``
+    (weightless).
+    """
+
+    block: str
+    elastic: bool
+    leg: Optional[LegKind] = None
+    friction: bool = False
+    law: Optional[StretchModel] = None
+
+
+@dataclass(frozen=True)
+class MultiLegKind:
+    """The physics of a multi-segment line: one :class:`SegmentKind` per segment, from the
+    lower end.
+
+    ``reversed_top``: the top end rests on the seabed and the top segment sinks, so that
+    segment is solved from the top end (its block's lower end), where the line may lie
+    flat; the unknown ``V`` is then its vertical tension at the joint below.
+    """
+
+    segments: tuple
+    reversed_top: bool = False
+
+    @property
+    def n_joints(self) -> int:
+        return len(self.segments) - 1
+
+    @property
+    def contact(self) -> bool:
+        return any(s.block == "lifted" or (s.leg is not None and s.leg.contact)
+                   for s in self.segments)
+
+    @property
+    def friction(self) -> bool:
+        return any(s.friction for s in self.segments)
+
+    @property
+    def elastic(self) -> bool:
+        return any(s.elastic for s in self.segments)
+
+    neutral = False
+    sloped = False
+
+
+@dataclass(frozen=True)
+class DiscreteLegKind:
+    """A line discretised into lumped nodes because a current drags on it.
+
+    ``elements`` holds the number of elements of each segment (end A first);
+    ``elastic_segments`` whether each segment stretches; ``profile_rows`` the number of rows
+    of the current profile (0: uniform current); ``side`` whether any segment has a
+    side-force coefficient.
+    """
+
+    elements: tuple
+    elastic_segments: tuple
+    profile_rows: int = 0
+    side: bool = False
+    laws: tuple = ()
+
+    @property
+    def elastic(self) -> bool:
+        return any(self.elastic_segments)
+
+    @property
+    def n_elements(self) -> int:
+        return sum(self.elements)
+
+    contact = True
+    friction = False
+    neutral = False
+    sloped = False
+
+
+@dataclass(frozen=True)
+class LineKind:
+    """Everything about a line that shapes the built problem (not its values).
+
+    Attributes
+    ----------
+    block : LegKind, MultiLegKind or DiscreteLegKind
+        The physics of the line.
+    flipped : bool
+        The catenary blocks run from end B (the lower end) to end A.
+    lower, upper : str
+        What the block's lower and upper ends are: ``"anchor"`` (fixed on the seabed),
+        ``"fixed"`` (fixed above it), ``"point"`` (a free point) or ``"body"``.
+    lifted : bool
+        A one-segment sinking line whose lower end is not an anchor: the lifted block, which
+        may touch down between its ends.
+    """
+
+    block: object
+    flipped: bool = False
+    lower: str = "anchor"
+    upper: str = "body"
+    lifted: bool = False
+
+    @property
+    def multi(self) -> bool:
+        return isinstance(self.block, MultiLegKind)
+
+    @property
+    def discrete(self) -> bool:
+        return isinstance(self.block, DiscreteLegKind)
+
+    @property
+    def single(self) -> bool:
+        return isinstance(self.block, LegKind)
+
+    @property
+    def elastic(self) -> bool:
+        return self.block.elastic
+
+    @property
+    def contact(self) -> bool:
+        return self.block.contact or self.lifted
+
+    @property
+    def friction(self) -> bool:
+        return self.block.friction
+
+    @property
+    def neutral(self) -> bool:
+        return self.block.neutral
+
+    @property
+    def sloped(self) -> bool:
+        return self.block.sloped
+
+    @property
+    def n_unknowns(self) -> int:
+        block = self.block
+        if self.multi:
+            return 2 + 2 * block.n_joints
+        if self.discrete:
+            return block.n_elements + 3 * (block.n_elements - 1)
+        return 2
+
+    def scales(self, force_scale: float, length_scale: float) -> list:
+        """Scale of each of the line's unknowns [N or m]."""
+        block = self.block
+        if self.multi:
+            return [force_scale] * 2 + [length_scale, force_scale] * block.n_joints
+        if self.discrete:
+            return [force_scale] * block.n_elements + [length_scale] * (
+                3 * (block.n_elements - 1))
+        return [force_scale] * 2
+
+
+def discretised(case: Case, line: Line) -> bool:
+    """Whether a line is modelled as lumped nodes: the case has a current and one of its
+    line types gives drag data."""
+    return case.environment.current is not None and any(
+        seg.line_type.drag is not None for seg in line.segments)
+
+
+def _end_role(case: Case, end) -> str:
+    if end.body is not None:
+        return "body"
+    if end.point is not None:
+        return "point"
+    return "anchor" if end.on_seabed else "fixed"
+
+
+def _start_position(case: Case, end) -> tuple:
+    """Global position of an end at the case-file pose."""
+    if end.body is None:
+        return tuple(float(v) for v in end.position)
+    body = case.body_named(end.body)
+    return tuple(float(v) for v in end_position(end, {body.name: body}))
+
+
+def _start_height(case: Case, end) -> float:
+    return _start_position(case, end)[2]
+
+
+def line_kind(case: Case, line: Line) -> LineKind:
+    """The physics a line needs, from what the case declares."""
+    role_a, role_b = _end_role(case, line.a), _end_role(case, line.b)
+    if discretised(case, line):
+        n = case.solver.line_elements
+        counts = tuple(max(1, round(n * seg.length / line.length)) for seg in line.segments)
+        profile = case.environment.current.profile
+        block = DiscreteLegKind(
+            elements=counts,
+            elastic_segments=tuple(seg.line_type.elastic for seg in line.segments),
+            profile_rows=len(profile) if profile else 0,
+            side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
+                     for seg in line.segments),
+            laws=tuple(law_model(seg.line_type) for seg in line.segments))
+        return LineKind(block, False, role_a, role_b)
+    # The lower end: an anchor if there is one, else the end lower in the case.
+    if role_a == "anchor":
+        flipped = False
+    elif role_b == "anchor":
+        flipped = True
+    else:
+        flipped = _start_height(case, line.b) < _start_height(case, line.a)
+    lower, upper = (role_b, role_a) if flipped else (role_a, role_b)
+    segments = line.segments[::-1] if flipped else line.segments
+    if len(segments) > 1:
+        tx, ty, tz = _start_position(case, line.a if flipped else line.b)
+        on_bed = tz <= case.environment.seabed_z(tx, ty) + 1e-9
+        return LineKind(_multi_kind(case, segments, lower, on_bed), flipped, lower, upper)
+    lt = line.line_type
+    w = lt.weight_in_water
+    contact = lower == "anchor" and w > 0
+    block = LegKind(elastic=lt.elastic, contact=contact,
+                    friction=contact and case.environment.seabed.friction > 0,
+                    neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
+                    law=law_model(lt))
+    return LineKind(block, flipped, lower, upper, lifted=(w > 0 and lower != "anchor"))
+
+
+def _multi_kind(case: Case, segments, lower: str, top_on_seabed: bool) -> MultiLegKind:
+    kinds = []
+    for k, seg in enumerate(segments):
+        lt = seg.line_type
+        w = lt.weight_in_water
+        law = law_model(lt)
+        if w == 0:
+            kinds.append(SegmentKind("straight", lt.elastic, law=law))
+        elif w < 0:
+            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False,
+                                                                 law=law), law=law))
+        else:
+            # Friction acts on the anchor segment's grounded length only (README).
+            friction = k == 0 and lower == "anchor" and case.environment.seabed.friction > 0
+            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction, law=law))
+    return MultiLegKind(tuple(kinds), reversed_top=top_on_seabed
+                        and kinds[-1].block == "lifted")
+
+
+def line_kinds(case: Case) -> list:
+    """:func:`line_kind` of every line of ``case``."""
+    return [line_kind(case, line) for line in case.lines]
+
+
+# ---- the symbolic block of a line -------------------------------------------------------
+
+
+@dataclass
+class LineBlock:
+    """What a line contributes to the problem (CasADi expressions).
+
+    ``residuals`` (scaled), ``force_a`` and ``force_b`` (3-vectors: the line's pull on its
+    ends A and B, global [N]), ``closing`` (the force [N] that would close its mismatch,
+    for the certificate), ``tensions`` (its end tensions [N]), ``row`` (the report row of
+    :data:`REPORT_COLUMNS` quantities) and the per-segment or per-node rows.
+    """
+
+    residuals: list
+    force_a: object
+    force_b: object
+    closing: object
+    row: dict
+    segment_rows: list
+    node_rows: list
+
+
+def closing_force(J, rX, rZ):
+    """Size of the end-force change that closes a line's span mismatch ``(rX, rZ)``.
+
+    ``J`` is the line's 2x2 derivative of the spans by ``(u, V)``; a singular ``J`` with a
+    nonzero mismatch gives infinity (the line cannot be closed by a finite force).
+    """
+    a, b, c, d = J[0, 0], J[0, 1], J[1, 0], J[1, 1]
+    det = a * d - b * c
+    du = d * rX - b * rZ
+    dV = -c * rX + a * rZ
+    mismatch = ca.fabs(rX) + ca.fabs(rZ)
+    return ca.if_else(det != 0, ca.hypot(du, dV) / ca.fabs(det),
+                      ca.if_else(mismatch > 0, ca.inf, 0))
+
+
+def plane_geometry(lower, upper):
+    """Horizontal direction (unit, lower toward upper), span ``X`` and rise ``Z``."""
+    dx, dy = upper[0] - lower[0], upper[1] - lower[1]
+    X = ca.sqrt(dx**2 + dy**2 + _X_FLOOR**2)
+    return dx / X, dy / X, X, upper[2] - lower[2]
+
+
+def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper) -> LineBlock:
+    """The block of a one-segment line (see the module notes)."""
+    ux, uy, X, Z = plane_geometry(lower, upper)
+    u, V = x[iu], x[iu + 1]
+    block = kind.block
+    args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"], ea_inv=P["ea_inv"],
+                mu=P["friction"])
+    if block.law is not None:
+        # The stretch law's parameters (solve/stretch_params.py).
+        args["law"] = ca.vertcat(*problem.line_laws[i][0])
+    if kind.lifted:
+        h = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
+        out = lifted_segment_function(block.elastic, False, block.law).call(dict(args, h=h))
+    elif block.sloped:
+        # The seabed's rise per metre along the line, lower end toward upper end.
+        args["t"] = seabed["gradient_x"] * ux + seabed["gradient_y"] * uy
+        out = sloped_leg_function(block.elastic, block.friction, block.law).call(args)
+    else:
+        out = leg_function(block).call(args)
+    scale = 1.0 / P["length"]
+    residuals = [out["rX"] * scale, out["rZ"] * scale]
+    J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
+                    ca.vertcat(xs[iu], xs[iu + 1])) / problem.force_scale
+    on_upper = ca.vertcat(-out["H"] * ux, -out["H"] * uy, -out["VF"])
+    on_lower = ca.vertcat(out["HA"] * ux, out["HA"] * uy, out["VA"])
+    row = dict(out, J=ca.reshape(J, 4, 1), X=X, Z=Z)
+    force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
+    return LineBlock(residuals, force_a, force_b, closing_force(J, out["rX"], out["rZ"]),
+                     row, [], [])
+
+
+def seabed_height(seabed, x, y):
+    """Height of the seabed [m] at ``(x, y)`` from the seabed parameters (symbolic)."""
+    return -seabed["depth"] + seabed["gradient_x"] * x + seabed["gradient_y"] * y
+
+
+def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
+                upper) -> LineBlock:
+    """The block of a multi-segment line (see the module notes). ``values`` are its
+    segment parameters in the line's own order (from end A)."""
+    block = kind.block
+    n = len(block.segments)
+    nj = block.n_joints
+    seg = [dict(zip(("length", "weight", "ea_inv"), values[3 * k: 3 * k + 3]))
+           for k in range(n)]
+    clump = list(values[3 * n: 3 * n + nj])
+    laws = list(problem.line_laws[i])
+    if kind.flipped:
+        seg, clump, laws = seg[::-1], clump[::-1], laws[::-1]
+    ux, uy, X, Z = plane_geometry(lower, upper)
+    u, V_top = x[iu], x[iu + 1]
+    xi = [x[iu + 2 + 2 * j] for j in range(nj)]
+    sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
+    z_bed = seabed_height(seabed, lower[0], lower[1])
+    Vs, N = [], []
+    for j in range(nj):
+        if _can_ground(block.segments[j]):
+            Vs.append(ca.fmax(sigma[j], 0))
+            N.append(ca.fmax(-sigma[j], 0))
+        else:
+            Vs.append(sigma[j])
+            N.append(0 * sigma[j])
+    Vs.append(V_top)
+    node_xi = [0] + xi + [X]
+    node_z = [lower[2]]
+    outs, res, mismatch = [], [], []
+    for k, sk in enumerate(block.segments):
+        Xk = node_xi[k + 1] - node_xi[k]
+        top = k == n - 1
+        # A joint's height is where its lower segment puts it: that segment's height
+        # equation defines it instead of being a residual.
+        Zk = upper[2] - node_z[k] if top else 0
+        h = ca.fmax(node_z[k] - z_bed, 0)
+        if top and block.reversed_top:
+            # Solved from the top end (on the seabed) toward the joint below.
+            Zk = node_z[k] - upper[2]
+            h = ca.fmax(upper[2] - z_bed, 0)
+        L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
+        law = {} if sk.law is None else {"law": ca.vertcat(*laws[k])}
+        if sk.block == "leg":
+            o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
+                                               ea_inv=c, mu=P["friction"], **law))
+            o["descent_x"] = 0 * u
+        elif sk.block == "lifted":
+            o = lifted_segment_function(sk.elastic, sk.friction, sk.law).call(dict(
+                X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"], **law))
+        else:
+            o = straight_segment_function(sk.elastic, sk.law).call(dict(
+                X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c, **law))
+        if top:
+            res += [o["rX"] / L, o["rZ"] / L]
+            e = ca.vertcat(o["rX"], o["rZ"])
+            J = ca.jacobian(e, ca.vertcat(xs[iu], xs[iu + 1])) / problem.force_scale
+            det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
+            delta = ca.vertcat(J[1, 1] * e[0] - J[0, 1] * e[1],
+                               -J[1, 0] * e[0] + J[0, 0] * e[1]) / det
+            mismatch.append(ca.norm_2(delta))
+        else:
+            res.append(o["rX"] / L)
+            node_z.append(node_z[k] + o["rZ"])
+            o["rZ"] = 0 * u
+            dX = ca.jacobian(o["rX"], xs[iu]) / problem.force_scale
+            # An inextensible segment lying straight on the seabed has dX = 0: use the
+            # scene's own stiffness scale then.
+            mismatch.append(ca.fabs(o["rX"]) / ca.fmax(
+                ca.fabs(dX), problem.length_scale / problem.force_scale))
+        if top and block.reversed_top:
+            # Back to the line's orientation: the top end's vertical tension is minus the
+            # block's pull on its lower end; the joint is pulled down by the block's V.
+            o = dict(o, VF=-o["VA"], VA=-o["VF"])
+            Zk, h = -Zk, ca.fmax(node_z[k] - z_bed, 0)
+        outs.append((o, Xk, node_z[k + 1] - node_z[k] if not top else Zk, h))
+    joint_force = []
+    for j in range(nj):
+        # Joint j joins segment j (below) and j + 1 (above): the upper segment pulls it
+        # with its signed lower-end force VA, the lower one down with its top tension.
+        unbalanced = outs[j + 1][0]["VA"] - Vs[j] - clump[j] + N[j]
+        res.append(unbalanced / problem.force_scale)
+        mismatch.append(ca.fabs(unbalanced))
+        joint_force.append(unbalanced)
+    worst = mismatch[0]
+    for m in mismatch[1:]:
+        worst = ca.fmax(worst, m)
+    top, bottom = outs[-1][0], outs[0][0]
+    grounded = sum((o["grounded"] for o, _, _, _ in outs), 0 * u)
+    row = dict(H=top["H"], VF=top["VF"], HA=bottom["HA"], VA=bottom["VA"],
+               grounded=grounded, suspended_x=top["suspended_x"], rX=worst, rZ=0 * u,
+               J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=Z)
+    rows = []
+    for k, (o, Xk, Zk, h) in enumerate(outs):
+        rows.append(ca.vertcat(
+            i, k, o["H"], o["VF"], o["HA"], o["VA"], o["grounded"], o["suspended_x"],
+            o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
+            joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k]))
+    on_upper = ca.vertcat(-top["H"] * ux, -top["H"] * uy, -top["VF"])
+    on_lower = ca.vertcat(bottom["HA"] * ux, bottom["HA"] * uy, bottom["VA"])
+    force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
+    return LineBlock(res, force_a, force_b, worst, row, rows, [])
+
+
+def _can_ground(kind: SegmentKind) -> bool:
+    """Whether a segment's top can arrive along the seabed (a sinking segment)."""
+    return kind.block == "lifted" or (kind.leg is not None and kind.leg.contact)

@@ -1,0 +1,377 @@
+"""Turn a solved point into a :class:`~.result.Result`: bodies, points, every line's end
+forces, states and profile, the loads and the notes.
+
+Every reported quantity comes from the same solution vector through the problem's report
+functions; the profiles are drawn from the same tensions with the closed forms of
+:mod:`moorsolve.physics.catenary` in each line's vertical plane (multi-segment lines joint by
+joint, lumped-node lines through their nodes).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..model import Case
+from ..physics.catenary import (LegKind, leg_profile, segment_profile, sloped_leg_profile)
+from ..physics.wall_tension import wall_tension
+from .lines import SEGMENT_COLUMNS
+from .problem import LINE_COLUMNS, ROTATIONS
+from .fibre import fibre_grounded, fibre_notes
+from .result import LegResult, Result
+from .stretch_params import numeric_law
+
+_PROFILE_POINTS = 51
+
+
+def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", notes=(),
+                 stability=None) -> Result:
+    """The :class:`Result` of the scaled point ``x`` of ``problem`` at parameters ``p``."""
+    x = np.where(np.isfinite(x), x, 0.0)
+    table, unbalanced, load_vec, poses, point_pos, _, _ = (
+        np.asarray(v) for v in problem.report(x, p))
+    table = np.atleast_2d(table)
+    xp = x * problem.x_scale
+    seg_table = np.atleast_2d(np.asarray(problem.segment_report(x, p)))
+    node_table = np.atleast_2d(np.asarray(problem.node_report(x, p)))
+    legs = []
+    for i, (line, kind) in enumerate(zip(case.lines, problem.kinds)):
+        row = dict(zip(LINE_COLUMNS, (float(v) for v in table[i])))
+        u = float(xp[problem.line_offsets[i]])
+        if kind.discrete:
+            nodes = np.array([r for r in node_table if int(r[0]) == i])
+            legs.append(_discrete_result(case, line, kind, row, nodes))
+        elif kind.multi:
+            rows = [dict(zip(SEGMENT_COLUMNS, (float(v) for v in r)))
+                    for r in seg_table if int(r[0]) == i]
+            legs.append(_multi_result(case, line, kind, row, rows, u))
+        else:
+            legs.append(_single_result(case, line, kind, row, u))
+    legs = [dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
+            for line, lr in zip(case.lines, legs)]
+    poses = np.asarray(poses, dtype=float).ravel()
+    bodies = []
+    for bi, body in enumerate(case.bodies):
+        q = poses[6 * bi: 6 * bi + 6]
+        q0 = np.array(list(body.position) + [math.radians(a) for a in body.orientation_deg])
+        entry = {"name": body.name, "x_m": float(q[0]), "y_m": float(q[1]),
+                 "z_m": float(q[2]), "roll_deg": math.degrees(q[3]),
+                 "pitch_deg": math.degrees(q[4]), "yaw_deg": math.degrees(q[5])}
+        d = q - q0
+        entry["offset"] = {"x_m": float(d[0]), "y_m": float(d[1]), "z_m": float(d[2]),
+                           "roll_deg": math.degrees(d[3]), "pitch_deg": math.degrees(d[4]),
+                           "yaw_deg": math.degrees(d[5])}
+        bodies.append(entry)
+    body = None
+    if case.body is not None:
+        off = bodies[0]["offset"]
+        body = {"x_m": off["x_m"], "y_m": off["y_m"], "yaw_deg": off["yaw_deg"]}
+        if case.form == "network":
+            body = dict(body, z_m=off["z_m"], roll_deg=off["roll_deg"],
+                        pitch_deg=off["pitch_deg"])
+    points = []
+    point_pos = np.asarray(point_pos, dtype=float).ravel()
+    for pi, point in enumerate(case.free_points):
+        xyz = point_pos[3 * pi: 3 * pi + 3]
+        j = problem.nodes.index(("point", pi, "zeta"))
+        reaction = max(-float(xp[j]), 0.0) * problem.force_scale / problem.length_scale
+        points.append({"name": point.name, "x_m": float(xyz[0]), "y_m": float(xyz[1]),
+                       "z_m": float(xyz[2]), "seabed_reaction_N": reaction})
+    loads = {}
+    lv = np.asarray(load_vec, dtype=float).ravel()
+    legacy = case.form == "legs"
+    for k, name in enumerate(problem.load_names):
+        f = lv[6 * k: 6 * k + 6]
+        loads[name] = ([float(f[0]), float(f[1]), float(f[5])] if legacy
+                       else [float(v) for v in f])
+    notes = list(notes) + _line_notes(case, problem, legs) + fibre_notes(case, legs)
+    effects = list(problem.effects)
+    clumps = [c.weight for line in case.lines for c in line.joint_clumps if c is not None]
+    effects += (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
+        ["buoy"] if any(w < 0 for w in clumps) else [])
+    return Result(converged=certified, solver=solver, certificate=cert, effects=effects,
+                  body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
+                  notes=tuple(notes), case=case, bodies=tuple(bodies),
+                  points=tuple(points), stability=stability, form=case.form)
+
+
+def hull_out_of_range(problem, x, p) -> list:
+    """``"body B: hull member j ..."`` for every exact hull member whose formula does not
+    hold at the scaled point ``x`` (the waterplane crosses its bottom or top face)."""
+    case = problem.case
+    if not any(body.hull for body in case.bodies):
+        return []
+    flags = np.asarray(problem.report(x, p)[6], dtype=float).ravel()
+    out, k = [], 0
+    for body in case.bodies:
+        for j, _ in enumerate(body.hull):
+            if flags[k] < 0.5:
+                out.append(f"body {body.name}: hull member {j} has the waterplane across its "
+                           "bottom or top face at this pose, where its exact buoyancy does "
+                           "not hold (extend the member or give the linear hydrostatics)")
+            k += 1
+    return out
+
+
+def _line_notes(case, problem, legs) -> list:
+    env = case.environment
+    notes = []
+    for lr, kind in zip(legs, problem.kinds):
+        if kind.single and not kind.contact and lr.profile["z_m"].size and np.any(
+                lr.profile["z_m"] < np.array([env.seabed_z(px, py) for px, py in zip(
+                    lr.profile["x_m"], lr.profile["y_m"])]) - 1e-6):
+            notes.append(f"leg {lr.name}: the line passes below the seabed (contact is not "
+                         "modelled for a buoyant line)")
+        if kind.discrete and np.any(lr.profile["tension_N"][1:-1] < 0):
+            notes.append(f"leg {lr.name}: some elements of the discretised line are in "
+                         "compression (a loose line; its lumped-node shape is not unique)")
+        for j, joint in enumerate(lr.joints):
+            if joint["position_m"][2] > 0:
+                notes.append(f"leg {lr.name}: joint {j + 1} is {joint['position_m'][2]:.2f} m "
+                             "above the still-water level (its buoyancy is taken as fully "
+                             "submerged; the buoy is too large for this leg)")
+            if joint["seabed_reaction_N"] > 0 and joint["height_above_seabed_m"] > 1e-6:
+                notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
+                             f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
+                             "(a segment hanging down into a joint is outside the model)")
+    return notes
+
+
+def _ends(row: dict) -> tuple:
+    """End A and B positions and the forces on them, from a report row."""
+    a = (row["ax"], row["ay"], row["az"])
+    b = (row["bx"], row["by"], row["bz"])
+    fa = np.array([row["FAx"], row["FAy"], row["FAz"]])
+    fb = np.array([row["FBx"], row["FBy"], row["FBz"]])
+    return a, b, fa, fb
+
+
+def _end_fields(name, a, b, fa, fb) -> dict:
+    """The CONTRACT fields of a line's two ends from the forces on them."""
+    return dict(
+        name=name,
+        fairlead_tension_N=float(np.linalg.norm(fb)),
+        horizontal_tension_N=float(math.hypot(fb[0], fb[1])),
+        fairlead_vertical_N=float(-fb[2]),
+        anchor_tension_N=float(np.linalg.norm(fa)),
+        anchor_horizontal_N=float(math.hypot(fa[0], fa[1])),
+        anchor_vertical_N=float(fa[2]),
+        anchor=tuple(float(v) for v in a), fairlead=tuple(float(v) for v in b),
+        fairlead_force=tuple(float(v) for v in fb), anchor_force=tuple(float(v) for v in fa))
+
+
+def _orient(profile: dict, lower, upper, flipped: bool) -> dict:
+    """A planar profile (x along the lower-to-upper direction, z up from the lower end) in
+    3-D, running from end A."""
+    X = math.hypot(upper[0] - lower[0], upper[1] - lower[1])
+    ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    out = {"x_m": lower[0] + ux * profile["x"], "y_m": lower[1] + uy * profile["x"],
+           "z_m": lower[2] + profile["z"], "tension_N": profile["tension"]}
+    if flipped:
+        out = {k: v[::-1].copy() for k, v in out.items()}
+    return out
+
+
+def _add_wall_tension(profile: dict, line, env) -> None:
+    lt = line.line_type
+    if lt.sealed and lt.diameter:
+        depth_below = np.maximum(-profile["z_m"], 0.0)
+        tw = wall_tension(profile["tension_N"], depth_below, lt.diameter, env.water_density,
+                          env.gravity)
+        profile["wall_tension_N"] = tw
+        profile["compression"] = bool(np.any(tw < 0))
+
+
+def _single_result(case, line, kind, row, u) -> LegResult:
+    env = case.environment
+    lt = line.line_type
+    a, b, fa, fb = _ends(row)
+    lower, upper = (b, a) if kind.flipped else (a, b)
+    H, VF, HA, VA = row["H"], row["VF"], row["HA"], row["VA"]
+    grounded, susp_x, X, Z = row["grounded"], row["suspended_x"], row["X"], row["Z"]
+    ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-9 else (1.0, 0.0)
+    mu = env.seabed.friction if kind.friction else 0.0
+    slope = 0.0
+    if kind.lifted:
+        h = max(lower[2] - env.seabed_z(lower[0], lower[1]), 0.0)
+        prof = segment_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea, h=h,
+                               X=X, Z=Z, n=_PROFILE_POINTS, law=numeric_law(lt))
+    elif kind.sloped:
+        slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
+        prof = sloped_leg_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea,
+                                  mu=mu, t=slope, X=X, Z=Z, n=_PROFILE_POINTS,
+                                  law=numeric_law(lt))
+    else:
+        prof = leg_profile(kind.block, H=H, V=VF, L=line.length, w=lt.weight_in_water,
+                           ea=lt.ea, mu=mu, X=X, Z=Z, n=_PROFILE_POINTS, law=numeric_law(lt))
+    profile = _orient(prof, lower, upper, kind.flipped)
+    _add_wall_tension(profile, line, env)
+    fields = _end_fields(line.name, a, b, fa, fb)
+    anchored = kind.block.contact
+    td = max(X - susp_x, 0.0) if (anchored and grounded > 0) else 0.0
+    lower_pull = fb if kind.flipped else fa
+    uplift = lower_pull[2] > 0 and not (kind.contact and grounded > 0)
+    if kind.sloped:
+        # On a slope the anchor is pulled along it: the upward part is reported (0 when
+        # it pulls down-slope), the tension is the whole pull.
+        fields["anchor_vertical_N"] = max(fields["anchor_vertical_N"], 0.0)
+    return LegResult(
+        grounded_length_m=grounded, touchdown_from_anchor_m=td,
+        # Slack: no horizontal tension and line loose on the seabed (or, for a weightless
+        # line, longer than its chord); a vertical taut leg is not slack.
+        uplift=bool(uplift), slack=bool(u < 0.0 or (H == 0.0 and grounded > 0.0)),
+        uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        touchdown_point=((lower[0] + ux * td, lower[1] + uy * td, lower[2] + slope * td)
+                         if (anchored and grounded > 0) else None),
+        mbl_N=lt.mbl, profile=profile, **fields)
+
+
+def _multi_result(case, line, kind, row, rows, u) -> LegResult:
+    """A multi-segment line: CONTRACT fields, joints, segments, one profile."""
+    env = case.environment
+    block = kind.block
+    a, b, fa, fb = _ends(row)
+    lower, upper = (b, a) if kind.flipped else (a, b)
+    segments_lf = line.segments[::-1] if kind.flipped else line.segments
+    clumps_lf = tuple(reversed(line.joint_clumps)) if kind.flipped else line.joint_clumps
+    H, VF, HA, VA, grounded = row["H"], row["VF"], row["HA"], row["VA"], row["grounded"]
+    X = row["X"]
+    ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    parts = {k: [] for k in ("x", "z", "tension")}
+    segments, joints = [], []
+    for k, (seg, sk, r) in enumerate(zip(segments_lf, block.segments, rows)):
+        lt = seg.line_type
+        law = numeric_law(lt)
+        if sk.friction:
+            prof = leg_profile(LegKind(elastic=sk.elastic, contact=True, friction=True),
+                               H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
+                               ea=lt.ea, mu=env.seabed.friction, X=r["X"], Z=r["Z"],
+                               n=_PROFILE_POINTS, law=law)
+        elif k == len(rows) - 1 and block.reversed_top:
+            # Solved from the top end: draw it from there, then turn it round.
+            back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water,
+                                   ea=lt.ea, h=max(upper[2] - env.seabed_z(*upper[:2]), 0.0),
+                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
+            prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
+                    "tension": back["tension"][::-1]}
+        else:
+            prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
+                                   ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
+                                   n=_PROFILE_POINTS, law=law)
+        sl = slice(1, None) if k else slice(None)
+        parts["x"].append(r["lower_xi"] + prof["x"][sl])
+        parts["z"].append(r["lower_z"] + prof["z"][sl])
+        parts["tension"].append(prof["tension"][sl])
+        segments.append({"type": lt.name, "length_m": seg.length,
+                         "top_tension_N": math.hypot(r["H"], r["VF"]),
+                         "bottom_tension_N": math.hypot(r["HA"], r["VA"]),
+                         "horizontal_tension_N": r["H"], "top_vertical_N": r["VF"],
+                         "bottom_vertical_N": r["VA"], "grounded_length_m": r["grounded"],
+                         "max_tension_N": float(np.max(prof["tension"])),
+                         "utilisation": (float(np.max(prof["tension"])) / lt.mbl
+                                         if lt.mbl else None)})
+        if k > 0:
+            clump = clumps_lf[k - 1]
+            joints.append({"position_m": [lower[0] + ux * r["lower_xi"],
+                                          lower[1] + uy * r["lower_xi"], r["lower_z"]],
+                           "height_above_seabed_m": r["lower_h"],
+                           "on_seabed": bool(rows[k - 1]["joint_reaction"] > 0
+                                             or r["lower_h"] <= 0),
+                           "seabed_reaction_N": max(rows[k - 1]["joint_reaction"], 0.0),
+                           "clump_weight_N": clump.weight if clump is not None else 0.0})
+    td = _touchdown(rows, segments_lf, block)
+    prof = {"x": np.concatenate(parts["x"]), "z": np.concatenate(parts["z"]) - lower[2],
+            "tension": np.concatenate(parts["tension"])}
+    profile = _orient(prof, lower, upper, kind.flipped)
+    if kind.flipped:
+        segments, joints = segments[::-1], joints[::-1]
+    first = rows[0]
+    uplift = VA > 0 and first["grounded"] <= 0
+    mbl = min((seg.line_type.mbl for seg in line.segments if seg.line_type.mbl), default=None)
+    fields = _end_fields(line.name, a, b, fa, fb)
+    if kind.lower == "anchor" and not kind.flipped:
+        fields["anchor_vertical_N"] = max(fields["anchor_vertical_N"], 0.0)
+        fields["anchor_tension_N"] = math.hypot(fields["anchor_horizontal_N"],
+                                                fields["anchor_vertical_N"])
+    return LegResult(
+        grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
+        uplift=bool(uplift), slack=bool(u < 0.0),
+        uplift_angle_deg=math.degrees(math.atan2(VA, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        touchdown_point=((lower[0] + ux * td, lower[1] + uy * td, lower[2])
+                         if td is not None else None),
+        mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints),
+        **fields)
+
+
+def _touchdown(rows, segments, block):
+    """Distance from the lower end [m] where the line first leaves the seabed (None:
+    uplift). The grounded run starts at the lower end and continues through segments lying
+    wholly on the seabed; it ends in the first segment that lifts off."""
+    for k, r in enumerate(rows):
+        reversed_top = k == len(rows) - 1 and block.reversed_top
+        if r["grounded"] <= 0 or reversed_top or r["lower_h"] > 0:
+            return r["lower_xi"] if k else None
+        if r["grounded"] < segments[k].length * (1 - 1e-12):
+            return r["lower_xi"] + r["X"] - r["suspended_x"]
+    return rows[-1]["lower_xi"] + rows[-1]["X"]
+
+
+def _discrete_result(case, line, kind, row, nodes) -> LegResult:
+    """A lumped-node line: CONTRACT fields, a 3-D profile through its nodes."""
+    env = case.environment
+    block = kind.block
+    a, b, fa, fb = _ends(row)
+    H, VF, HA, VA_raw = row["H"], row["VF"], row["HA"], row["VA"]
+    grounded, susp_x, X = row["grounded"], row["suspended_x"], row["X"]
+    on_bed = a[2] <= env.seabed_z(a[0], a[1]) + 1e-9 * max(env.depth, 1.0)
+    flags = nodes[:, 7] > 0.5
+    td = X - susp_x if (on_bed and flags[1]) else None
+    profile = {"x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
+               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy()}
+    _add_wall_tension(profile, line, env)
+    segments, joints = [], []
+    start = 0
+    for k, (seg, m) in enumerate(zip(line.segments, block.elements)):
+        part = nodes[start: start + m + 1]
+        lt = seg.line_type
+        segments.append({"type": lt.name, "length_m": seg.length, "elements": m,
+                         "top_tension_N": float(part[-1, 5]),
+                         "bottom_tension_N": float(part[0, 5]),
+                         "max_tension_N": float(np.max(part[:, 5])),
+                         "utilisation": float(np.max(part[:, 5])) / lt.mbl if lt.mbl else None})
+        start += m
+        if k < len(line.segments) - 1:
+            clump = line.joint_clumps[k]
+            node = nodes[start]
+            joints.append({"position_m": [float(v) for v in node[2:5]],
+                           "height_above_seabed_m": float(node[4] - env.seabed_z(node[2],
+                                                                                 node[3])),
+                           "on_seabed": bool(node[7] > 0.5),
+                           "seabed_reaction_N": float(node[6]),
+                           "clump_weight_N": clump.weight if clump is not None else 0.0})
+    uplift = VA_raw > 0 and not (on_bed and flags[1])
+    mbl = min((seg.line_type.mbl for seg in line.segments if seg.line_type.mbl), default=None)
+    u_dir = ((b[0] - a[0]) / X, (b[1] - a[1]) / X) if X > 1e-12 else (1.0, 0.0)
+    fields = _end_fields(line.name, a, b, fa, fb)
+    if on_bed:
+        # The anchor's vertical pull: the seabed takes a downward one.
+        fields["anchor_vertical_N"] = max(VA_raw, 0.0)
+        fields["anchor_tension_N"] = math.hypot(HA, fields["anchor_vertical_N"])
+    return LegResult(
+        grounded_length_m=grounded, touchdown_from_anchor_m=td or 0.0,
+        uplift=bool(uplift), slack=bool(H <= 1e-9 * max(abs(VF), 1.0)),
+        uplift_angle_deg=math.degrees(math.atan2(VA_raw, HA)) if uplift else 0.0,
+        fairlead_angle_deg=math.degrees(math.atan2(VF, H)) if (H or VF) else 90.0,
+        touchdown_point=((a[0] + u_dir[0] * td, a[1] + u_dir[1] * td,
+                          env.seabed_z(a[0] + u_dir[0] * td, a[1] + u_dir[1] * td))
+                         if td is not None else None),
+        mbl_N=mbl, profile=profile,
+        segments=tuple(segments) if line.multi_segment else (),
+        joints=tuple(joints), **fields)
+
+
+__all__ = ["build_result", "ROTATIONS"]

@@ -1,0 +1,271 @@
+"""Static stability of an equilibrium, and the search for a stable one.
+
+The total tangent stiffness of the free body degrees of freedom is ``K = -dQ/dq``, with
+``Q`` the generalized forces of :mod:`.problem` (mooring, weight, hydrostatics, springs and
+the load models' own dependence on position and heading: wind and current drag turn with
+the body) and every line unknown and free point condensed out (they follow the bodies):
+``K = -(J_qq - J_qr J_rr^-1 J_rq)`` from the Jacobian of the residuals (REFERENCE.md
+section 7). ``K`` need not be symmetric. The equilibrium is statically stable when every
+eigenvalue has a positive real part. Rotations are measured as arc length at the scene's
+moment arm ``L`` (``moment_scale / force_scale``) so that every entry is a stiffness in N/m
+and the eigenvalues compare.
+
+A zero eigenvalue is decided by the restoring force at finite perturbations along its mode,
+on both sides (REFERENCE.md section 7): restoring on both sides is stable (a drag yaw moment
+that grows with the square of the angle); zero on both sides is neutral (a degree of freedom
+nothing restrains nor loads, e.g. the yaw of a body whose lines all meet at one point and on
+which no load turns: it keeps its given value); pushing away on either side is unstable.
+
+Where the equilibrium found is unstable, :func:`find_stable` follows the scene's own
+overdamped motion from small perturbations along each unstable mode (pseudo-transient
+continuation: implicit Euler steps of ``q' = Q(q)`` with the lines in equilibrium at every
+step, the step growing as the residual falls), which converges to stable equilibria only,
+and then from turned starts (a weathervaning ship may need to turn half round).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .result import Stability
+
+#: A mode whose eigenvalue is below this fraction of the largest is examined as zero.
+_ZERO = 1e-7
+#: Finite perturbations [fraction of the moment arm L] used to decide zero modes.
+_PROBES = (1e-3, 1e-2)
+
+
+def _split(problem):
+    """Indices of the body unknowns (kept) and of everything condensed out."""
+    keep = [j for j, (owner, _, _) in enumerate(problem.nodes) if owner == "body"]
+    rest = [j for j in range(problem.n_x) if j not in set(keep)]
+    return np.array(keep, dtype=int), np.array(rest, dtype=int)
+
+
+def _rows(problem, cols):
+    """Residual rows that balance the unknowns ``cols``: lines' rows pair with the lines'
+    unknowns (they come first), node rows with node unknowns."""
+    n_line_rows = problem.n_x - problem.n_q
+    out = []
+    for j in cols:
+        if j < problem.n_q:
+            out.append(n_line_rows + j)
+        else:
+            out.append(j - problem.n_q)
+    return np.array(out, dtype=int)
+
+
+def homogenising(problem, keep) -> np.ndarray:
+    """Per kept unknown: the factor turning it into metres (1 or the moment arm L)."""
+    arm = problem.moment_scale / problem.force_scale
+    return np.array([arm if problem.rotational[j] else 1.0 for j in keep])
+
+
+def condensed_stiffness(problem, x, p) -> tuple:
+    """``(K, keep)``: the tangent stiffness ``-dQ/dq`` [SI] of the free body DOFs at the
+    scaled point ``x``, lines and free points condensed out, and the kept unknowns."""
+    keep, rest = _split(problem)
+    J = np.asarray(problem.jacobian(x, p))
+    rq, rr = _rows(problem, keep), _rows(problem, rest)
+    A = J[np.ix_(rq, keep)]
+    if rest.size:
+        B = J[np.ix_(rq, rest)]
+        C = J[np.ix_(rr, keep)]
+        D = J[np.ix_(rr, rest)]
+        A = A - B @ np.linalg.lstsq(D, C, rcond=None)[0]
+    row_scale = np.array([problem.moment_scale if problem.rotational[j]
+                          else problem.force_scale for j in keep])
+    K = -(row_scale[:, None] * A) / problem.x_scale[keep][None, :]
+    return K, keep
+
+
+def _dof_names(problem, keep) -> list:
+    names = []
+    for j in keep:
+        _, index, dof = problem.nodes[j]
+        names.append(f"{problem.case.bodies[index].name}.{dof}")
+    return names
+
+
+def _settle(problem, x, p, keep, iterations: int = 30):
+    """Solve the condensed unknowns (lines, points) with the bodies held: Newton on those
+    rows only. Returns the point and whether it settled."""
+    keep_set = set(keep.tolist())
+    rest = np.array([j for j in range(problem.n_x) if j not in keep_set], dtype=int)
+    rr = _rows(problem, rest)
+    lb, ub = problem.bounds()
+    x = x.copy()
+    for _ in range(iterations):
+        g = np.asarray(problem.residual(x, p)).ravel()
+        gr = g[rr]
+        if np.max(np.abs(gr), initial=0.0) < 1e-13:
+            return x, True
+        J = np.asarray(problem.jacobian(x, p))[np.ix_(rr, rest)]
+        step = np.linalg.lstsq(J, gr, rcond=None)[0]
+        norm0 = np.max(np.abs(gr))
+        alpha, moved = 1.0, False
+        for _ in range(12):
+            trial = x.copy()
+            trial[rest] = np.clip(x[rest] - alpha * step, lb[rest], ub[rest])
+            gt = np.asarray(problem.residual(trial, p)).ravel()[rr]
+            if np.all(np.isfinite(gt)) and np.max(np.abs(gt)) < norm0:
+                x, moved = trial, True
+                break
+            alpha *= 0.5
+        if not moved:
+            break
+    g = np.asarray(problem.residual(x, p)).ravel()[rr]
+    return x, bool(np.max(np.abs(g), initial=0.0) < 1e-9)
+
+
+def _restoring(problem, x, p, keep, mode) -> list:
+    """The generalized force along ``mode`` (homogenised) after moving the bodies by each
+    probe along it, both ways: negative is restoring. ``None`` where the lines would not
+    settle."""
+    h = homogenising(problem, keep)
+    arm = problem.moment_scale / problem.force_scale
+    rq = _rows(problem, keep)
+    row_scale = np.array([problem.moment_scale if problem.rotational[j]
+                          else problem.force_scale for j in keep])
+    out = []
+    for probe in _PROBES:
+        for sign in (1.0, -1.0):
+            trial = x.copy()
+            # Move the physical unknowns by probe * L along the mode (metres).
+            trial[keep] = x[keep] + sign * probe * arm * mode / h / problem.x_scale[keep]
+            trial, ok = _settle(problem, trial, p, keep)
+            if not ok:
+                out.append(None)
+                continue
+            Q = np.asarray(problem.residual(trial, p)).ravel()[rq] * row_scale / h
+            out.append(float(sign * mode @ Q))
+    return out
+
+
+def assess(problem, x, p) -> Stability:
+    """The :class:`Stability` of the scaled point ``x`` (an equilibrium of ``problem``)."""
+    keep, _ = _split(problem)
+    if keep.size == 0:
+        return Stability(stable=True, min_eigenvalue=math.inf)
+    K, keep = condensed_stiffness(problem, x, p)
+    h = homogenising(problem, keep)
+    Kh = K / h[None, :] / h[:, None]
+    values, vectors = np.linalg.eig(Kh)
+    names = _dof_names(problem, keep)
+    scale = max(float(np.max(np.abs(values))), 1e-300)
+    unstable, neutral = [], []
+    stable = True
+    for k, lam in enumerate(values):
+        mode = np.real(vectors[:, k])
+        if np.linalg.norm(mode) == 0:
+            mode = np.imag(vectors[:, k])
+        mode = mode / np.linalg.norm(mode)
+        main = names[int(np.argmax(np.abs(mode)))]
+        if abs(lam) <= _ZERO * scale:
+            forces = _restoring(problem, x, p, keep, mode)
+            known = [f for f in forces if f is not None]
+            size = max([abs(f) for f in known], default=0.0)
+            tiny = 1e-9 * problem.force_scale
+            if not known or size <= tiny:
+                neutral.append(main)
+            elif any(f > tiny for f in known):
+                stable = False
+                unstable.append(main)
+            continue
+        if lam.real < 0:
+            stable = False
+            unstable.append(main)
+    return Stability(stable=stable, min_eigenvalue=float(np.min(values.real)),
+                     unstable_dofs=tuple(dict.fromkeys(unstable)),
+                     neutral_dofs=tuple(dict.fromkeys(neutral)),
+                     eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
+
+
+def _transient(problem, x, p, tol, steps: int = 400):
+    """Pseudo-transient continuation from ``x``: implicit Euler steps of the overdamped
+    motion of the free nodes with the lines in equilibrium; returns the end point."""
+    n_line_rows = problem.n_x - problem.n_q
+    mass = np.zeros(problem.n_x)
+    mass[:problem.n_q] = 1.0
+    # The residual rows are ordered lines first; the unknowns nodes first.
+    order = np.concatenate([np.arange(n_line_rows, problem.n_x), np.arange(n_line_rows)])
+    lb, ub = problem.bounds()
+    g = np.asarray(problem.residual(x, p)).ravel()[order]
+    norm = float(np.linalg.norm(g))
+    J = np.asarray(problem.jacobian(x, p))[order]
+    dt = 1e-2 / max(float(np.max(np.abs(np.diag(J)[:problem.n_q]), initial=1.0)), 1e-12)
+    for _ in range(steps):
+        if not np.isfinite(norm):
+            return None
+        if norm < 1e-14:
+            break
+        M = np.diag(mass / dt) - J
+        try:
+            step = np.linalg.solve(M, g)
+        except np.linalg.LinAlgError:
+            step = np.linalg.lstsq(M, g, rcond=None)[0]
+        # Limit each move to a tenth of a radian or of the scene's length.
+        big = np.max(np.abs(step[:problem.n_q]), initial=0.0)
+        if big > 0.1:
+            step *= 0.1 / big
+        trial = np.clip(x + step, lb, ub)
+        g_new = np.asarray(problem.residual(trial, p)).ravel()[order]
+        n_new = float(np.linalg.norm(g_new))
+        if not np.isfinite(n_new) or n_new > 10 * norm + 1e-12:
+            dt *= 0.25
+            if dt < 1e-12:
+                return None
+            continue
+        x, g = trial, g_new
+        dt = min(dt * max(norm / max(n_new, 1e-300), 0.5) * 1.5, 1e12)
+        norm = n_new
+        J = np.asarray(problem.jacobian(x, p))[order]
+    return x
+
+
+def find_stable(problem, x, p, tol, assessment: Stability, polish):
+    """A stable certified equilibrium reached from the unstable point ``x``, or None.
+
+    Tries the overdamped motion from small and large perturbations along every unstable
+    mode, then from the bodies turned by a quarter and a half turn about the vertical.
+    Returns ``(x, Stability)``.
+    """
+    keep, _ = _split(problem)
+    if keep.size == 0:
+        return None
+    K, keep = condensed_stiffness(problem, x, p)
+    h = homogenising(problem, keep)
+    Kh = K / h[None, :] / h[:, None]
+    values, vectors = np.linalg.eig(Kh)
+    arm = problem.moment_scale / problem.force_scale
+    starts = []
+    for k in np.argsort(values.real):
+        if values[k].real >= 0 and abs(values[k]) > _ZERO * max(np.max(np.abs(values)), 1e-300):
+            continue
+        mode = np.real(vectors[:, k])
+        mode = mode / max(np.linalg.norm(mode), 1e-300)
+        for size in (1e-2, 0.2):
+            for sign in (1.0, -1.0):
+                trial = x.copy()
+                trial[keep] = x[keep] + sign * size * arm * mode / h / problem.x_scale[keep]
+                starts.append(trial)
+    yaw = [j for j in keep if problem.free[j] == "yaw"]
+    for turn in (math.pi / 2, -math.pi / 2, math.pi):
+        if yaw:
+            trial = x.copy()
+            for j in yaw:
+                trial[j] = x[j] + turn / problem.x_scale[j]
+            starts.append(trial)
+    for start in starts:
+        end = _transient(problem, start, p, tol)
+        if end is None:
+            continue
+        end = polish(end)
+        if not problem.certify(end, p, tol)[0]:
+            continue
+        result = assess(problem, end, p)
+        if result.stable:
+            return end, result
+    return None
