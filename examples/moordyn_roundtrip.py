@@ -36,13 +36,13 @@ def main():
     data["environment"].update({k: case.source["environment"][k]
                                 for k in ("wind", "current", "waves")})
     data["body"]["loads"] = case.source["body"]["loads"]
+    data["body"]["free"] = list(case.body.free)
     back = moorsolve.solve(moorsolve.load_case(data))
 
     # 2. The equilibrium export, imported with the body held at that pose.
     dat_eq = folder / "floating_dock_equilibrium.dat"
     moorsolve.export_moordyn(case, dat_eq, equilibrium=True)
     held = moorsolve.import_moordyn(dat_eq)
-    held["body"]["free"] = []
     at_rest = moorsolve.solve(moorsolve.load_case(held))
 
     print(f"files in {folder}: {dat.name}, {dat_eq.name}")

@@ -7,8 +7,8 @@
 """
 
 from .errors import CaseError, ConvergenceError, MoorsolveError
-from .io import (MoorDynError, case_to_moordyn, export_moordyn, import_moordyn, load_case,
-                 moordyn_to_case_data, read_moordyn)
+from .io import (MoorDynError, case_to_moordyn, export_moordyn, export_moorpy, import_moordyn,
+                 import_moorpy, load_case, moordyn_to_case_data, read_moordyn)
 from .model import Case
 from .solve import Certificate, LegResult, Result, solve
 from .studies.sweep import sweep
@@ -25,5 +25,5 @@ __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certif
            "offset_envelope", "stiffness", "coupled_stiffness", "body_natural_periods",
            "restoring_curve", "natural_periods", "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
-           "export_moordyn", "MoorDynError",
+           "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
            "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]

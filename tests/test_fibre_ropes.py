@@ -29,7 +29,7 @@ from moorsolve.solve.problem import structure_key
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 FPU = ROOT / "cases" / "fpu_polyester_table.yaml"
-MOORDYN = pathlib.Path(__file__).resolve().parent / "data" / "moordyn"
+MOORDYN = pathlib.Path(__file__).resolve().parent / "data" / "moordyn_curves"
 
 
 def fpu_data():

@@ -286,3 +286,23 @@ def test_large_couple_stays_on_the_quasi_static_branch():
         result = solve(case, solver=solver)
         assert result.body["yaw_deg"] == pytest.approx(20.83, abs=0.01)
         assert result.leg("L0").fairlead_tension_N == pytest.approx(82.4e3, rel=1e-3)
+
+
+@pytest.mark.parametrize("solver", ["ipopt", "newton"])
+@pytest.mark.parametrize("length, force", [(60.0, 500.0), (75.0, 2000.0), (90.0, 5000.0)])
+def test_every_leg_slack_at_rest_then_loaded(length, force, solver):
+    """Vida's three chains lengthened until all hang slack at rest (L > X + Z): the body has
+    no horizontal stiffness there, so Newton and IPOPT cannot start from rest; the solve
+    drifts with the load (pseudo-transient continuation) until a chain takes it. Checked by
+    an independent balance: the lines' horizontal pull on the body equals the load."""
+    data = yaml.safe_load((CASES / "buoy_vida.yaml").read_text())
+    data["environment"].pop("wind")
+    data["body"] = {"free": ["surge", "sway"], "loads": {"force": [force, 0.0, 0.0]}}
+    for leg in data["legs"]:
+        leg["segments"][0]["length"] = length
+    result = solve(load_case(data), solver=solver)
+    assert_certified(result)
+    pull = np.sum([leg.fairlead_force[:2] for leg in result.legs], axis=0)
+    assert pull[0] == pytest.approx(-force, rel=1e-9)
+    assert abs(pull[1]) < 1e-9 * force
+    assert result.body["x_m"] > 0 and result.stability.stable

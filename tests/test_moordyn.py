@@ -77,7 +77,8 @@ def test_v2_sections_map_onto_the_case():
     assert l2.fairlead == pytest.approx((5 + c * 20 - s * 34.64, -2 + s * 20 + c * 34.64, -14))
     l5 = next(leg for leg in case.legs if leg.name == "L5")
     assert l5.clumps[0].weight == pytest.approx(-9.80665 * 1025 * 5.0)     # a buoy
-    assert case.body.free == ("surge", "sway", "yaw") and case.body.loads.force is None
+    # A Coupled body is held where the file puts it, as MoorDyn and MoorPy hold it in statics.
+    assert case.body.free == () and case.body.loads.force is None
     block = case.moordyn
     assert block["line_types"]["rope"]["ea"] == "1.5e8|3.0e8"
     assert block["line_types"]["chain"]["cdax"] == "0.639"
@@ -198,6 +199,9 @@ def test_export_a_case_that_did_not_come_from_moordyn(tmp_path):
     assert {n for n, _, _ in md.options} >= {"dtM", "WtrDpth", "g", "rho", "kBot"}
     # Import it back: the same statics (no loads travel through MoorDyn: add them back).
     data = moordyn_to_case_data(md)
+    # A MoorDyn Coupled body comes in held; free it as the original case has it.
+    assert data["body"]["free"] == []
+    data["body"]["free"] = ["surge", "sway", "yaw"]
     data["body"]["loads"] = case.source["body"]["loads"]
     data["environment"].update({k: case.source["environment"][k]
                                 for k in ("wind", "current")})
@@ -345,20 +349,15 @@ def test_missing_sections_and_unrepresentable_topology(tmp_path):
     (tmp_path / "nolines.dat").write_text(text[:start] + text[stop:])
     with pytest.raises(MoorDynError, match=r"nolines\.dat: missing section LINES"):
         read_moordyn(tmp_path / "nolines.dat")
-    # A free point joining three lines (a bridle) is named.
+    # A free point joining three lines (a bridle) and a line onto a rod end are MoorDyn
+    # topology: they import in the network form (tests/test_moordyn_corpus.py).
     path = _broken(tmp_path, "6     rope       9        8", "6     rope       5        8")
-    with pytest.raises(MoorDynError, match=r"free point 5 joins 3 lines \(2, 3, 4\)|"
-                                           r"free point 5 joins 3 lines \(3, 4, 6\)"):
+    assert moordyn_to_case_data(read_moordyn(path))["lines"][5]["from"] == "point5"
+    # A points row of 8 columns (MoorDyn needs 9).
+    path = _broken(tmp_path, "9     Body1      20    -34.64  -14     0      0       0      0",
+                   "9     Body1      20    -34.64  -14     0      0       0")
+    with pytest.raises(MoorDynError, match="POINTS row has 8 columns; expected 9 or more"):
         import_moordyn(path)
-    # A line onto a rod end.
-    path = _broken(tmp_path, "1     chain      1        2", "1     chain      1        R1A")
-    with pytest.raises(MoorDynError, match="column 'AttachB': 'R1A' attaches the line to a rod"):
-        import_moordyn(path)
-    # The points table of neither version.
-    path = _broken(tmp_path, "ID   Attachment  X       Y     Z      Mass   Volume  CdA    Ca",
-                   "ID   Attachment  X       Y     Z      Mass   Volume  CdA")
-    with pytest.raises(MoorDynError, match="the POINTS table has 8 columns"):
-        read_moordyn(path)
 
 
 def test_cli_bad_input_exits_2_and_writes_nothing(tmp_path, capsys):

@@ -49,9 +49,13 @@ def add_commands(sub) -> None:
 def run_solve(args) -> int:
     from .. import load_case, solve
     from ..report.text import format_table, to_json
-    result = solve(load_case(args.case), tol=args.tol, solver=args.solver)
+    from ..checks.modelling import modelling_warnings
+    case = load_case(args.case)
+    result = solve(case, tol=args.tol, solver=args.solver)
     print_text(to_json(result, profiles=not args.no_profiles) if args.json
                else format_table(result))
+    for warning in modelling_warnings(case, result):
+        print(f"moorsolve: warning: {warning}", file=sys.stderr)
     return EXIT_OK
 
 

@@ -1,740 +1,454 @@
-"""MoorDyn input files in: parse a MoorDyn v1 or v2 file and map it onto a moorsolve case.
+"""MoorDyn input files in: read a MoorDyn v1 or v2 file as MoorDyn reads it and map it onto a
+moorsolve case, reporting what was read, what was converted and what was ignored.
 
-The format (MoorDyn documentation, "Input Files"): free-form front matter, then sections
-opened by a header line of dashes around a title. Table sections begin with a line of column
-names and a line of units, then one row per entry; OPTIONS rows are ``value name``; OUTPUTS
-rows are channel names. Values are separated by white space; ``!``, ``#`` and ``%`` start a
-comment in a data row.
+Reading (:mod:`.moordyn_parse`, :mod:`.moordyn_scene`) follows MoorDyn's own parsers and
+refuses only what they refuse (plus words that are not numbers where numbers belong), with
+the file, the line, the column and how the format version was told.
 
-=============  =====================================================================
-v2 section     columns
-=============  =====================================================================
-LINE TYPES     TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx [Cl dF cF]
-BODIES         ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*
-POINTS         ID Attachment X Y Z Mass Volume CdA Ca
-LINES          ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs
-OPTIONS        value name (WtrDpth, g, rho, dtM, kBot, cBot, ...)
-=============  =====================================================================
+The mapping chooses one of two case forms:
 
-v1 (MoorDyn v1 and MoorDyn-F before v2): LINE DICTIONARY / LINE TYPES ``Name Diam MassDen EA
-BA/-zeta Can Cat Cdn Cdt``; NODE / POINT / CONNECTION PROPERTIES ``Node Type X Y Z M V FX FY
-FZ CdA CA`` with types Fixed, Vessel, Connect; LINE PROPERTIES ``Line LineType UnstrLen
-NumSegs NodeAnch NodeFair Flags/Outputs``; SOLVER OPTIONS (water density ``rhoW``). The
-version is told by the width of the points table (12 columns v1, 9 columns v2).
+- **legs** (``body:`` + ``legs:``): the file is one carrier of fairleads (a Coupled, Fixed or
+  Turbine body, or the Coupled/Vessel points, all *held* where the file puts them, as MoorDyn
+  and MoorPy hold a coupled body in a static solve) on lines that run, alone or joined end
+  to end through free points, from a fixed point up to the carrier. Each such chain is one
+  leg named ``L<id>`` after the MoorDyn line at its anchor; a joint's mass and volume become
+  a clump. The ``moordyn`` block maps
+  every leg back to its MoorDyn lines and points.
+- **network** (``bodies``, ``points``, ``lines``; CONTRACT.md, "The scene as a network"):
+  everything else (bridles and hubs, lines ending at free points, several carriers or none,
+  Free and CoupledPinned bodies, rods with lines): every MoorDyn line becomes ``line<N>`` with
+  end A at its AttachA. See :mod:`.moordyn_network`.
 
-Mapping onto a case (see :func:`moordyn_to_case_data`): each chain of lines joined end to end
-through free points that join exactly two lines becomes one leg, from its fixed point (the
-anchor) to its fairlead (a point on the body: Coupled, Vessel or Body#); a free point's mass
-and volume become a clump on the joint. Columns moorsolve does not use go into the case
-file's ``moordyn`` block (:mod:`moorsolve.model.moordyn_block`) and come back on export.
+Line types keep their names; the submerged weight is ``g (Mass/m - rho pi Diam^2 / 4)``
+(Diam is MoorDyn's volume-equivalent diameter), EA the static stiffness. WtrDpth, g and
+rho go to the environment (MoorDyn's defaults where absent); every column moorsolve does not
+use goes to the ``moordyn`` block (:mod:`moorsolve.model.moordyn_block`) and comes back on
+export. The case gets no loads: it solves at rest until loads are added.
 """
 
 from __future__ import annotations
 
 import math
 import os
-import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from os import PathLike
-from pathlib import Path
-
 
 from ..errors import CaseError
-from ..model.moordyn_block import RAW_SECTIONS
-from .moordyn_curves import is_number, read_curve
+from ..model.fields import MIN_WEIGHT
+from .import_report import ImportReport
+from .moordyn_graph import Graph, build_graph
+from .moordyn_network import body_held, network_case
+from .moordyn_parse import MoorDynError, MoorDynFile, Row, read_moordyn
+from .moordyn_scene import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, MDScene, read_scene,
+                            vertical_force)
 from .output_files import write_case_yaml
 
-__all__ = ["MoorDynError", "MoorDynFile", "read_moordyn", "moordyn_to_case_data",
-           "import_moordyn"]
-
-#: MoorDyn's own defaults where a file leaves an option out (MoorDyn documentation): the
-#: water density is 1025 kg/m^3 in both versions; gravity 9.80665 (v1) and 9.81 (v2-C).
-DEFAULT_GRAVITY = {1: 9.80665, 2: 9.81}
-DEFAULT_WATER_DENSITY = 1025.0
-
-#: Option names (lower case) that map onto the case's environment.
-DEPTH_OPTIONS = ("wtrdpth",)
-GRAVITY_OPTIONS = ("g", "gravity")
-DENSITY_OPTIONS = ("rho", "rhow", "wtrdnsty")
+__all__ = ["MoorDynError", "MoorDynFile", "MoorDynImport", "Row", "read_moordyn",
+           "moordyn_to_case_data", "convert_moordyn", "read_import", "import_moordyn",
+           "scene_case", "line_type_data"]
 
 
-class MoorDynError(CaseError):
-    """A MoorDyn file that cannot be read or mapped: ``field`` is ``FILE:LINE`` (or ``FILE``).
-
-    The message names the column and the value, e.g. ``lines.dat:14: column 'UnstrLen':
-    'abc' is not a number``.
-    """
-
-    def __init__(self, file: str, line: int | None, message: str):
-        self.file = file
-        self.line = line
-        super().__init__(f"{file}:{line}" if line else file, message)
+# ---- line types and the environment -------------------------------------------------------
 
 
-# ---- sections ----------------------------------------------------------------------------
-
-_SECTION_TITLES = {
-    "LINE TYPES": "line_types", "LINE DICTIONARY": "line_types",
-    "ROD TYPES": "ROD TYPES", "ROD DICTIONARY": "ROD TYPES",
-    "BODIES": "bodies", "BODY LIST": "bodies", "BODY PROPERTIES": "bodies",
-    "RODS": "RODS", "ROD LIST": "RODS", "ROD PROPERTIES": "RODS",
-    "POINTS": "points", "POINT LIST": "points", "POINT PROPERTIES": "points",
-    "CONNECTION PROPERTIES": "points", "NODE PROPERTIES": "points", "CONNECTIONS": "points",
-    "LINES": "lines", "LINE LIST": "lines", "LINE PROPERTIES": "lines",
-    "OPTIONS": "options", "SOLVER OPTIONS": "options",
-    "OUTPUTS": "outputs", "OUTPUT LIST": "outputs", "OUTPUT": "outputs",
-    "FAILURE": "FAILURE", "CONTROL": "CONTROL", "EXTERNAL LOADS": "EXTERNAL LOADS",
-}
-
-#: Columns of each table, per version; (names, least count, most count).
-COLUMNS = {
-    ("line_types", 1): ("Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt", 9, 9),
-    ("line_types", 2): ("TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx Cl dF cF", 10, 13),
-    ("points", 1): ("Node Type X Y Z M V FX FY FZ CdA CA", 12, 12),
-    ("points", 2): ("ID Attachment X Y Z Mass Volume CdA Ca", 9, 9),
-    ("lines", 1): ("Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags/Outputs", 7, 7),
-    ("lines", 2): ("ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs", 7, 7),
-    ("bodies", 2): ("ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*", 14, 14),
-}
-
-_DASHES = re.compile(r"^\s*-{3,}")
-_FORTRAN_EXPONENT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))[dD]([+-]?\d+)$")
-
-
-@dataclass
-class Row:
-    """One data row of a table: its line number and its values (comments removed)."""
-
-    line: int
-    values: list
-
-
-@dataclass
-class MoorDynFile:
-    """A MoorDyn input file as read: tables of rows, options, outputs, verbatim sections.
-
-    ``tables`` maps ``line_types``, ``points``, ``lines`` (and ``bodies``) to their rows;
-    ``sections`` holds the sections moorsolve does not model, verbatim (header and unit
-    lines included); ``options`` is ``[(name, value, line), ...]`` in file order.
-    """
-
-    path: str
-    version: int
-    header: list
-    tables: dict
-    options: list
-    outputs: list
-    sections: dict = field(default_factory=dict)
-    section_lines: dict = field(default_factory=dict)
-
-    @property
-    def name(self) -> str:
-        return os.path.basename(self.path)
-
-    def error(self, line, message: str) -> MoorDynError:
-        return MoorDynError(self.name, line, message)
-
-
-def _section_title(text: str):
-    """The section a header line opens (a key of ``_SECTION_TITLES``), or None."""
-    words = " ".join(re.sub(r"[^A-Za-z ]", " ", text).upper().split())
-    return words
-
-
-def _strip_comment(text: str) -> str:
-    cut = len(text)
-    for mark in "!#%":
-        i = text.find(mark)
-        if i >= 0:
-            cut = min(cut, i)
-    return text[:cut]
-
-
-def read_moordyn(source) -> MoorDynFile:
-    """Read a MoorDyn input file (v1 or v2) into its sections.
-
-    Parameters
-    ----------
-    source : str or pathlib.Path
-        The file.
-
-    Raises
-    ------
-    MoorDynError
-        Naming the file and line: unreadable file, unknown or repeated section, missing
-        LINE TYPES, POINTS or LINES section, a table row of the wrong width.
-    """
-    path = Path(source)
-    name = path.name
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise MoorDynError(name, None, "MoorDyn file not found") from None
-    except IsADirectoryError:
-        raise MoorDynError(name, None, "is a directory, not a MoorDyn file") from None
-    except UnicodeDecodeError as exc:
-        raise MoorDynError(name, None, f"is not UTF-8 text ({exc.reason} at byte "
-                                       f"{exc.start})") from None
-    except OSError as exc:
-        raise MoorDynError(name, None, f"cannot read the file: {exc}") from None
-
-    header, blocks, order = [], {}, []
-    current, done = None, False
-    for number, line in enumerate(text.splitlines(), start=1):
-        if _DASHES.match(line) and re.search(r"[A-Za-z]", line):
-            title = _section_title(line)
-            if current is None and title not in _SECTION_TITLES:
-                header.append(line.rstrip())      # e.g. "---- MoorDyn Input File ----"
-                continue
-            if current == "outputs" or done:
-                done = True                       # the line that closes OUTPUTS
-                continue
-            if title not in _SECTION_TITLES:
-                raise MoorDynError(name, number, f"unknown section {title!r}; known sections: "
-                                                 + ", ".join(sorted(set(_SECTION_TITLES))))
-            current = _SECTION_TITLES[title]
-            if current in blocks:
-                raise MoorDynError(name, number, f"section {title!r} appears twice")
-            blocks[current] = {"title": title, "line": number, "lines": []}
-            order.append(current)
-            continue
-        if done:
-            continue
-        if current is None:
-            header.append(line.rstrip())
-            continue
-        blocks[current]["lines"].append((number, line.rstrip()))
-
-    for required in ("line_types", "points", "lines"):
-        if required not in blocks:
-            title = {"line_types": "LINE TYPES", "points": "POINTS", "lines": "LINES"}[required]
-            raise MoorDynError(name, None, f"missing section {title} (a header line such as "
-                                           f"'---------- {title} ----------')")
-
-    # The version: the points table has 12 columns in v1 and 9 in v2 (its column-name row).
-    points = [(n, t) for n, t in blocks["points"]["lines"] if t.strip()]
-    if not points:
-        raise MoorDynError(name, blocks["points"]["line"], "section POINTS has no column-name "
-                                                           "row")
-    width = len(points[0][1].split())
-    if width == 12:
-        version = 1
-    elif width == 9:
-        version = 2
-    else:
-        raise MoorDynError(name, points[0][0], f"the POINTS table has {width} columns; MoorDyn "
-                                               f"v2 has 9 ({COLUMNS[('points', 2)][0]}), v1 has "
-                                               f"12 ({COLUMNS[('points', 1)][0]})")
-
-    tables, sections = {}, {}
-    for key, block in blocks.items():
-        if key in ("line_types", "points", "lines", "bodies"):
-            tables[key] = _table(name, key, version, block)
-        elif key in RAW_SECTIONS:
-            if version == 1:
-                raise MoorDynError(name, block["line"], f"section {block['title']} is not part of "
-                                                        "MoorDyn v1 (the points table has v1 "
-                                                        "columns)")
-            sections[key] = [t for _, t in block["lines"] if t.strip()]
-    options = []
-    for number, line in blocks.get("options", {"lines": []})["lines"]:
-        words = _strip_comment(line).split()
-        if not words:
-            continue
-        if len(words) < 2:
-            raise MoorDynError(name, number, f"option row {line.strip()!r} needs a value and a "
-                                             "name ('0.001 dtM')")
-        options.append((words[1], words[0], number))
-    seen = {}
-    for opt, _, number in options:
-        if opt.lower() in seen:
-            raise MoorDynError(name, number, f"option {opt!r} is given twice (first at line "
-                                             f"{seen[opt.lower()]})")
-        seen[opt.lower()] = number
-    outputs = []
-    for _, line in blocks.get("outputs", {"lines": []})["lines"]:
-        if line.strip().upper() == "END":
-            break
-        if line.strip():
-            outputs.append(line.strip())
-    return MoorDynFile(path=str(path), version=version, header=header, tables=tables,
-                       options=options, outputs=outputs, sections=sections,
-                       section_lines={k: b["line"] for k, b in blocks.items()})
-
-
-def _table(name: str, key: str, version: int, block: dict) -> list:
-    """Rows of a table section: skip the column-name and unit rows, check each row's width."""
-    spec = COLUMNS.get((key, version))
-    if spec is None:
-        raise MoorDynError(name, block["line"], f"section {block['title']} is not part of "
-                                                f"MoorDyn v{version}")
-    columns, least, most = spec
-    lines = [(n, t) for n, t in block["lines"] if t.strip()]
-    if len(lines) < 2:
-        raise MoorDynError(name, block["line"], f"section {block['title']} needs a column-name "
-                                                f"row and a units row ({columns})")
-    rows = []
-    for number, line in lines[2:]:
-        values = _strip_comment(line).split()
-        if not values:
-            continue
-        if not least <= len(values) <= most:
-            want = str(least) if least == most else f"{least} to {most}"
-            raise MoorDynError(name, number, f"{block['title']} row has {len(values)} columns; "
-                                             f"expected {want} ({columns})")
-        rows.append(Row(line=number, values=values))
-    return rows
-
-
-# ---- values ------------------------------------------------------------------------------
-
-
-def _number(md: MoorDynFile, row: Row, index: int, column: str, what: str = "column") -> float:
-    token = row.values[index]
-    column = f"{what} {column!r}"
-    m = _FORTRAN_EXPONENT.match(token)
-    try:
-        value = float(f"{m.group(1)}e{m.group(2)}" if m else token)
-    except ValueError:
-        raise md.error(row.line, f"{column}: {token!r} is not a number") from None
-    if not math.isfinite(value):
-        raise md.error(row.line, f"{column}: {token!r} is not a finite number")
-    return value
-
-
-def _ident(md: MoorDynFile, row: Row, index: int, column: str) -> int:
-    token = row.values[index]
-    if not token.isdigit() or int(token) < 1:
-        raise md.error(row.line, f"column {column!r}: {token!r} is not a positive whole number")
-    return int(token)
-
-
-def _attachment(md: MoorDynFile, row: Row, column: str) -> tuple:
-    """The kind of a point's attachment: ("fixed" | "free" | "coupled", None) or ("body", N)."""
-    token = row.values[1]
-    word = token.upper()
-    if word in ("FIXED", "FIX", "ANCHOR"):
-        return "fixed", None
-    if word in ("COUPLED", "VESSEL", "VES", "CPLD"):
-        return "coupled", None
-    if word in ("FREE", "CONNECT", "CON", "POINT"):
-        return "free", None
-    m = re.fullmatch(r"BODY(\d+)", word)
-    if m and md.version == 2 and int(m.group(1)) >= 1:
-        return "body", int(m.group(1))
-    allowed = ("Fixed (Anchor), Coupled (Vessel), Free (Connect), Body<N>" if md.version == 2
-               else "Fixed, Vessel, Connect")
-    raise md.error(row.line, f"column {column!r}: unknown attachment {token!r}; allowed: "
-                             f"{allowed}")
-
-
-# ---- mapping onto a case -----------------------------------------------------------------
-
-
-def _line_types(md: MoorDynFile, gravity: float, rho: float):
-    """Case line types and their passthrough columns."""
-    types, passthrough, rows = {}, {}, {}
-    v1 = md.version == 1
-    for row in md.tables["line_types"]:
-        name = row.values[0]
-        if name in types:
-            raise md.error(row.line, f"line type {name!r} is defined twice (first at line "
-                                     f"{rows[name]})")
-        rows[name] = row.line
-        diameter = _number(md, row, 1, "Diam")
-        if not diameter > 0:
-            raise md.error(row.line, f"column 'Diam': {row.values[1]!r} must be > 0")
-        mass = _number(md, row, 2, "MassDen" if v1 else "Mass/m")
-        if mass < 0:
-            raise md.error(row.line, f"column 'Mass/m': {row.values[2]!r} must be >= 0")
-        ea_token = row.values[3]
-        cols = {}
-        weight = gravity * (mass - rho * math.pi * diameter ** 2 / 4.0)
-        static = ea_token.split("|")[0] if not v1 else ea_token
-        if not is_number(static):
-            # EA names a file of strain and tension (moorsolve.io.moordyn_curves).
-            stretch = read_curve(Path(md.path).parent, static,
-                                 lambda message, line=row.line: md.error(line, message))
-            cols["ea"] = ea_token
-            types[name] = {"weight_in_water": weight, "stretch": stretch, "diameter": diameter}
+def line_type_data(scene: MDScene, report: ImportReport,
+                   kept: str = "kept in the moordyn block for export") -> tuple:
+    """Case line types, their passthrough columns, and a report entry per type."""
+    g, rho = scene.gravity, scene.water_density
+    types, passthrough = {}, {}
+    for lt in scene.line_types.values():
+        weight = g * (lt.mass - rho * math.pi * lt.diameter ** 2 / 4.0)
+        if weight and abs(weight) < MIN_WEIGHT:
+            report.converted.append(f"line type {lt.name}: weight in water {weight:.3g} N/m, "
+                                    f"below the case's {MIN_WEIGHT:g} N/m: a neutrally buoyant "
+                                    "line, taken as 0")
+            weight = 0.0
+        if lt.stretch is not None:
+            entry = {"weight_in_water": weight, "stretch": lt.stretch}
+            stiffness = (f"EA from the curve file {lt.ea_token.split('|')[0]!r}: a table law "
+                         f"of {len(lt.stretch['strain'])} rows (moorsolve interpolates them by "
+                         "a monotone cubic, MoorDyn linearly)")
         else:
-            if "|" in ea_token and not v1:
-                # Static and dynamic stiffness "EA_s|EA_d(|slope)": the static one is the
-                # statics'.
-                first = Row(row.line, [static])
-                ea = _number(md, first, 0, "EA")
-                cols["ea"] = ea_token
-            else:
-                ea = _number(md, row, 3, "EA")
-            if not ea > 0:
-                raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
-            types[name] = {"weight_in_water": weight, "ea": ea, "diameter": diameter}
-        keys = (("ba", "can", "cat", "cdn", "cdt") if v1
-                else ("ba", "ei", "cd", "ca", "cdax", "caax", "cl", "df", "cf"))
-        names = {"can": "ca", "cat": "caax", "cdn": "cd", "cdt": "cdax"}
-        for key, token in zip(keys, row.values[4:]):
-            cols[names.get(key, key)] = token
-        passthrough[name] = cols
-    if not types:
-        raise md.error(md.section_lines["line_types"], "section LINE TYPES has no line types")
+            entry = {"weight_in_water": weight, "ea": lt.ea}
+            static = (" (the static part of " + repr(lt.ea_token) + ")"
+                      if "|" in lt.ea_token else "")
+            stiffness = f"EA {lt.ea:g} N{static}"
+        if lt.diameter > 0:
+            entry["diameter"] = lt.diameter
+        types[lt.name] = entry
+        passthrough[lt.name] = dict(lt.columns)
+        report.converted.append(f"line type {lt.name} (line {lt.line}): weight in water "
+                                f"{weight:.6g} N/m = g (Mass/m {lt.mass:g} - rho pi Diam^2/4, "
+                                f"Diam {lt.diameter:g} m), {stiffness}")
+    dyn = sorted({k for cols in passthrough.values() for k in cols if k != "ea"})
+    if dyn:
+        report.ignored.append("line-type columns " + ", ".join(dyn) + " (damping, bending, "
+                              f"drag, added mass, lift): dynamic only; {kept}")
     return types, passthrough
 
 
-@dataclass
-class _Point:
-    id: int
-    line: int
-    kind: str                 # fixed, free, coupled, body
-    body: int | None
-    attachment: str           # the keyword as written
-    position: tuple           # as written (body frame for body points)
-    mass: float
-    volume: float
-    columns: dict             # passthrough tokens
-    force: tuple = (0.0, 0.0, 0.0)
+# ---- the legs form --------------------------------------------------------------------------
 
 
-def _points(md: MoorDynFile) -> dict:
-    points = {}
-    v1 = md.version == 1
-    for row in md.tables["points"]:
-        pid = _ident(md, row, 0, "Node" if v1 else "ID")
-        if pid in points:
-            raise md.error(row.line, f"point {pid} is defined twice (first at line "
-                                     f"{points[pid].line})")
-        kind, body = _attachment(md, row, "Type" if v1 else "Attachment")
-        names = ("X", "Y", "Z")
-        position = tuple(_number(md, row, 2 + i, names[i]) for i in range(3))
-        mass = _number(md, row, 5, "M" if v1 else "Mass")
-        volume = _number(md, row, 6, "V" if v1 else "Volume")
-        if v1:
-            keys = ("fx", "fy", "fz", "cda", "ca")
-            force = tuple(_number(md, row, 7 + i, c) for i, c in enumerate(("FX", "FY", "FZ")))
-        else:
-            keys, force = ("cda", "ca"), (0.0, 0.0, 0.0)
-        columns = dict(zip(keys, row.values[7:]))
-        if kind == "free":
-            if mass < 0 or volume < 0:
-                raise md.error(row.line, f"free point {pid}: mass and volume must be >= 0")
-            if any(f != 0.0 for f in force):
-                raise md.error(row.line, f"free point {pid}: a steady external force (FX FY FZ) "
-                                         "is not represented in a moorsolve case; give a mass or "
-                                         "volume instead")
-        else:
-            columns = {"mass": row.values[5], "volume": row.values[6], **columns}
-        points[pid] = _Point(id=pid, line=row.line, kind=kind, body=body,
-                             attachment=row.values[1], position=position, mass=mass,
-                             volume=volume, columns=columns, force=force)
-    return points
-
-
-@dataclass
-class _Line:
-    id: int
-    line: int
-    type: str
-    ends: tuple               # (AttachA point id, AttachB point id)
-    length: float
-    num_segs: str
-    outputs: str
-
-
-def _lines(md: MoorDynFile, types: dict, points: dict) -> dict:
-    lines = {}
-    v1 = md.version == 1
-    for row in md.tables["lines"]:
-        lid = _ident(md, row, 0, "Line" if v1 else "ID")
-        if lid in lines:
-            raise md.error(row.line, f"line {lid} is defined twice (first at line "
-                                     f"{lines[lid].line})")
-        tname = row.values[1]
-        if tname not in types:
-            raise md.error(row.line, f"column 'LineType': unknown line type {tname!r}; known: "
-                                     f"{', '.join(types)}")
-        if v1:
-            length_i, segs_i, ends_i, cols = 2, 3, (4, 5), ("NodeAnch", "NodeFair")
-        else:
-            length_i, segs_i, ends_i, cols = 4, 5, (2, 3), ("AttachA", "AttachB")
-        ends = []
-        for i, col in zip(ends_i, cols):
-            token = row.values[i]
-            if re.fullmatch(r"[Rr]\d+[AaBb]", token):
-                raise md.error(row.line, f"column {col!r}: {token!r} attaches the line to a rod "
-                                         "end; moorsolve has no rods")
-            pid = _ident(md, row, i, col)
-            if pid not in points:
-                raise md.error(row.line, f"column {col!r}: unknown point {pid}; points: "
-                                         f"{', '.join(str(p) for p in sorted(points))}")
-            ends.append(pid)
-        if ends[0] == ends[1]:
-            raise md.error(row.line, f"line {lid} starts and ends at point {ends[0]}")
-        length = _number(md, row, length_i, "UnstrLen")
-        if not length > 0:
-            raise md.error(row.line, f"column 'UnstrLen': {row.values[length_i]!r} must be > 0")
-        num_segs = row.values[segs_i]
-        _ident(md, row, segs_i, "NumSegs")
-        lines[lid] = _Line(id=lid, line=row.line, type=tname, ends=tuple(ends), length=length,
-                           num_segs=num_segs, outputs=row.values[6])
-    if not lines:
-        raise md.error(md.section_lines["lines"], "section LINES has no lines")
-    return lines
-
-
-def _body(md: MoorDynFile, points: dict):
-    """The one body that carries the fairleads, when the file has BODIES: its pose and row."""
-    rows = md.tables.get("bodies", [])
-    bodies = {}
-    for row in rows:
-        bid = _ident(md, row, 0, "ID")
-        if bid in bodies:
-            raise md.error(row.line, f"body {bid} is defined twice")
-        bodies[bid] = row
-    used = sorted({p.body for p in points.values() if p.kind == "body"})
-    if len(bodies) > 1 or len(used) > 1:
-        line = rows[1].line if len(rows) > 1 else next(p.line for p in points.values()
-                                                       if p.kind == "body" and p.body == used[1])
-        raise md.error(line, "more than one body: a moorsolve case has one body")
-    for bid in used:
-        if bid not in bodies:
-            point = next(p for p in points.values() if p.body == bid)
-            raise md.error(point.line, f"column 'Attachment': {point.attachment!r} names body "
-                                       f"{bid}, which the BODIES section does not define")
-    if not bodies:
+def _chains(graph: Graph):
+    """Chains of lines through free points that join exactly two lines, as
+    ``(first node, [(line id, reversed)], last node)``, or None when a free point joins
+    one line or more than two, or lines close a loop."""
+    scene = graph.scene
+    if any(n.kind == "free" and len(graph.at[k]) != 2 for k, n in graph.nodes.items()):
         return None
-    (bid, row), = bodies.items()
-    word = row.values[1].upper()
-    if word in ("FIXED", "FIX", "ANCHOR"):
-        free = []
-    elif word in ("COUPLED", "VESSEL", "VES", "CPLD", "FREE"):
-        free = ["surge", "sway", "yaw"]
-    else:
-        raise md.error(row.line, f"column 'Attachment': unknown body attachment "
-                                 f"{row.values[1]!r}; allowed: Fixed, Coupled (Vessel), Free")
-    pose = [_number(md, row, 2 + i, c) for i, c in enumerate(("X0", "Y0", "Z0", "r0", "p0",
-                                                               "y0"))]
-    for value, col, index in ((pose[3], "r0", 5), (pose[4], "p0", 6)):
-        if value != 0.0:
-            raise md.error(row.line, f"column {col!r}: {row.values[index]!r}: a body with roll or "
-                                     "pitch is not represented (moorsolve's body moves in the "
-                                     "horizontal plane); give 0")
-    columns = dict(zip(("mass", "cg", "i", "volume", "cda", "ca"), row.values[8:]))
-    return {"id": bid, "attachment": row.values[1], "x0": pose[0], "y0": pose[1],
-            "z0": pose[2], "yaw_deg": pose[5], "columns": columns, "free": free}
-
-
-def _environment(md: MoorDynFile, points: dict):
-    """Depth, gravity, water density and the options list (mapped ones with value None)."""
-    values, options = {}, []
-    for opt, token, number in md.options:
-        low = opt.lower()
-        key = ("depth" if low in DEPTH_OPTIONS else "gravity" if low in GRAVITY_OPTIONS
-               else "water_density" if low in DENSITY_OPTIONS else None)
-        if key is None:
-            options.append([opt, token])
-            continue
-        row = Row(number, [token])
-        value = _number(md, row, 0, opt, "option")
-        if not value > 0:
-            raise md.error(number, f"option {opt!r}: {token!r} must be > 0")
-        if key in values:
-            raise md.error(number, f"option {opt!r} repeats the {key.replace('_', ' ')} given "
-                                   "by another option")
-        values[key] = value
-        options.append([opt, None])
-    notes = []
-    if "depth" not in values:
-        fixed = [p.position[2] for p in points.values() if p.kind == "fixed"]
-        if not fixed or min(fixed) >= 0:
-            raise md.error(None, "no water depth: give the option WtrDpth (or a fixed point "
-                                 "below the water line)")
-        values["depth"] = -min(fixed)
-        notes.append("The file gives no WtrDpth: the depth is that of the deepest fixed "
-                     "point.")
-    if "gravity" not in values:
-        values["gravity"] = DEFAULT_GRAVITY[md.version]
-        notes.append(f"The file gives no g: MoorDyn v{md.version}'s default "
-                     f"{values['gravity']} m/s^2 is used.")
-    values.setdefault("water_density", DEFAULT_WATER_DENSITY)
-    return values, options, notes
-
-
-def _legs(md: MoorDynFile, points: dict, lines: dict, has_body: bool):
-    """Chains of lines through free points joining two lines, anchor end first."""
-    at = {pid: [] for pid in points}
-    for line in lines.values():
-        for pid in line.ends:
-            at[pid].append(line.id)
-    for pid, attached in at.items():
-        p = points[pid]
-        if not attached:
-            raise md.error(p.line, f"point {pid} is attached to no line; moorsolve cannot keep "
-                                   "it (remove it)")
-        if p.kind == "free" and len(attached) == 1:
-            raise md.error(p.line, f"free point {pid} ends line {attached[0]} without joining "
-                                   "another line; a moorsolve leg ends at an anchor and a "
-                                   "fairlead")
-        if p.kind == "free" and len(attached) > 2:
-            raise md.error(p.line, f"free point {pid} joins {len(attached)} lines ("
-                                   f"{', '.join(str(i) for i in sorted(attached))}): a bridle or "
-                                   "hub is not representable (a moorsolve leg is one chain of "
-                                   "segments from anchor to fairlead)")
     used, chains = set(), []
-    for lid in sorted(lines):
+    for lid in sorted(scene.lines):
         if lid in used:
             continue
-        # Walk to one terminal (non-free) end of this chain, then collect it from there.
-        start_line, start_point = lid, lines[lid].ends[0]
+        start_line, start = lid, graph.ends(lid)[0]
         seen = {lid}
-        while points[start_point].kind == "free":
-            other = next(i for i in at[start_point] if i != start_line)
+        while start.kind == "free":
+            other = next(i for i in graph.at[start.key] if i != start_line)
             if other in seen:
-                loop = ", ".join(map(str, sorted(seen)))
-                raise md.error(points[start_point].line,
-                               f"lines {loop} form a closed loop through free points")
+                return None
             seen.add(other)
-            a, b = lines[other].ends
-            start_point = a if b == start_point else b
-            start_line = other
-        chain, point, current = [], start_point, start_line
+            a, b = graph.ends(other)
+            start, start_line = (a if b.key == start.key else b), other
+        chain, node, current = [], start, start_line
         while True:
-            a, b = lines[current].ends
-            reverse = a != point
+            a, b = graph.ends(current)
+            reverse = a.key != node.key
             chain.append((current, reverse))
             used.add(current)
-            point = a if reverse else b
-            if points[point].kind != "free":
+            node = a if reverse else b
+            if node.kind != "free":
                 break
-            current = next(i for i in at[point] if i != current)
-        chains.append((start_point, chain, point))
+            current = next(i for i in graph.at[node.key] if i != current)
+        chains.append((start, chain, node))
+    return chains
 
-    legs = []
+
+def _network_reason(graph: Graph, chains) -> str | None:
+    """Why the file needs the network form, or None when the legs form holds it."""
+    scene = graph.scene
+    moving = [c for c in graph.carriers.values() if not c.held]
+    if moving:
+        c = moving[0]
+        what = (f"rod {c.key[1]} is {scene.rods[c.key[1]].word}" if c.key[0] == "rod"
+                else f"body {c.key[1]} is {scene.bodies[c.key[1]].word}")
+        return f"{what} (it moves in the solve)"
+    rods = [n for n in graph.nodes.values() if n.key[0] == "rod"]
+    if rods:
+        return f"line(s) attach to {rods[0].label}"
+    if len(graph.carriers) > 1:
+        return "several carriers of fairleads (" + ", ".join(
+            c.name for c in graph.carriers.values()) + ")"
+    if not graph.carriers:
+        # No body: lines between fixed points, whose free points may hang out of any one
+        # vertical plane; the network form solves them in three dimensions.
+        return "no body carries the lines"
+    if chains is None:
+        for key, node in graph.nodes.items():
+            n = len(graph.at[key])
+            if node.kind == "free" and n == 1:
+                return f"line {graph.line_label(graph.at[key][0])} ends at free {node.label}"
+            if node.kind == "free" and n > 2:
+                return (f"free {node.label} joins {n} lines (" + ", ".join(
+                    graph.line_label(i) for i in sorted(graph.at[key])) + "): a bridle or hub")
+        return "lines close a loop through free points"
     for first, chain, last in chains:
-        kinds = (points[first].kind, points[last].kind)
-        on_body = {"coupled", "body"}
-        ids = ", ".join(str(i) for i, _ in chain)
-        if kinds[0] in on_body and kinds[1] in on_body:
-            raise md.error(lines[chain[0][0]].line, f"line(s) {ids} join two fairleads (points "
-                                                    f"{first} and {last}); a moorsolve leg runs "
-                                                    "from an anchor to a fairlead")
-        if kinds[0] == "fixed" and kinds[1] == "fixed":
-            if has_body:
-                raise md.error(lines[chain[0][0]].line, f"line(s) {ids} join two fixed points "
-                                                        f"({first} and {last}) in a model with a "
-                                                        "body: every leg must end on the body")
-            flip = points[first].position[2] > points[last].position[2]
-        else:
-            flip = kinds[0] in on_body
-        if flip:
+        ids = ", ".join(graph.line_label(i) for i, _ in chain)
+        kinds = {first.kind, last.kind}
+        if kinds == {"carrier"}:
+            return f"line(s) {ids} join two fairleads ({first.label}, {last.label})"
+        if kinds == {"fixed"}:
+            return f"line(s) {ids} join two fixed points ({first.label}, {last.label})"
+        if kinds == {"fixed", "carrier"}:
+            ground, top = (first, last) if first.kind == "fixed" else (last, first)
+            if ground.position[2] > top.position[2]:
+                return (f"line(s) {ids} hang from {ground.label} above their fairlead "
+                        f"{top.label}")
+    return None
+
+
+def _clump(node, scene: MDScene) -> dict | None:
+    point = scene.points[node.key[1]]
+    fz = vertical_force(point, scene)
+    if scene.gravity == 0 or scene.water_density == 0:
+        # Weightless or dry (a MoorDyn test): the clump's net weight, given as such.
+        weight = scene.gravity * (point.mass - scene.water_density * point.volume) - fz
+        return {"weight": weight} if point.mass or point.volume or fz else None
+    volume = point.volume + fz / (scene.water_density * scene.gravity)
+    if point.mass or volume:
+        return {"mass": point.mass, "volume": volume}
+    return None
+
+
+def case_environment(scene: MDScene, report: ImportReport) -> dict:
+    """The case's environment: MoorDyn's g = 0 (weightless) or rho = 0 (dry) tests keep the
+    case's defaults, their weights and buoyancies being given as zero where they arise."""
+    env = {"depth": scene.depth, "water_density": scene.water_density,
+           "gravity": scene.gravity}
+    for key, default, what in (("gravity", DEFAULT_GRAVITY, "weightless: every weight is 0"),
+                               ("water_density", DEFAULT_WATER_DENSITY,
+                                "dry: every buoyancy is 0")):
+        if env[key] == 0:
+            env[key] = default
+            report.converted.append(f"{key.replace('_', ' ')} 0 ({what}; the case keeps "
+                                    f"{default:g}, which then weighs nothing)")
+    return env
+
+
+def _legs_data(graph: Graph, chains, report: ImportReport) -> tuple:
+    """(legs, leg blocks, the carrier) of the legs form."""
+    scene = graph.scene
+    oriented = []
+    for first, chain, last in chains:
+        if first.kind == "carrier":
             first, last = last, first
             chain = [(i, not r) for i, r in reversed(chain)]
-        legs.append((first, chain, last))
-    return legs
+        oriented.append((first, chain, last))
+    legs, blocks = [], {}
+    for first, chain, last in sorted(oriented, key=lambda leg: min(i for i, _ in leg[1])):
+        name = graph.line_name(chain[0][0], "L")
+        segments, block_lines, block_points = [], [], [_block_point(first, scene)]
+        for k, (lid, reverse) in enumerate(chain):
+            line = scene.lines[lid]
+            if k > 0:
+                joint = graph.ends(lid)[1 if reverse else 0]
+                clump = _clump(joint, scene)
+                if clump is not None:
+                    segments.append({"clump": clump})
+                entry = _block_point(joint, scene)
+                entry["position"] = list(joint.position)
+                block_points.append(entry)
+            segments.append({"type": line.type.name, "length": line.length})
+            block_lines.append({"id": lid, "num_segs": line.num_segs, "outputs": line.outputs,
+                                "reversed": reverse})
+        block_points.append(_block_point(last, scene))
+        legs.append({"name": name, "anchor": list(first.position),
+                     "fairlead": list(last.position), "segments": segments})
+        blocks[name] = {"lines": block_lines, "points": block_points}
+        lines = ", ".join(str(i) for i, _ in chain)
+        report.converted.append(f"leg {name}: MoorDyn line(s) {lines} from {first.label} to "
+                                f"{last.label}")
+    return legs, blocks
 
 
-def moordyn_to_case_data(md: MoorDynFile) -> dict:
-    """Map a parsed MoorDyn file onto a case dictionary (the shape of a case file).
+def _block_point(node, scene: MDScene) -> dict:
+    p = scene.points[node.key[1]]
+    columns = dict(p.columns)
+    if p.kind != "free":
+        columns = {"mass": _token(p.mass), "volume": _token(p.volume), **columns}
+    return {"id": p.id, "attachment": p.word, "columns": columns}
 
-    Line types keep their names; the submerged weight is ``g (Mass/m - rho pi Diam^2 / 4)``
-    (Diam is MoorDyn's volume-equivalent diameter). Each leg is named ``L<id>`` after the
-    MoorDyn line at its anchor. Fixed points are anchors ``[x, y, z]``; Coupled, Vessel and
-    Body# points are fairleads on the case's body (global coordinates at the body's
-    reference pose; a body given in BODIES is placed by its X0, Y0 and yaw y0); free points
-    joining two lines are joints, with ``{clump: {mass, volume}}`` when they carry either.
-    WtrDpth, g and rho/rhoW go to the environment; everything else to the ``moordyn`` block.
-    The body gets no loads: the case solves at rest until loads are added.
+
+def _token(value: float) -> str:
+    return repr(value) if value != int(value) else str(int(value))
+
+
+def _legs_case(graph: Graph, chains, report: ImportReport) -> tuple:
+    """(case data, moordyn block additions) of the legs form."""
+    scene = graph.scene
+    legs, leg_blocks = _legs_data(graph, chains, report)
+    block = {"legs": leg_blocks}
+    data = {}
+    if graph.carriers:
+        (carrier,) = graph.carriers.values()
+        data["body"] = {"free": []}
+        if carrier.key[0] == "body":
+            body = scene.bodies[carrier.key[1]]
+            x0, y0, z0, r0, p0, yaw = body.pose
+            entry = {"id": body.id, "attachment": body.word, "x0": x0, "y0": y0, "z0": z0,
+                     "yaw_deg": yaw, "columns": dict(body.columns)}
+            if r0 or p0:
+                entry.update(r0_deg=r0, p0_deg=p0)
+            block["body"] = entry
+            report.converted.append(f"body {body.id} ({body.word}, line {body.line}): the "
+                                    "case's body, held where the file puts it (free: []); "
+                                    "its fairleads in the case are where its points are at "
+                                    "that pose")
+            report.ignored.append(f"body {body.id}: Mass, CG, I, Volume, CdA, Ca: a held body's "
+                                  "own weight and hydrodynamics do not change the line "
+                                  "tensions; kept for export")
+        else:
+            ids = ", ".join(n.label for n in graph.nodes.values() if n.carrier is carrier)
+            report.converted.append(f"{carrier.name} ({ids}): fairleads of the case's body, "
+                                    "held where the file puts them (free: []); give the body "
+                                    "free degrees of freedom and loads to solve its offset")
+    data["legs"] = legs
+    return data, block
+
+
+# ---- the whole conversion ---------------------------------------------------------------------
+
+
+@dataclass
+class MoorDynImport:
+    """A MoorDyn file mapped onto a case: the case ``data``, the ``report`` of what was read,
+    converted and ignored, the ``form`` chosen (``"legs"`` or ``"network"``) and why."""
+
+    file: MoorDynFile
+    data: dict
+    report: ImportReport
+    form: str
+    form_reason: str
+
+    def header(self) -> str:
+        """The comment block written above the case YAML: provenance and the report."""
+        md = self.file
+        lines = [f"Imported from the MoorDyn v{md.version} file {md.name} by `moorsolve "
+                 "import-moordyn`.",
+                 f"Case form: {self.form} ({self.form_reason}).",
+                 "The geometry, line types and environment are the file's. MoorDyn cannot hold "
+                 "what a static",
+                 "analysis adds: the bodies have no loads (the case solves at rest) and the "
+                 "lines no MBL; add",
+                 "loads, line_types.*.mbl and environment.seabed.friction as needed. The "
+                 "`moordyn` block keeps",
+                 "what moorsolve does not use; `moorsolve export-moordyn` writes it back.", ""]
+        return "\n".join(lines + self.report.lines()) + "\n"
+
+    def write(self, out) -> None:
+        """Write the case YAML (atomically), the report as its leading comment."""
+        write_case_yaml(self.data, out, self.header())
+
+
+def convert_moordyn(md: MoorDynFile) -> MoorDynImport:
+    """Map a parsed MoorDyn file onto case data and a report (no validation of the case).
 
     Raises
     ------
     MoorDynError
-        Naming the file, the line and the column of what cannot be mapped.
+        Naming the file, the line and the column of what MoorDyn would refuse too, or of what
+        a case cannot hold (a horizontal force on a free point, a rod pinned to a moving body).
     """
-    points = _points(md)
-    body = _body(md, points)
-    env, options, notes = _environment(md, points)
-    types, type_columns = _line_types(md, env["gravity"], env["water_density"])
-    lines = _lines(md, types, points)
-    fairlead_kinds = {p.kind for p in points.values() if p.kind in ("coupled", "body")}
-    if fairlead_kinds == {"coupled", "body"}:
-        point = next(p for p in points.values() if p.kind == "coupled")
-        raise md.error(point.line, f"point {point.id} is coupled while other fairleads are on a "
-                                   "body: a moorsolve case has one body; attach them all to it")
-    has_body = bool(fairlead_kinds)
-    legs_found = _legs(md, points, lines, has_body)
+    scene = read_scene(md)
+    report = ImportReport(source=md.name, read=list(scene.read), converted=list(scene.converted),
+                          ignored=list(scene.ignored))
+    types, type_columns = line_type_data(scene, report)
+    form, why, body_data, block = scene_case(scene, report)
+    _report_sections(md, scene, report)
+    env = case_environment(scene, report)
 
-    yaw0 = math.radians(body["yaw_deg"]) if body else 0.0
-    origin = (body["x0"], body["y0"], body["z0"]) if body else (0.0, 0.0, 0.0)
-
-    def global_position(p: _Point) -> list:
-        if p.kind != "body":
-            return list(p.position)
-        x, y, z = p.position
-        c, s = math.cos(yaw0), math.sin(yaw0)
-        return [origin[0] + c * x - s * y, origin[1] + s * x + c * y, origin[2] + z]
-
-    legs, leg_blocks = [], {}
-    for first, chain, last in sorted(legs_found, key=lambda leg: min(i for i, _ in leg[1])):
-        name = f"L{chain[0][0]}"
-        segments, block_lines, block_points = [], [], []
-        anchor = points[first]
-        block_points.append({"id": anchor.id, "attachment": anchor.attachment,
-                             "columns": dict(anchor.columns)})
-        for k, (lid, reverse) in enumerate(chain):
-            line = lines[lid]
-            if k > 0:
-                joint_id = line.ends[1] if reverse else line.ends[0]
-                joint = points[joint_id]
-                if joint.mass or joint.volume:
-                    segments.append({"clump": {"mass": joint.mass, "volume": joint.volume}})
-                block_points.append({"id": joint.id, "attachment": joint.attachment,
-                                     "position": list(joint.position),
-                                     "columns": dict(joint.columns)})
-            segments.append({"type": line.type, "length": line.length})
-            block_lines.append({"id": lid, "num_segs": line.num_segs, "outputs": line.outputs,
-                                "reversed": reverse})
-        fair = points[last]
-        block_points.append({"id": fair.id, "attachment": fair.attachment,
-                             "columns": dict(fair.columns)})
-        legs.append({"name": name, "anchor": global_position(anchor),
-                     "fairlead": global_position(fair), "segments": segments})
-        leg_blocks[name] = {"lines": block_lines, "points": block_points}
-
-    block = {"version": md.version, "header": list(md.header)}
-    notes += ["Not in a MoorDyn file, to fill in here: body.loads (wind, current, wave drift, "
-              "a constant force), line_types.*.mbl (for the checks), environment.seabed."
-              "friction (0 here; MoorDyn's FrictionCoefficient, if any, stays in "
-              "moordyn.options)."]
-    block["notes"] = notes
-    block["line_types"] = {k: v for k, v in type_columns.items() if v}
-    if body is not None:
-        block["body"] = {k: v for k, v in body.items() if k != "free"}
-    block["legs"] = leg_blocks
-    block["options"] = options
-    block["outputs"] = list(md.outputs)
+    block_all = {"version": md.version, "header": list(md.header),
+                 "notes": list(report.converted[:1]) + [e for e in report.ignored
+                                                        if "friction" in e or "bathymetry" in e
+                                                        or "Seafloor" in e],
+                 "line_types": {k: v for k, v in type_columns.items() if v}}
+    block_all.update(block)
+    block_all["options"] = scene.options
+    block_all["outputs"] = list(md.outputs)
     if md.sections:
-        block["sections"] = {k: list(v) for k, v in md.sections.items()}
-
+        block_all["sections"] = {k: list(v) for k, v in md.sections.items()}
     stem = os.path.splitext(md.name)[0] or "moordyn"
-    data = {"name": f"{stem} (imported from MoorDyn v{md.version})",
-            "environment": {"depth": env["depth"], "water_density": env["water_density"],
-                            "gravity": env["gravity"]},
-            "line_types": types}
-    if has_body:
-        data["body"] = {"free": body["free"] if body else ["surge", "sway", "yaw"]}
-    data["legs"] = legs
-    data["moordyn"] = block
-    return data
+    data = {"name": f"{stem} (imported from MoorDyn v{md.version})", "environment": env,
+            "line_types": types, **body_data, "moordyn": block_all}
+    return MoorDynImport(file=md, data=data, report=report, form=form, form_reason=why)
 
 
-# ---- writing the case file ---------------------------------------------------------------
+def scene_case(scene: MDScene, report: ImportReport) -> tuple:
+    """(form, why, the case's body/legs or bodies/points/lines, the ``moordyn`` block's part)
+    of a scene; the report gets what was converted and ignored."""
+    graph = build_graph(scene)
+    turbines = sorted(c.name for c in graph.carriers.values() if c.key[0] == "turbine")
+    if turbines:
+        report.converted.append(f"{', '.join(turbines)}: FAST.Farm gives each turbine's "
+                                "reference position (not in this file); the Turbine<N> points "
+                                "are placed about the origin: set each body's position")
+    for p in graph.unused:
+        report.ignored.append(f"point {p.id} (line {p.line}, {p.word}): no line uses it")
+    chains = _chains(graph)
+    reason = _network_reason(graph, chains)
+    if reason is None:
+        form, why = "legs", "one held carrier of fairleads on anchor-to-fairlead lines"
+        body_data, block = _legs_case(graph, chains, report)
+    else:
+        form, why = "network", reason
+        body_data, block = network_case(graph, report)
+    report.converted.insert(0, f"case form: {form} ({why})")
+    _report_leftovers(graph, report)
+    return form, why, body_data, block
 
-_YAML_PREAMBLE = """\
-# Imported from the MoorDyn v{version} file {source} by `moorsolve import-moordyn`.
-# The geometry, line types and environment are the file's. MoorDyn cannot hold what a
-# static analysis adds, so the body has no loads (the case solves at rest) and the lines
-# no MBL: add body.loads, line_types.*.mbl and environment.seabed.friction as needed.
-# The `moordyn` block keeps the columns moorsolve does not use (dynamic coefficients,
-# NumSegs, outputs, options, IDs); `moorsolve export-moordyn` writes them back unchanged.
-"""
+
+def _report_leftovers(graph: Graph, report: ImportReport) -> None:
+    scene = graph.scene
+    used_bodies = {c.key[1] for c in graph.carriers.values() if c.key[0] == "body"}
+    for body in scene.bodies.values():
+        if body.id not in used_bodies:
+            report.ignored.append(f"body {body.id} (line {body.line}, {body.word}): no line "
+                                  "meets it; left out (nothing in a static solve holds a free "
+                                  "one, and a held one changes no tension)")
+    used_rods = {n.key[1] for n in graph.nodes.values() if n.key[0] == "rod"}
+    for rod in scene.rods.values():
+        if rod.id in used_rods or (rod.kind == "body" and rod.body in used_bodies
+                                   and not body_held(scene, rod.body)):
+            continue
+        why = ("rigid on a held body, which takes its weight and buoyancy"
+               if rod.kind == "body" and body_held(scene, rod.body)
+               else "held, so its weight and buoyancy change no tension"
+               if rod.kind in ("fixed", "coupled")
+               else "nothing holds it in a static solve")
+        report.ignored.append(f"rod {rod.id} (line {rod.line}, {rod.word}): no line meets it; "
+                              f"{why}; left out")
+    if scene.rods:
+        report.ignored.append("rod types Cd, Ca, CdEnd, CaEnd and rods' NumSegs, outputs: "
+                              "dynamic only (the RODS and ROD TYPES rows are kept for export)")
+
+
+def _report_sections(md: MoorDynFile, scene: MDScene, report: ImportReport) -> None:
+    lines = md.section_lines
+    per_line = sorted({ln.num_segs for ln in scene.lines.values()})
+    report.ignored.append("LINES NumSegs and outputs: the lumped-mass discretisation and "
+                          "output flags of MoorDyn; the lines are exact catenaries here (kept "
+                          f"for export; NumSegs {', '.join(per_line)})")
+    points_cols = {k for p in scene.points.values() for k in p.columns if k in ("cda", "ca")}
+    if points_cols:
+        report.ignored.append("POINTS CdA, Ca: drag and added mass, dynamic only (kept for "
+                              "export)")
+    channels = sum(len(row.split()) for row in md.outputs)
+    if channels:
+        report.ignored.append(f"OUTPUTS (line {lines['outputs']}): {channels} output "
+                              "channel(s); the solve's result has every tension (kept for "
+                              "export)")
+    for title, what in (("FAILURE", "line failure is an event in time; a damaged case is a "
+                                    "case without the line"),
+                        ("CONTROL", "line-length control is dynamic"),
+                        ("EXTERNAL LOADS", "external loads and damping of MoorDyn objects are "
+                                           "not imported; add them as case loads")):
+        if title in md.sections:
+            key = title if title in lines else title
+            report.ignored.append(f"{title} (line {lines.get(key, '?')}): {what}; kept "
+                                  "verbatim for export")
+
+
+def moordyn_to_case_data(md: MoorDynFile) -> dict:
+    """Map a parsed MoorDyn file onto a case dictionary (the shape of a case file); see the
+    module notes and :func:`convert_moordyn`, which also returns the report."""
+    return convert_moordyn(md).data
+
+
+def _validate(imp: MoorDynImport) -> None:
+    from .case_file import load_case
+    try:
+        load_case(imp.data, keep_source=False)
+    except CaseError as exc:
+        if imp.form == "network" and exc.field in ("bodies", "points", "lines") and \
+                "unknown key" in str(exc):
+            imp.report.converted.append("network form: this moorsolve has no network loader "
+                                        "yet; the case is written in the contract's form, "
+                                        "unvalidated")
+            return
+        if isinstance(exc, MoorDynError):
+            raise
+        raise MoorDynError(imp.file.name, None, f"the imported case is not valid: {exc} "
+                                                f"(read as MoorDyn v{imp.file.version}: "
+                                                f"{imp.file.version_reason})") from None
+
+
+def read_import(source) -> MoorDynImport:
+    """Read a MoorDyn file, map it onto a case and validate the case (nothing is written)."""
+    if not isinstance(source, (str, PathLike)):
+        raise CaseError("", f"{source!r} is not a path to a MoorDyn file")
+    imp = convert_moordyn(read_moordyn(source))
+    _validate(imp)
+    return imp
 
 
 def import_moordyn(source, out=None) -> dict:
@@ -745,7 +459,8 @@ def import_moordyn(source, out=None) -> dict:
     source : str or pathlib.Path
         MoorDyn input file (v1 or v2).
     out : str or pathlib.Path, optional
-        Case file to write (atomically, only when everything succeeded).
+        Case file to write (atomically, only when everything succeeded), with the import
+        report as its leading comment.
 
     Returns
     -------
@@ -755,22 +470,11 @@ def import_moordyn(source, out=None) -> dict:
     Raises
     ------
     MoorDynError
-        The file is malformed or holds what a case cannot (a bridle, rods on lines, ...).
-    CaseError
-        The mapped case fails the case-file validation (e.g. an anchor below the seabed);
-        the message names the MoorDyn file and the case field.
+        The file is malformed the way MoorDyn would refuse it too, or holds what a case
+        cannot (see :func:`convert_moordyn`); the message names the file, the line, the
+        column, and the format version the file was read as and why.
     """
-    if not isinstance(source, (str, PathLike)):
-        raise CaseError("", f"{source!r} is not a path to a MoorDyn file")
-    md = read_moordyn(source)
-    data = moordyn_to_case_data(md)
-    from .case_file import load_case
-    try:
-        load_case(data, keep_source=False)
-    except MoorDynError:
-        raise
-    except CaseError as exc:
-        raise MoorDynError(md.name, None, f"the imported case is not valid: {exc}") from None
+    imp = read_import(source)
     if out is not None:
-        write_case_yaml(data, out, _YAML_PREAMBLE.format(version=md.version, source=md.name))
-    return data
+        imp.write(out)
+    return imp.data

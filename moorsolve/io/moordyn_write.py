@@ -38,6 +38,7 @@ from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
 from .moordyn_curves import MAX_POINTS, curve_file_name, curve_text, is_number, sample_law
 from .output_files import write_text
+from .rotations import apply_transpose, moordyn_angles, moordyn_matrix, yawed
 
 __all__ = ["case_to_moordyn", "export_moordyn"]
 
@@ -74,7 +75,7 @@ def _close(a: float, b: float) -> bool:
     return abs(a - b) <= 1e-12 * max(abs(a), abs(b))
 
 
-def _export_diameter(lt, env) -> float:
+def export_diameter(lt, env) -> float:
     """MoorDyn's Diam (volume-equivalent diameter) for a case line type."""
     if lt.catalog is not None:
         from .. import catalog
@@ -139,7 +140,7 @@ def _line_type_rows(case, block: dict, version: int, curve_prefix: str = "",
         if not lt.elastic:
             raise CaseError(f"line_types.{name}.ea", "an inextensible line cannot be written "
                                                      "for MoorDyn, which needs EA; give ea [N]")
-        diameter = _export_diameter(lt, env)
+        diameter = export_diameter(lt, env)
         mass = lt.weight_in_water / env.gravity + env.water_density * math.pi * diameter ** 2 / 4
         if mass < 0:
             raise CaseError(f"line_types.{name}.weight_in_water",
@@ -287,6 +288,9 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
         Something MoorDyn cannot hold: an inextensible line, a buoyant line without a
         diameter, a sloped seabed, line drag in a current.
     """
+    if getattr(case, "form", "legs") == "network":
+        raise CaseError("", f"case {case.name!r} is in the network form (bodies, points, "
+                            "lines); export-moordyn writes the body + legs form only so far")
     block = dict(case.moordyn or {})
     version = version or block.get("version", 2)
     if version not in (1, 2):
@@ -307,14 +311,21 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
     coupled_mode = (body is not None and stored_body is None and stored_fair
                     and all(a is not None and a.upper() in _COUPLED for a in stored_fair))
     pose = (0.0, 0.0, 0.0, 0.0)            # X0, Y0, Z0, yaw [deg]: body reference at rest
+    tilt = (0.0, 0.0)                      # r0, p0 [deg]
     if stored_body is not None:
         pose = tuple(float(stored_body.get(k, 0.0)) for k in ("x0", "y0", "z0", "yaw_deg"))
+        tilt = tuple(float(stored_body.get(k, 0.0)) for k in ("r0_deg", "p0_deg"))
+    turn = moordyn_matrix(tilt[0], tilt[1], pose[3])
     body_id = stored_body["id"] if stored_body is not None else 1
     offset = (0.0, 0.0, 0.0)               # the result's x, y, yaw [deg]
     if result is not None and body is not None:
         offset = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
     new_xy = _rotate(pose[0], pose[1], math.radians(offset[2]))
     new_pose = (new_xy[0] + offset[0], new_xy[1] + offset[1], pose[2], pose[3] + offset[2])
+    new_tilt = tilt
+    if any(tilt) and offset[2]:
+        *new_tilt, yaw = moordyn_angles(yawed(turn, offset[2]))
+        new_pose = new_pose[:3] + (yaw,)
 
     scale = max(1.0, env.depth, *(abs(v) for leg in case.legs for v in leg.anchor + leg.fairlead))
 
@@ -327,8 +338,10 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
                 return [fx, fy, fz]
             x, y = _rotate(fx, fy, math.radians(offset[2]))
             return [x + offset[0], y + offset[1], fz]
-        x, y = _rotate(fx - pose[0], fy - pose[1], -math.radians(pose[3]))
-        return [x, y, fz - pose[2]]
+        if not any(tilt):
+            x, y = _rotate(fx - pose[0], fy - pose[1], -math.radians(pose[3]))
+            return [x, y, fz - pose[2]]
+        return list(apply_transpose(turn, (fx - pose[0], fy - pose[1], fz - pose[2])))
 
     # ---- points and lines, leg by leg ----
     point_items, line_items, legs_points, legs_lines = [], [], [], []
@@ -504,9 +517,9 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
         if body is not None and not coupled_mode:
             cols = (stored_body or {}).get("columns", {})
             row = [str(body_id), (stored_body or {}).get("attachment", "Coupled"),
-                   *(_coordinate(v, scale) for v in new_pose[:3]), "0", "0",
-                   _g(new_pose[3]), *(cols.get(c, "0") for c in
-                                      ("mass", "cg", "i", "volume", "cda", "ca"))]
+                   *(_coordinate(v, scale) for v in new_pose[:3]),
+                   *(_g(a) if a else "0" for a in new_tilt), _g(new_pose[3]),
+                   *(cols.get(c, "0") for c in ("mass", "cg", "i", "volume", "cda", "ca"))]
             text += table("BODIES", "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* "
                                     "Ca*".split(),
                           "(#) (word) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) "

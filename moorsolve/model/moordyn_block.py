@@ -13,6 +13,7 @@ types and legs), not interpreted. Schema (strings are MoorDyn tokens exactly as 
         NAME: {ea: str, ba: str, ei: str, cd: str, ca: str, cdax: str, caax: str,
                cl: str, df: str, cf: str}          all optional; ea only when not a number
       body: {id: int, attachment: str, x0: m, y0: m, z0: m, yaw_deg: deg,
+             r0_deg: deg, p0_deg: deg,                         (roll, pitch: MoorDyn's r0, p0)
              columns: {mass, cg, i, volume, cda, ca: str}}     optional; the fairlead body
       legs:                              per case leg (name must exist in legs)
         NAME:
@@ -25,6 +26,10 @@ types and legs), not interpreted. Schema (strings are MoorDyn tokens exactly as 
       outputs: [str, ...]                    the OUTPUTS section, one entry per line
       sections: {TITLE: [str, ...]}          other sections copied verbatim (v2 only): ROD TYPES,
                                              RODS, FAILURE, CONTROL, EXTERNAL LOADS
+      network:                           a case in the network form (bodies, points, lines):
+        lines:  {NAME: {id: int, num_segs: str, outputs: str}}     per case line
+        points: {point<N>: {id: int, attachment: str, columns: {...}}}  per POINTS row used
+        bodies: {body<N>: {id: int, attachment: str, columns: {...}}}   per BODIES row
 """
 
 from __future__ import annotations
@@ -129,8 +134,39 @@ def _leg(raw, path: str, n_segments: int) -> dict:
     return m
 
 
-def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple) -> dict:
+def _network(raw, path: str, names: Mapping | None) -> None:
+    """The ``network`` entry: per line, point and body of the case, its MoorDyn row."""
+    m = _mapping(raw, path, ("lines", "points", "bodies"))
+    columns = {"lines": (), "points": POINT_COLUMNS, "bodies": BODY_COLUMNS}
+    for kind, entries in m.items():
+        kpath = f"{path}.{kind}"
+        known = tuple(names.get(kind, ())) if names is not None and kind == "lines" else None
+        if not isinstance(entries, Mapping):
+            raise CaseError(kpath, f"{entries!r} is not a mapping of names to MoorDyn rows")
+        for name, entry in entries.items():
+            epath = f"{kpath}.{name}"
+            if known is not None and name not in known:
+                raise CaseError(epath, f"the case has no {kind[:-1]} {name!r}; known: "
+                                       f"{', '.join(known) or '(none)'}")
+            if kind == "lines":
+                e = _mapping(entry, epath, ("id", "num_segs", "outputs"), ("id",))
+                for key in ("num_segs", "outputs"):
+                    if key in e:
+                        _token(e[key], f"{epath}.{key}")
+            else:
+                e = _mapping(entry, epath, ("id", "attachment", "columns"), ("id", "attachment"))
+                _token(e["attachment"], f"{epath}.attachment")
+                if "columns" in e:
+                    _columns(e["columns"], f"{epath}.columns", columns[kind])
+            _integer(e["id"], f"{epath}.id")
+
+
+def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple,
+                           network: Mapping | None = None) -> dict:
     """Check the ``moordyn`` block of a case file; returns it as a plain dict.
+
+    ``legs`` are the case's lines (the legs of the legs form); the block's ``network.lines``
+    may name only those (``network`` may give other names to check against).
 
     Raises
     ------
@@ -139,7 +175,11 @@ def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple) -> 
         case does not have, or a leg whose segments no longer match its MoorDyn lines.
     """
     m = _mapping(raw, path, ("version", "header", "notes", "line_types", "body", "legs",
-                             "options", "outputs", "sections"))
+                             "options", "outputs", "sections", "network"))
+    if "network" in m:
+        if network is None:             # the case's lines (legs are the lines of that form)
+            network = {"lines": [line.name for line in legs]}
+        _network(m["network"], f"{path}.network", network)
     if "version" in m and (isinstance(m["version"], bool) or m["version"] not in (1, 2)):
         raise CaseError(f"{path}.version", f"{m['version']!r} must be 1 or 2")
     for key in ("header", "notes", "outputs"):
@@ -152,10 +192,10 @@ def validate_moordyn_block(raw, path: str, line_types: Mapping, legs: tuple) -> 
     if m.get("body") is not None:
         bpath = f"{path}.body"
         b = _mapping(m["body"], bpath, ("id", "attachment", "x0", "y0", "z0", "yaw_deg",
-                                        "columns"), ("id", "attachment"))
+                                        "r0_deg", "p0_deg", "columns"), ("id", "attachment"))
         _integer(b["id"], f"{bpath}.id")
         _token(b["attachment"], f"{bpath}.attachment")
-        for key in ("x0", "y0", "z0", "yaw_deg"):
+        for key in ("x0", "y0", "z0", "yaw_deg", "r0_deg", "p0_deg"):
             if key in b:
                 _number(b[key], f"{bpath}.{key}")
         if "columns" in b:

@@ -33,7 +33,7 @@ from .cache import get_problem
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
-from .stability import assess, find_stable
+from .stability import assess, find_stable, pseudo_transient
 from .start import initial_point
 
 log = logging.getLogger(__name__)
@@ -251,9 +251,28 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         p_step = problem.parameters(case, factor)
         x_try, ok = run(x_step, p_step)
         if not ok:
-            return x_direct if x_direct is not None else x_try
+            if x_direct is not None:
+                return x_direct
+            return _drift(problem, x_rest, p_full, lb, ub, stats, tol, x_try)
         x_step = x_try
     return x_step
+
+
+def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback):
+    """The last resort: the scene's own overdamped motion under the full load from rest
+    (pseudo-transient continuation), then Newton polish. It passes through states where a
+    body has no stiffness (every line slack at rest), which Newton and IPOPT cannot start
+    from. Returns ``fallback`` when it does not certify."""
+    if not problem.n_q:
+        return fallback
+    x = pseudo_transient(problem, x_rest, p, steps=2000)
+    if x is None:
+        return fallback
+    x = polish(problem, x, p, lb, ub, stats, tol)
+    if problem.certify(x, p, tol)[0]:
+        stats["status"] = "pseudo-transient continuation, then Newton"
+        return x
+    return fallback
 
 
 #: A direct solve that turns a body further than this from its rest state is checked by

@@ -183,9 +183,15 @@ def assess(problem, x, p) -> Stability:
                      eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
 
 
-def _transient(problem, x, p, tol, steps: int = 400):
+def pseudo_transient(problem, x, p, steps: int = 400):
     """Pseudo-transient continuation from ``x``: implicit Euler steps of the overdamped
-    motion of the free nodes with the lines in equilibrium; returns the end point."""
+    motion of the free nodes with the lines in equilibrium; returns the end point (None if
+    the motion blew up).
+
+    It converges to stable equilibria only, and it moves through states where the bodies
+    have no stiffness at all (every line slack at rest: Newton's Jacobian is singular
+    there, while the overdamped motion simply drifts with the load until a line tightens).
+    """
     n_line_rows = problem.n_x - problem.n_q
     mass = np.zeros(problem.n_x)
     mass[:problem.n_q] = 1.0
@@ -259,7 +265,7 @@ def find_stable(problem, x, p, tol, assessment: Stability, polish):
                 trial[j] = x[j] + turn / problem.x_scale[j]
             starts.append(trial)
     for start in starts:
-        end = _transient(problem, start, p, tol)
+        end = pseudo_transient(problem, start, p)
         if end is None:
             continue
         end = polish(end)

@@ -1,0 +1,539 @@
+"""A parsed MoorDyn file read into typed entries with MoorDyn's meaning: line and rod types,
+bodies, rods, points, lines and the environment, checked the way MoorDyn checks them.
+
+Keywords and rules are those of MoorDyn-C v2 (``MoorDyn2.cpp``) and MoorDyn-F (OpenFAST),
+case-insensitive as both read them:
+
+- point attachment: ``Fixed`` / ``Fix`` / ``Anchor``; ``Body<N>``; ``Coupled`` / ``Vessel`` /
+  ``Ves`` / ``Cpld`` / ``Fairlead``; ``Free`` / ``Point`` / ``P`` / ``Connect`` / ``Con``;
+  ``Turbine<N>`` / ``T<N>`` (FAST.Farm, coupled to turbine N). Z may be ``seabed`` (also
+  ``ground``, ``floor``): on the seabed at the water depth.
+- body attachment: ``Fixed``; ``Coupled`` / ``Vessel``; ``CoupledPinned`` / ``VesselPinned`` /
+  ``CpldPin`` / ``VesPin``; ``Turbine<N>``; ``Free`` (MoorDyn-C takes any other word as
+  Free; so does this reader, with a note).
+- rod attachment: ``Fixed``; ``Pinned`` / ``Pin``; ``Body<N>`` (rigid) or ``Body<N>Pinned``;
+  ``Coupled`` / ``Vessel``; ``CoupledPinned``; ``Free`` / ``Point`` / ``Con``.
+- line ends: ``<N>`` / ``P<N>`` / ``Point<N>`` / ``C<N>`` / ``Con<N>`` (point N), ``R<N>A`` /
+  ``Rod<N>B`` (an end of rod N).
+- v2 IDs run 1, 2, 3, ... in each table (both MoorDyn-C and MoorDyn-F refuse others); v1 IDs
+  are any distinct positive whole numbers.
+- LINE TYPES rows: 9 columns (v1: ``Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt``) or 10, 11
+  or 13 (v2: ``TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx [Cl [dF cF]]``); EA may be
+  ``EAs|EAd`` or ``EAs|alpha|beta`` (viscoelastic: the static stiffness EAs is the statics').
+- water depth: WtrDpth (or Depth, WaterDepth); without it, the depth of the deepest point;
+  a point below the given depth deepens the water to it (MoorDyn-C's rule). Gravity g
+  (Gravity) default 9.80665 m/s^2; water density rho (rhoW, WtrDnsty) default 1025 kg/m^3.
+
+Numbers must be numbers: MoorDyn-C reads a word such as ``5.0x`` as 5.0 and ``abc`` as 0;
+this reader refuses them (naming the line and column), as MoorDyn-F does.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+from .moordyn_options import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, KNOWN_OPTIONS,
+                              read_environment)
+from .moordyn_curves import read_curve
+from .moordyn_parse import MoorDynFile, Row, number_token
+
+__all__ = ["MDLineType", "MDRodType", "MDBody", "MDRod", "MDPoint", "MDLine", "MDScene",
+           "read_scene", "vertical_force", "DEFAULT_GRAVITY", "DEFAULT_WATER_DENSITY",
+           "KNOWN_OPTIONS"]
+
+_FIXED = ("FIXED", "FIX", "ANCHOR")
+_COUPLED = ("COUPLED", "VESSEL", "VES", "CPLD", "FAIRLEAD")
+_PINNED_COUPLED = ("COUPLEDPINNED", "VESSELPINNED", "VESPIN", "CPLDPIN")
+_FREE = ("FREE", "POINT", "P", "CONNECT", "CON")
+_TURBINE = ("TURBINE", "T")
+_SEABED = ("SEABED", "GROUND", "FLOOR")
+
+
+def decompose(word: str) -> tuple:
+    """MoorDyn's ``decomposeString``: (letters, digits, letters, rest) of an upper-cased word,
+    e.g. ``Body1Pinned`` -> ("BODY", "1", "PINNED", "")."""
+    m = re.fullmatch(r"([A-Z_]*)(\d*)([A-Z_]*)(.*)", word.upper())
+    return m.groups()
+
+
+@dataclass(frozen=True)
+class MDLineType:
+    name: str
+    line: int
+    diameter: float
+    mass: float                       # [kg/m] in air
+    ea: float                         # static axial stiffness [N] (None: a curve file)
+    ea_token: str                     # as written ("6.0e8", "1.5e8|3.0e8", "poly.txt")
+    columns: dict                     # dynamic columns by moorsolve name (ba, ei, cd, ...)
+    layout: int                       # 1: v1's 9 columns, 2: v2's 10, 11 or 13
+    stretch: dict = None              # the table law of an EA curve file (moordyn_curves)
+
+
+@dataclass(frozen=True)
+class MDRodType:
+    name: str
+    line: int
+    diameter: float
+    mass: float
+    columns: dict                     # cd, ca, cdend, caend
+
+
+@dataclass(frozen=True)
+class MDBody:
+    id: int
+    line: int
+    kind: str                         # fixed, coupled, pinned, free, turbine
+    word: str
+    pose: tuple                       # X0 Y0 Z0 [m], r0 p0 y0 [deg] as written
+    mass: float
+    cg: tuple                         # body frame [m]
+    volume: float
+    columns: dict                     # i, cda, ca tokens (and the raw cg, mass, volume)
+
+
+@dataclass(frozen=True)
+class MDRod:
+    id: int
+    line: int
+    type: MDRodType
+    kind: str                         # fixed, pinned, body, body_pinned, coupled,
+    word: str                         # coupled_pinned, free
+    body: int | None
+    end_a: tuple                      # as written (body frame for body rods)
+    end_b: tuple
+    num_segs: str
+    outputs: str
+
+    @property
+    def length(self) -> float:
+        return math.dist(self.end_a, self.end_b)
+
+
+@dataclass(frozen=True)
+class MDPoint:
+    id: int
+    line: int
+    kind: str                         # fixed, body, coupled, free, turbine
+    word: str
+    body: int | None                  # body (or turbine) number
+    position: tuple                   # as written; body frame for body points
+    on_seabed: bool                   # Z given as "seabed"
+    mass: float
+    volume: float
+    force: tuple                      # FX FY FZ [N] (v1, or v2's 12-column rows)
+    columns: dict                     # cda, ca (and fx fy fz) tokens
+
+
+@dataclass(frozen=True)
+class MDLine:
+    id: int
+    line: int
+    type: MDLineType
+    ends: tuple                       # ((kind, id, rod end), (kind, id, rod end)), A then B;
+    length: float                     # kind "point" or "rod", rod end "A"/"B" or None
+    num_segs: str
+    outputs: str
+    tokens: tuple                     # the AttachA, AttachB words as written
+
+
+@dataclass
+class MDScene:
+    """Everything the file says, with MoorDyn's meaning; positions as written."""
+
+    file: MoorDynFile
+    depth: float
+    gravity: float
+    water_density: float
+    line_types: dict
+    rod_types: dict
+    bodies: dict
+    rods: dict
+    points: dict
+    lines: dict
+    options: list                     # [name, token or None (mapped to the environment)]
+    point_names: dict = field(default_factory=dict)   # id -> case name (default point<N>)
+    line_names: dict = field(default_factory=dict)    # id -> case name (default line<N>)
+    read: list = field(default_factory=list)
+    converted: list = field(default_factory=list)
+    ignored: list = field(default_factory=list)
+
+
+# ---- values ------------------------------------------------------------------------------
+
+
+def _number(md: MoorDynFile, row: Row, index: int, column: str) -> float:
+    token = row.values[index]
+    value = number_token(token)
+    if value is None:
+        raise md.error(row.line, f"column {column!r}: {token!r} is not a number")
+    if not math.isfinite(value):
+        raise md.error(row.line, f"column {column!r}: {token!r} is not a finite number")
+    return value
+
+
+def _ident(md: MoorDynFile, row: Row, index: int, column: str, least: int = 1) -> int:
+    token = row.values[index]
+    if not re.fullmatch(r"\+?\d+", token) or int(token) < least:
+        what = "a positive" if least == 1 else "a non-negative"
+        raise md.error(row.line, f"column {column!r}: {token!r} is not {what} whole number")
+    return int(token)
+
+
+def _width(md: MoorDynFile, row: Row, least: int, title: str, columns: str) -> None:
+    if len(row.values) < least:
+        raise md.error(row.line, f"{title} row has {len(row.values)} columns; expected "
+                                 f"{least} or more ({columns})")
+
+
+def _entries(md: MoorDynFile, kind: str, least: int, columns: str, title: str,
+             id_column: str) -> list:
+    """``(ID, row)`` of every row of a table, each at least ``least`` words wide."""
+    rows = md.tables.get(kind, [])
+    for row in rows:
+        _width(md, row, least, kind.upper(), columns)
+    return list(zip(_ids(md, rows, title, id_column), rows))
+
+
+def _ids(md: MoorDynFile, rows: list, title: str, column: str) -> list:
+    """The rows' IDs, checked: v2 needs 1, 2, 3, ... in order; v1 distinct numbers."""
+    seen, ids = {}, []
+    for k, row in enumerate(rows, start=1):
+        ident = _ident(md, row, 0, column)
+        if ident in seen:
+            raise md.error(row.line, f"{title} {ident} is defined twice (first at line "
+                                     f"{seen[ident]})")
+        if md.version == 2 and ident != k:
+            raise md.error(row.line, f"{title} ID {ident} out of order: MoorDyn v2 needs the "
+                                     f"IDs 1, 2, 3, ... in order (this row is number {k})")
+        seen[ident] = row.line
+        ids.append(ident)
+    return ids
+
+
+def _bars(md: MoorDynFile, row: Row, index: int, column: str, counts: tuple) -> list:
+    parts = row.values[index].split("|")
+    if len(parts) not in counts:
+        raise md.error(row.line, f"column {column!r}: {row.values[index]!r} must have "
+                                 f"{' or '.join(map(str, counts))} '|'-separated numbers")
+    return [_number(md, Row(row.line, parts), i, column) for i in range(len(parts))]
+
+
+# ---- tables ------------------------------------------------------------------------------
+
+_LT_V1 = ("ba", "can", "cat", "cdn", "cdt")
+_LT_V2 = ("ba", "ei", "cd", "ca", "cdax", "caax", "cl", "df", "cf")
+_V1_TO_V2 = {"can": "ca", "cat": "caax", "cdn": "cd", "cdt": "cdax"}
+
+
+def _line_types(md: MoorDynFile, scene_notes: list) -> dict:
+    types = {}
+    for row in md.tables.get("line_types", []):
+        n = len(row.values)
+        if n == 9:
+            layout = 1
+        elif n in (10, 11, 13):
+            layout = 2
+        else:
+            raise md.error(row.line, f"LINE TYPES row has {n} columns; MoorDyn reads 9 (v1: "
+                                     "Name Diam MassDen EA BA/-zeta Can Cat Cdn Cdt) or 10, 11 "
+                                     "or 13 (v2: TypeName Diam Mass/m EA BA/-zeta EI Cd Ca "
+                                     "CdAx CaAx [Cl [dF cF]])")
+        name = row.values[0]
+        if name in types:
+            raise md.error(row.line, f"line type {name!r} is defined twice (first at line "
+                                     f"{types[name].line})")
+        diameter = _number(md, row, 1, "Diam")
+        if diameter < 0:
+            raise md.error(row.line, f"column 'Diam': {row.values[1]!r} must be >= 0")
+        mass = _number(md, row, 2, "MassDen" if layout == 1 else "Mass/m")
+        if mass < 0:
+            raise md.error(row.line, f"column 'Mass/m': {row.values[2]!r} must be >= 0")
+        ea_token = row.values[3]
+        if ea_token.upper().startswith("SYROPE:"):
+            raise md.error(row.line, f"column 'EA': {ea_token!r} is MoorDyn's SYROPE fibre-rope "
+                                     "model, which has no static counterpart in a case")
+        parts = ea_token.split("|")
+        if len(parts) > 3:
+            raise md.error(row.line, f"column 'EA': {ea_token!r} has more than 3 '|'-separated "
+                                     "values (MoorDyn refuses it)")
+        stretch = None
+        if number_token(parts[0]) is None:
+            # EA names a file of strain and tension: a table law (moordyn_curves.py).
+            stretch = read_curve(Path(md.path).parent, parts[0],
+                                 lambda message, line=row.line: md.error(line, message))
+            ea = None
+        else:
+            ea = _number(md, Row(row.line, parts), 0, "EA")
+            if not ea > 0:
+                raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
+        for p in parts[1:]:
+            _number(md, Row(row.line, [p]), 0, "EA")
+        keys = _LT_V1 if layout == 1 else _LT_V2
+        columns = {_V1_TO_V2.get(k, k): t for k, t in zip(keys, row.values[4:])}
+        if len(parts) > 1 or stretch is not None:
+            columns["ea"] = ea_token
+        if layout != md.version:
+            scene_notes.append(f"line {row.line}: LINE TYPES row has v{layout}'s "
+                               f"{n} columns in a v{md.version} file; its dynamic columns are "
+                               f"read as v{layout}'s")
+        types[name] = MDLineType(name=name, line=row.line, diameter=diameter, mass=mass, ea=ea,
+                                 ea_token=ea_token, columns=columns, layout=layout,
+                                 stretch=stretch)
+    if not types:
+        raise md.error(md.section_lines["line_types"], "section LINE TYPES has no line types")
+    return types
+
+
+def _rod_types(md: MoorDynFile) -> dict:
+    types = {}
+    for row in md.tables.get("rod_types", []):
+        _width(md, row, 7, "ROD TYPES", "TypeName Diam Mass/m Cd Ca CdEnd CaEnd")
+        name = row.values[0]
+        if name in types:
+            raise md.error(row.line, f"rod type {name!r} is defined twice")
+        diameter = _number(md, row, 1, "Diam")
+        mass = _number(md, row, 2, "Mass/m")
+        if diameter < 0 or mass < 0:
+            raise md.error(row.line, "columns 'Diam' and 'Mass/m' must be >= 0")
+        columns = dict(zip(("cd", "ca", "cdend", "caend"), row.values[3:7]))
+        types[name] = MDRodType(name=name, line=row.line, diameter=diameter, mass=mass,
+                                columns=columns)
+    return types
+
+
+def _bodies(md: MoorDynFile, notes: list) -> dict:
+    bodies = {}
+    for ident, row in _entries(md, "bodies", 14, "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* "
+                                                 "Volume CdA* Ca*", "body", "ID"):
+        word = row.values[1]
+        let, num, rest, _ = decompose(word)
+        if let in _FIXED:
+            kind = "fixed"
+        elif let in _COUPLED:
+            kind = "coupled"
+        elif let in _PINNED_COUPLED:
+            kind = "pinned"
+        elif let in _TURBINE and num:
+            kind = "turbine"
+        else:
+            kind = "free"
+            if let != "FREE":
+                notes.append(f"line {row.line}: body attachment {word!r} is not a MoorDyn "
+                             "keyword; MoorDyn-C takes any such word as Free, and so does "
+                             "this import")
+        pose = tuple(_number(md, row, 2 + i, c)
+                     for i, c in enumerate(("X0", "Y0", "Z0", "r0", "p0", "y0")))
+        mass = _number(md, row, 8, "Mass")
+        cg = _bars(md, row, 9, "CG*", (1, 3))
+        cg = (0.0, 0.0, cg[0]) if len(cg) == 1 else tuple(cg)
+        _bars(md, row, 10, "I*", (1, 3))
+        volume = _number(md, row, 11, "Volume")
+        _bars(md, row, 12, "CdA*", (1, 2, 3, 6))
+        _bars(md, row, 13, "Ca*", (1, 3))
+        if mass < 0 or volume < 0:
+            raise md.error(row.line, "columns 'Mass' and 'Volume' must be >= 0")
+        columns = dict(zip(("mass", "cg", "i", "volume", "cda", "ca"), row.values[8:14]))
+        bodies[ident] = MDBody(id=ident, line=row.line, kind=kind, word=word, pose=pose,
+                               mass=mass, cg=cg, volume=volume, columns=columns)
+    return bodies
+
+
+def _rods(md: MoorDynFile, rod_types: dict, bodies: dict) -> dict:
+    rods = {}
+    for ident, row in _entries(md, "rods", 11, "ID RodType Attachment Xa Ya Za Xb Yb Zb "
+                                               "NumSegs RodOutputs", "rod", "ID"):
+        tname = row.values[1]
+        if tname not in rod_types:
+            raise md.error(row.line, f"column 'RodType': unknown rod type {tname!r}; known: "
+                                     f"{', '.join(rod_types) or '(no ROD TYPES section)'}")
+        word = row.values[2]
+        let, num, rest, _ = decompose(word)
+        body = None
+        if let in _FIXED:
+            kind = "fixed"
+        elif let in ("PINNED", "PIN"):
+            kind = "pinned"
+        elif let == "BODY":
+            if not num or int(num) not in bodies:
+                raise md.error(row.line, f"column 'Attachment': {word!r} names no body of the "
+                                         "BODIES section")
+            body = int(num)
+            if rest in ("PINNED", "PIN"):
+                kind = "body_pinned"
+            elif rest == "":
+                kind = "body"
+            else:
+                raise md.error(row.line, f"column 'Attachment': {word!r}: after Body<N> only "
+                                         "'Pinned' may follow")
+        elif let in _COUPLED:
+            kind = "coupled"
+        elif let in _PINNED_COUPLED:
+            kind = "coupled_pinned"
+        elif let in ("FREE", "POINT", "CON"):
+            kind = "free"
+        else:
+            raise md.error(row.line, f"column 'Attachment': unknown rod attachment {word!r}; "
+                                     "allowed: Fixed, Pinned, Body<N>, Body<N>Pinned, Coupled, "
+                                     "CoupledPinned, Free")
+        coords = [_number(md, row, 3 + i, c)
+                  for i, c in enumerate(("Xa", "Ya", "Za", "Xb", "Yb", "Zb"))]
+        _ident(md, row, 9, "NumSegs", least=0)     # 0: a zero-length, point-like rod
+        rods[ident] = MDRod(id=ident, line=row.line, type=rod_types[tname], kind=kind,
+                            word=word, body=body, end_a=tuple(coords[:3]),
+                            end_b=tuple(coords[3:]), num_segs=row.values[9],
+                            outputs=row.values[10])
+    return rods
+
+
+def _points(md: MoorDynFile, bodies: dict) -> dict:
+    v1 = md.version == 1
+    names = ("Node Type X Y Z M V FX FY FZ CdA CA" if v1
+             else "ID Attachment X Y Z Mass Volume CdA Ca")
+    points = {}
+    for ident, row in _entries(md, "points", 12 if v1 else 9, names, "point",
+                               "Node" if v1 else "ID"):
+        word = row.values[1]
+        let, num, _, _ = decompose(word)
+        body = None
+        if let in _FIXED:
+            kind = "fixed"
+        elif let == "BODY" and num and not v1:
+            kind, body = "body", int(num)
+            if body not in bodies:
+                raise md.error(row.line, f"column 'Attachment': {word!r} names body {body}, "
+                                         "which the BODIES section does not define")
+        elif let in _COUPLED:
+            kind = "coupled"
+        elif let in _FREE:
+            kind = "free"
+        elif let in _TURBINE and num:
+            kind, body = "turbine", int(num)
+        else:
+            allowed = ("Fixed (Anchor), Coupled (Vessel), Free (Connect, Point), Body<N>, "
+                       "Turbine<N>" if not v1 else "Fixed, Vessel, Connect")
+            raise md.error(row.line, f"column {'Type' if v1 else 'Attachment'!r}: unknown "
+                                     f"attachment {word!r}; allowed: {allowed}")
+        x = _number(md, row, 2, "X")
+        y = _number(md, row, 3, "Y")
+        on_seabed = decompose(row.values[4])[0] in _SEABED and row.values[4].isalpha()
+        z = math.nan if on_seabed else _number(md, row, 4, "Z")
+        mass = _number(md, row, 5, "M" if v1 else "Mass")
+        volume = _number(md, row, 6, "V" if v1 else "Volume")
+        # A 12-column row carries FX FY FZ (v1, and MoorDyn-C v2 reads them too); in v2, a
+        # longer row whose words 8-12 are not all numbers is 9 columns and a comment.
+        forced = v1 or (len(row.values) >= 12
+                        and all(number_token(t) is not None for t in row.values[7:12]))
+        if forced:
+            force = tuple(_number(md, row, 7 + i, c) for i, c in enumerate(("FX", "FY", "FZ")))
+            columns = dict(zip(("fx", "fy", "fz", "cda", "ca"), row.values[7:12]))
+        else:
+            force = (0.0, 0.0, 0.0)
+            columns = dict(zip(("cda", "ca"), row.values[7:9]))
+        if kind == "free" and (mass < 0 or volume < 0):
+            raise md.error(row.line, f"free point {ident}: mass and volume must be >= 0")
+        points[ident] = MDPoint(id=ident, line=row.line, kind=kind, word=word, body=body,
+                                position=(x, y, z), on_seabed=on_seabed, mass=mass,
+                                volume=volume, force=force, columns=columns)
+    return points
+
+
+_END = re.compile(r"^(?:(R|ROD)(\d+)([AB])|(C|CON|P|POINT)?(\d+))$")
+
+
+def _lines(md: MoorDynFile, types: dict, points: dict, rods: dict) -> dict:
+    v1 = md.version == 1
+    names = ("Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags/Outputs" if v1
+             else "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs")
+    lines = {}
+    for ident, row in _entries(md, "lines", 7, names, "line", "Line" if v1 else "ID"):
+        tname = row.values[1]
+        if tname not in types:
+            raise md.error(row.line, f"column 'LineType': unknown line type {tname!r}; known: "
+                                     f"{', '.join(types)}")
+        if v1:
+            length_i, segs_i, ends_i, cols = 2, 3, (4, 5), ("NodeAnch", "NodeFair")
+        else:
+            length_i, segs_i, ends_i, cols = 4, 5, (2, 3), ("AttachA", "AttachB")
+        ends = []
+        for i, col in zip(ends_i, cols):
+            token = row.values[i]
+            m = _END.match(token.upper())
+            if m is None:
+                raise md.error(row.line, f"column {col!r}: {token!r} is not a point (N, PN, "
+                                         "PointN, CN, ConN) or a rod end (RNA, RNB, RodNA)")
+            if m.group(1):
+                rid = int(m.group(2))
+                if rid not in rods:
+                    raise md.error(row.line, f"column {col!r}: {token!r}: unknown rod {rid}; "
+                                             f"rods: {', '.join(map(str, rods)) or 'none'}")
+                ends.append(("rod", rid, m.group(3)))
+            else:
+                pid = int(m.group(5))
+                if pid not in points:
+                    raise md.error(row.line, f"column {col!r}: unknown point {pid}; points: "
+                                             f"{', '.join(str(p) for p in sorted(points))}")
+                ends.append(("point", pid, None))
+        if ends[0] == ends[1]:
+            raise md.error(row.line, f"line {ident} starts and ends at the same place "
+                                     f"({row.values[ends_i[0]]})")
+        length = _number(md, row, length_i, "UnstrLen")
+        if not length > 0:
+            raise md.error(row.line, f"column 'UnstrLen': {row.values[length_i]!r} must be > 0")
+        _ident(md, row, segs_i, "NumSegs")
+        lines[ident] = MDLine(id=ident, line=row.line, type=types[tname], ends=tuple(ends),
+                              length=length, num_segs=row.values[segs_i],
+                              outputs=row.values[6],
+                              tokens=(row.values[ends_i[0]], row.values[ends_i[1]]))
+    if not lines:
+        raise md.error(md.section_lines["lines"], "section LINES has no lines")
+    return lines
+
+
+def vertical_force(point, scene) -> float:
+    """The steady vertical force FZ [N] on a free point (its horizontal FX, FY have no
+    place in a case)."""
+    fx, fy, fz = point.force
+    if point.kind != "free":
+        return 0.0
+    if fx or fy:
+        raise scene.file.error(point.line, f"free point {point.id}: a steady horizontal force "
+                                           f"(FX {fx:g}, FY {fy:g} N) has no counterpart in a "
+                                           "case; give 0")
+    return fz
+
+
+def read_scene(md: MoorDynFile) -> MDScene:
+    """Read every table of a parsed file into typed entries (see the module notes).
+
+    Raises
+    ------
+    MoorDynError
+        Naming the line, the column and the value, and how the version was chosen.
+    """
+    read, converted, ignored = [], [], []
+    notes = list(md.notes)
+    types = _line_types(md, notes)
+    rod_types = _rod_types(md)
+    bodies = _bodies(md, notes)
+    rods = _rods(md, rod_types, bodies)
+    points = _points(md, bodies)
+    lines = _lines(md, types, points, rods)
+    depth, gravity, rho, options = read_environment(md, points, read, converted, ignored)
+    for p in list(points.values()):
+        if p.on_seabed:
+            points[p.id] = replace(p, position=p.position[:2] + (-depth,))
+            converted.append(f"point {p.id} (line {p.line}): Z 'seabed' is z = {-depth:g} m")
+    scene = MDScene(file=md, depth=depth, gravity=gravity, water_density=rho, line_types=types,
+                    rod_types=rod_types, bodies=bodies, rods=rods, points=points, lines=lines,
+                    options=options, read=read, converted=converted, ignored=ignored)
+    scene.read += [f"MoorDyn v{md.version} file ({md.version_reason})"]
+    counts = [(len(types), "line type", "line types"), (len(rod_types), "rod type", "rod types"),
+              (len(bodies), "body", "bodies"), (len(rods), "rod", "rods"),
+              (len(points), "point", "points"), (len(lines), "line", "lines")]
+    scene.read.append(", ".join(f"{n} {one if n == 1 else many}" for n, one, many in counts
+                                if n))
+    scene.read += notes
+    return scene
