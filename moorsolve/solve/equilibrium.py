@@ -158,6 +158,10 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         result = build_result(problem, case, x, p_full, cert, certified, used, notes,
                               assessment)
     if not certified:
+        if not math.isfinite(force_res):
+            # A line whose span cannot be closed by a finite force (an inextensible line
+            # pulled straight): report the largest unbalanced force on the bodies instead.
+            force_res = _unbalanced_force(problem, result.state, p_full)
         raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
@@ -347,6 +351,18 @@ def polish(problem, x, p, lb, ub, stats, tol):
         if not improved:
             break
     return x
+
+
+def _unbalanced_force(problem, x, p) -> float:
+    """The largest unbalanced force [N] on a free translation of a body or a free point."""
+    unbalanced = np.asarray(problem.report(x, p)[1], dtype=float).ravel()
+    values, k = [], 0
+    for body_index, body in enumerate(problem.case.bodies):
+        values += [abs(v) for v in unbalanced[6 * body_index: 6 * body_index + 3]]
+        k = 6 * (body_index + 1)
+    values += [abs(v) for v in unbalanced[k:]]
+    finite = [v for v in values if math.isfinite(v)]
+    return max(finite, default=math.inf)
 
 
 def over_mbl(result: Result) -> list:
