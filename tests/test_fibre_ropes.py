@@ -200,6 +200,23 @@ def test_sweep_over_table_values_needs_no_rebuild(fpu):
         result.leg("L3").fairlead_tension_N, rel=1e-8)
 
 
+def test_a_linear_table_is_hookes_law_in_a_network():
+    """The three-platform network (six-DOF bodies, bridles, shared lines): its shared lines
+    given as a table whose rows lie on Hooke's line solve to the same tensions."""
+    data = yaml.safe_load((ROOT / "cases" / "three_platforms.yaml").read_text())
+    hooke = moorsolve.solve(moorsolve.load_case(data))
+    lt = data["line_types"]["shared"]
+    ea = float(lt.pop("ea"))
+    lt["stretch"] = {"model": "table", "strain": [0.001, 0.002, 0.004],
+                     "tension": [ea * 0.001, ea * 0.002, ea * 0.004]}
+    table = moorsolve.solve(moorsolve.load_case(data))
+    assert "nonlinear_stretch" in table.effects
+    scale = max(leg.fairlead_tension_N for leg in hooke.legs)
+    for a, b in zip(hooke.legs, table.legs):
+        assert b.fairlead_tension_N == pytest.approx(a.fairlead_tension_N, abs=1e-10 * scale)
+        assert b.anchor_tension_N == pytest.approx(a.anchor_tension_N, abs=1e-10 * scale)
+
+
 # ---- derivatives through the law -------------------------------------------------------------
 
 
