@@ -12,7 +12,8 @@ import pytest
 from scipy.optimize import brentq, fsolve
 
 import moorsolve
-from moorsolve.physics.catenary import LegKind, evaluate_leg, leg_profile
+from moorsolve.physics.catenary import LegKind, evaluate_leg
+from moorsolve.physics.profiles import leg_profile
 
 KGF = 9.80665
 INEXTENSIBLE_CONTACT = LegKind(elastic=False, contact=True)

@@ -15,7 +15,8 @@ import math
 import numpy as np
 
 from ..model import Case
-from ..physics.catenary import (LegKind, leg_profile, segment_profile, sloped_leg_profile)
+from ..physics.catenary import LegKind
+from ..physics.profiles import leg_profile, segment_profile, sloped_leg_profile
 from ..physics.wall_tension import wall_tension
 from .lines import SEGMENT_COLUMNS
 from .problem import LINE_COLUMNS, ROTATIONS

@@ -14,7 +14,8 @@ import numpy as np
 
 from ..model import Case
 from ..model.build_network import end_position as case_end_position
-from ..physics.catenary import LegKind, initial_state, leg_profile
+from ..physics.catenary import LegKind, initial_state
+from ..physics.profiles import leg_profile
 from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
 from .lines import line_kinds as line_kind_list
