@@ -123,7 +123,7 @@ def test_commands(tmp_path, capsys):
 
 def test_network_case_out_to_moorpy_yaml_and_back(tmp_path):
     """The bridle (a free apex joining three lines, a held body) through MoorPy's YAML:
-    the same lines by name, the same tensions; MoorDyn export refuses the network form."""
+    the same lines by name, the same tensions; MoorDyn export writes it as v2 only."""
     case = moorsolve.load_case(read_import(MOORDYN / "bridle_v2.dat").data)
     out = tmp_path / "bridle.yaml"
     moorsolve.export_moorpy(case, out)
@@ -138,8 +138,9 @@ def test_network_case_out_to_moorpy_yaml_and_back(tmp_path):
         other = r1.leg(leg.name)
         assert other.fairlead_tension_N == pytest.approx(leg.fairlead_tension_N, rel=1e-9)
         assert other.anchor_tension_N == pytest.approx(leg.anchor_tension_N, rel=1e-9)
-    with pytest.raises(moorsolve.CaseError, match="network form"):
-        moorsolve.case_to_moordyn(case)
+    assert "BODIES" in moorsolve.case_to_moordyn(case)
+    with pytest.raises(moorsolve.CaseError, match="v2 only"):
+        moorsolve.case_to_moordyn(case, version=1)
     two = moorsolve.load_case(read_import(MOORDYN / "shared_line_two_bodies_v2.dat").data)
     with pytest.raises(moorsolve.CaseError, match="2 bodies .*one vessel"):
         moorsolve.export_moorpy(two, tmp_path / "two.yaml")

@@ -289,8 +289,11 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
         diameter, a sloped seabed, line drag in a current.
     """
     if getattr(case, "form", "legs") == "network":
-        raise CaseError("", f"case {case.name!r} is in the network form (bodies, points, "
-                            "lines); export-moordyn writes the body + legs form only so far")
+        if version == 1:
+            raise CaseError("--version", "a network case (bodies, points, lines) is written "
+                                         "as MoorDyn v2 only; v1 has no bodies")
+        from .moordyn_network_write import network_to_moordyn
+        return network_to_moordyn(case, result)
     block = dict(case.moordyn or {})
     version = version or block.get("version", 2)
     if version not in (1, 2):
