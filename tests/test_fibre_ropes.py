@@ -462,6 +462,19 @@ def test_export_writes_the_curve_file_and_reads_back(tmp_path, version):
         "model": "table", "strain": list(law.strain), "tension": list(law.tension)}
 
 
+def test_network_export_writes_the_curve_too(tmp_path):
+    data = yaml.safe_load((ROOT / "cases" / "three_platforms.yaml").read_text())
+    lt = data["line_types"]["shared"]
+    ea = float(lt.pop("ea"))
+    lt["stretch"] = {"model": "table", "strain": [0.001, 0.002, 0.004],
+                     "tension": [ea * 0.001, ea * 0.002, ea * 0.005]}
+    moorsolve.export_moordyn(moorsolve.load_case(data), tmp_path / "three.dat")
+    assert (tmp_path / "three_shared_ea.txt").exists()
+    back = moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(tmp_path / "three.dat"))
+    assert back["line_types"]["shared"]["stretch"]["tension"] == [
+        0.0, ea * 0.001, ea * 0.002, ea * 0.005]
+
+
 def test_export_samples_a_baranov_law_for_moordyn(tmp_path):
     data = buoy_baranov()
     data["line_types"]["hemp"]["diameter"] = 0.05

@@ -293,7 +293,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
             raise CaseError("--version", "a network case (bodies, points, lines) is written "
                                          "as MoorDyn v2 only; v1 has no bodies")
         from .moordyn_network_write import network_to_moordyn
-        return network_to_moordyn(case, result)
+        return network_to_moordyn(case, result, curves=curves, curve_prefix=curve_prefix)
     block = dict(case.moordyn or {})
     version = version or block.get("version", 2)
     if version not in (1, 2):
