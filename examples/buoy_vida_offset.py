@@ -45,16 +45,18 @@ def main(argv=None):
     print(f"{'wind':>5} {'speed':>6} {'x m':>7} {'y m':>7}  " +
           "  ".join(f"{name:>10}" for name in names))
     for wind, toward in WINDS.items():
-        rows = table[table["environment.wind.toward_deg"] == toward]
+        rows = table[table["environment.wind.toward_deg [deg]"] == toward]
         for speed in (0.0, 10.0, 20.0, 30.0, 40.0):
-            row = rows[rows["environment.wind.speed"] == speed].iloc[0]
+            row = rows[rows["environment.wind.speed [m/s]"] == speed].iloc[0]
             pulls = [row[f"{n}.anchor_tension_N"] for n in names]
             cells = "  ".join(f"{'slack' if t < SLACK_N else f'{t:7.0f} N':>10}" for t in pulls)
             print(f"{wind:>5} {speed:6.1f} {row['x_m']:7.2f} {row['y_m']:7.2f}  {cells}")
 
     worst = table.loc[table["offset_m"].idxmax()]
-    print(f"largest offset: {worst['offset_m']:.2f} m with {worst['environment.wind.speed']:g} "
-          f"m/s wind toward {worst['environment.wind.toward_deg']:g} deg")
+    speed = worst["environment.wind.speed [m/s]"]
+    toward = worst["environment.wind.toward_deg [deg]"]
+    print(f"largest offset: {worst['offset_m']:.2f} m with {speed:g} m/s wind toward "
+          f"{toward:g} deg")
 
     import matplotlib
     matplotlib.use("Agg")

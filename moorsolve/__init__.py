@@ -6,7 +6,8 @@
 >>> result.to_dict()["body"]
 """
 
-from .errors import CaseError, ConvergenceError, MoorsolveError
+from .errors import (CaseError, ConvergenceError, MoorsolveError, MoorsolveWarning,
+                     UnusedInputWarning)
 from .io import (MoorDynError, case_to_moordyn, export_moordyn, export_moorpy, import_moordyn,
                  import_moorpy, load_case, moordyn_to_case_data, read_moordyn)
 from .model import Case
@@ -26,4 +27,5 @@ __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certif
            "restoring_curve", "natural_periods", "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
-           "MoorsolveError", "CaseError", "ConvergenceError", "__version__"]
+           "MoorsolveError", "CaseError", "ConvergenceError", "MoorsolveWarning",
+           "UnusedInputWarning", "__version__"]

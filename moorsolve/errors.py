@@ -58,7 +58,31 @@ class ConvergenceError(MoorsolveError, RuntimeError):
         self.status = status
         self.iterations = iterations
         self.result = result
-        super().__init__(
-            f"no equilibrium: {reason} (best force residual {residual_N:.3g} N, "
-            f"moment residual {residual_Nm:.3g} N m, solver status {status or 'n/a'}, "
-            f"{iterations} iterations)")
+        if result is not None and getattr(result, "converged", False):
+            # An equilibrium was found and certified but is not acceptable (a line over
+            # its breaking load): say so rather than "no equilibrium".
+            text = (f"{reason} (a certified equilibrium: force residual {residual_N:.3g} N, "
+                    f"moment residual {residual_Nm:.3g} N m)")
+        else:
+            text = (f"no equilibrium: {reason} (best force residual {residual_N:.3g} N, "
+                    f"moment residual {residual_Nm:.3g} N m, solver status {status or 'n/a'}, "
+                    f"{iterations} iterations)")
+        super().__init__(text)
+
+
+class MoorsolveWarning(UserWarning):
+    """Base class of the warnings moorsolve issues."""
+
+
+class UnusedInputWarning(MoorsolveWarning):
+    """A case gives an input that no model uses (see :mod:`moorsolve.model.usage`).
+
+    Attributes
+    ----------
+    field : str
+        Dotted path of the unused input, e.g. ``environment.waves``.
+    """
+
+    def __init__(self, field: str, message: str):
+        self.field = field
+        super().__init__(f"{field}: {message}")

@@ -259,7 +259,7 @@ def test_cli_check_exit_status_json_and_report(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "damaged: L12 removed" in text and "FAIL" in text
     html = out.read_text()
-    for section in ("1. Case", "2. Plan and elevation", "3. Tension utilisation",
+    for section in ("1. Case", "2. Plan, elevation and 3-D view", "3. Tension utilisation",
                     "4. Checks", "5. Criteria", "API RP 2SK"):
         assert section in html
     assert html.count("data:image/png;base64,") == 3

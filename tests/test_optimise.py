@@ -3,6 +3,7 @@ independent solves, is a KKT point by finite differences of independent solves, 
 feasible neighbour is cheaper, and closed-form catenary answers are reproduced."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -339,6 +340,15 @@ def test_cli_optimise(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "verified: every constraint holds" in text and "would save" in text
     assert moorsolve.load_case(out).legs[0].length < 122.52
+    # The case file itself, edited: every line that holds no changed value is kept as is,
+    # comments and alignment included.
+    original = Path(DOCK).read_text(encoding="utf-8").splitlines()
+    written = out.read_text(encoding="utf-8").splitlines()
+    assert written[0].startswith("# ") and "optimised by moorsolve optimise" in written[0]
+    kept = [line for line in original if "length:" not in line and not line.startswith("name:")]
+    assert [line for line in written[2:] if "length:" not in line
+            and not line.startswith("name:")] == kept
+    assert any(line.lstrip().startswith("#") for line in kept)
     # Bad input: exit 2, one line, nothing written.
     bad = tmp_path / "bad.yaml"
     bad.write_text("variables: {c: {type: length, legs: '*', lower: -1, upper: 130}}\n"

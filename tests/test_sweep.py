@@ -38,10 +38,15 @@ def test_every_row_equals_an_individual_solve_dock():
             "environment.current.speed": ["0.5 m/s", 1.5]}
     df = moorsolve.sweep(case, grid)
     assert len(df) == 16
-    assert list(df.columns[:3]) == list(grid)
+    # Grid columns: SI numbers, the unit in the name ("0.5 m/s" is 0.5).
+    columns = ["environment.wind.toward_deg [deg]", "environment.wind.speed [m/s]",
+               "environment.current.speed [m/s]"]
+    assert list(df.columns[:3]) == columns
+    assert all(df[c].dtype == float for c in columns)
     for (_, row), values in zip(df.iterrows(), itertools.product(*grid.values())):
         edits = dict(zip(grid, values))
-        assert [row[k] for k in grid] == list(values)      # product order, values as given
+        si = [float(v.split()[0]) if isinstance(v, str) else v for v in values]
+        assert [row[c] for c in columns] == si              # product order
         _assert_row_equals_solve(row, moorsolve.solve(_point(case, edits)))
 
 

@@ -128,12 +128,17 @@ def test_file_rows_equal_the_in_memory_sweep(tmp_path):
     grid = {"environment.wind.speed": ["10 kn", 20.0],
             "body.loads.force": [[1e3, 0, 0], [0, 2e3, 0]]}
     mem = moorsolve.sweep(case, grid)
-    assert mem.index.name == "point" and list(mem.columns[:2]) == list(grid)
+    speed = "environment.wind.speed [m/s]"
+    force = ["body.loads.force[0] [N]", "body.loads.force[1] [N]", "body.loads.force[2] [N m]"]
+    assert mem.index.name == "point" and list(mem.columns[:4]) == [speed] + force
+    knot = 1852.0 / 3600.0
+    assert list(mem[speed]) == pytest.approx([10 * knot, 10 * knot, 20.0, 20.0], rel=1e-12)
+    assert mem[force].to_numpy().tolist() == [[1e3, 0, 0], [0, 2e3, 0]] * 2
     for ext in (".csv", ".parquet"):
         out = moorsolve.sweep(case, grid, output=tmp_path / f"r{ext}")
-        # Values that are not all plain numbers are text in a file; lists are JSON.
-        assert list(out["environment.wind.speed"]) == ["10 kn", "10 kn", "20.0", "20.0"]
-        assert list(out["body.loads.force"]) == ["[1000.0, 0, 0]", "[0, 2000.0, 0]"] * 2
+        # In a file as in memory: numbers in SI, one column per list item.
+        np.testing.assert_array_equal(out[[speed] + force].to_numpy(),
+                                      mem[[speed] + force].to_numpy())
         np.testing.assert_array_equal(out[TENSIONS].to_numpy(), mem[TENSIONS].to_numpy())
         assert list(out["reason"]) == list(mem["reason"])
 
@@ -171,8 +176,8 @@ def test_cli_sweep_writes_the_grid(tmp_path, capsys):
     assert "36 points" in capsys.readouterr().out
     table = pd.read_csv(tmp_path / "r.csv", index_col="point")
     ref = moorsolve.sweep(moorsolve.load_case(BUOY), GRID)
-    np.testing.assert_array_equal(table["environment.wind.toward_deg"],
-                                  ref["environment.wind.toward_deg"])
+    np.testing.assert_array_equal(table["environment.wind.toward_deg [deg]"],
+                                  ref["environment.wind.toward_deg [deg]"])
     np.testing.assert_allclose(table[TENSIONS], ref[TENSIONS], rtol=1e-9)
     # A finished file resumes to itself; another grid or case is refused.
     before = (tmp_path / "r.csv").read_bytes()
@@ -284,3 +289,19 @@ def test_dask_threads_client_and_slow_path(tmp_path):
     assert set(remote["solver"]) == {"ipopt"}
     np.testing.assert_allclose(remote[TENSIONS].to_numpy(), local[TENSIONS].to_numpy(),
                                rtol=1e-9)
+
+
+def test_grid_columns_are_si_numbers_named_with_their_unit(tmp_path, capsys):
+    # The command line's "10:20:10 kn" is two speeds in knots: m/s in the file.
+    assert main(["sweep", str(BUOY), "--set", "environment.wind.speed=10:20:10 kn",
+                 "--set", "legs[*].segments[0].length=50 m,5000 cm",
+                 "-o", str(tmp_path / "u.csv")]) == 0
+    table = pd.read_csv(tmp_path / "u.csv", index_col="point")
+    knot = 1852.0 / 3600.0
+    np.testing.assert_allclose(table["environment.wind.speed [m/s]"],
+                               [10 * knot, 10 * knot, 20 * knot, 20 * knot], rtol=1e-12)
+    np.testing.assert_array_equal(table["legs[*].segments[0].length [m]"], [50.0] * 4)
+    # A value that is not a quantity keeps its path as the name and is text in a file.
+    mem = moorsolve.sweep(moorsolve.load_case(BUOY), {"body.free": [["surge", "sway"],
+                                                                    ["surge"]]})
+    assert list(mem["body.free"]) == [["surge", "sway"], ["surge"]]

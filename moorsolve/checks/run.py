@@ -95,6 +95,15 @@ class ConditionResult:
     def passed(self) -> bool:
         return self.solved and all(item.passed for item in self.items)
 
+    def __repr__(self) -> str:
+        if not self.solved:
+            return f"<ConditionResult {self.name!r}: FAIL, no equilibrium: {self.reason}>"
+        worst = self.worst()
+        tension = "" if worst is None else (f", worst tension {worst.leg} utilisation "
+                                             f"{worst.utilisation:.2f}")
+        return (f"<ConditionResult {self.name!r}: {'PASS' if self.passed else 'FAIL'}"
+                f"{tension}>")
+
     @property
     def offset_m(self) -> float | None:
         if self.result is None or self.result.body is None:
@@ -130,6 +139,18 @@ class CheckReport:
     conditions: list
     criteria: list = field(default_factory=list)
     time_s: float = 0.0
+    #: The certified relative force residual every condition was solved to.
+    tolerance: float = math.nan
+
+    def __repr__(self) -> str:
+        verdict = "PASS" if self.passed else "FAIL"
+        return (f"<CheckReport {self.case_name!r} {self.standard}: {verdict}, "
+                f"{sum(c.passed for c in self.conditions)} of {len(self.conditions)} "
+                f"conditions pass>")
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import check_html_table
+        return check_html_table(self)
 
     @property
     def passed(self) -> bool:
@@ -153,7 +174,7 @@ class CheckReport:
         return {
             "case": self.case_name, "standard": self.standard,
             "consequence_class": self.consequence_class, "passed": self.passed,
-            "time_s": self.time_s,
+            "time_s": self.time_s, "tolerance": self.tolerance,
             "limits": {"offset_limit_m": self.checks.offset_limit,
                        "offset_limit_damaged_m": _damaged(self.checks.offset_limit_damaged,
                                                           self.checks.offset_limit),
@@ -210,7 +231,8 @@ def run_checks(case: Case, *, standard: str | None = None, tol: float | None = N
     return CheckReport(case_name=case.name, standard=checks.standard,
                        consequence_class=checks.consequence_class, checks=checks,
                        conditions=conditions, criteria=standard_rows(checks.standard),
-                       time_s=time.perf_counter() - t0)
+                       time_s=time.perf_counter() - t0,
+                       tolerance=case.solver.tol if tol is None else float(tol))
 
 
 def _condition(case: Case, checks: Checks, removed: str | None, tol) -> ConditionResult:

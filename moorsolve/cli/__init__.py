@@ -7,10 +7,11 @@ group of commands: ``add_commands(sub)`` declares them and binds each to its ``r
 
 from __future__ import annotations
 
+import logging
 import sys
 import warnings
 
-from ..errors import CaseError, ConvergenceError
+from ..errors import CaseError, ConvergenceError, MoorsolveWarning
 from . import bounds, checks, equilibrium, moordyn, studies
 from .common import EXIT_BAD_INPUT, EXIT_NO_EQUILIBRIUM, EXIT_OK, Parser, bad_input
 
@@ -18,20 +19,43 @@ __all__ = ["main", "EXIT_OK", "EXIT_NO_EQUILIBRIUM", "EXIT_BAD_INPUT"]
 
 
 def _parser() -> Parser:
+    from .. import __version__
     parser = Parser(prog="moorsolve", description="Static equilibrium of moored bodies.")
+    parser.add_argument("--version", action="version", version=f"moorsolve {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for group in (equilibrium, checks, moordyn, studies, bounds):
         group.add_commands(sub)
     return parser
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """moorsolve's own warnings as one line each on stderr; others as Python shows them."""
+    if issubclass(category, MoorsolveWarning):
+        print(f"moorsolve: warning: {message}", file=sys.stderr)
+    else:
+        sys.stderr.write(warnings.formatwarning(message, category, filename, lineno, line))
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; returns the exit status."""
+    """Run the command line; returns the exit status.
+
+    The library's log messages at INFO and above (e.g. the one-off compile of a Newton
+    kernel) and its warnings (inputs no model uses) go to stderr as ``moorsolve: ...``
+    lines, so stdout holds only the command's output.
+    """
     args = _parser().parse_args(argv)
+    log = logging.getLogger("moorsolve")
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("moorsolve: %(message)s"))
+    level = log.level
+    log.addHandler(handler)
+    log.setLevel(logging.INFO)
     with warnings.catch_warnings():
         # numpy's overflow/invalid-value warnings on absurd input would interleave with the
         # one message the command prints; the certificate and ConvergenceError carry it.
         warnings.simplefilter("ignore", RuntimeWarning)
+        warnings.simplefilter("default", MoorsolveWarning)
+        warnings.showwarning = _show_warning
         try:
             return args.run(args)
         except CaseError as exc:
@@ -39,3 +63,6 @@ def main(argv: list[str] | None = None) -> int:
         except ConvergenceError as exc:
             print(f"moorsolve: {exc}", file=sys.stderr)
             return EXIT_NO_EQUILIBRIUM
+        finally:
+            log.removeHandler(handler)
+            log.setLevel(level)

@@ -57,7 +57,7 @@ def run_check(args) -> int:
                         damaged=False if args.no_damaged else None)
     from ..report.check_html import check_json, format_check_table, write_html_report
     if args.report is not None:
-        write_html_report(report, case, args.report)
+        write_html_report(report, case, args.report, case_file=args.case)
     print_text(check_json(report) if args.json else format_check_table(report))
     if args.report is not None and not args.json:
         print(f"wrote {args.report}")

@@ -61,6 +61,14 @@ def solver_option(p, default: str = "ipopt") -> None:
     p.add_argument("--solver", choices=("ipopt", "newton"), default=default, help=text)
 
 
+def overload_option(p) -> None:
+    """``--allow-overload``: report an equilibrium in which a line exceeds its MBL instead
+    of exiting 1 (``allow_overload=True`` in Python)."""
+    p.add_argument("--allow-overload", action="store_true",
+                   help="accept an equilibrium in which a line exceeds its minimum breaking "
+                        "load (it is still reported) instead of exiting 1")
+
+
 def check_output(path: str, option: str, extensions: tuple, describe: str | None = None) -> None:
     """Refuse, before any work, an output path with the wrong extension or no folder."""
     if os.path.splitext(path)[1].lower() not in extensions:

@@ -8,7 +8,8 @@ import sys
 
 from ..errors import ConvergenceError
 from .common import (EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS, check_output,
-                     print_text, save_figure, solver_option, tolerance, whole_number)
+                     overload_option, print_text, save_figure, solver_option, tolerance,
+                     whole_number)
 
 
 def add_commands(sub) -> None:
@@ -20,12 +21,14 @@ def add_commands(sub) -> None:
     p.add_argument("--no-profiles", action="store_true",
                    help="leave the line profiles out of the JSON")
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_solve)
-    p = sub.add_parser("plot", help="plan and elevation views of the equilibrium")
+    p = sub.add_parser("plot", help="plan, elevation and 3-D view of the equilibrium")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("-o", "--output", required=True, help="image file to write (.png, .pdf, .svg)")
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_plot)
     p = sub.add_parser("stiffness", help="the mooring's 6x6 restoring matrix of one body "
                                          "about its solved position")
@@ -34,6 +37,7 @@ def add_commands(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the matrix as JSON")
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_stiffness)
     p = sub.add_parser("accuracy", help="solve time against error over tolerances and "
                                         "model fidelity")
@@ -43,6 +47,7 @@ def add_commands(sub) -> None:
                    help="also write time against error as an image (.png, .pdf, .svg)")
     p.add_argument("--repeats", type=whole_number("--repeats", 1, 1000), default=7,
                    help="solves per setting; the median time is reported (default 7)")
+    overload_option(p)
     p.set_defaults(run=run_accuracy)
 
 
@@ -51,7 +56,7 @@ def run_solve(args) -> int:
     from ..report.text import format_table, to_json
     from ..checks.modelling import modelling_warnings
     case = load_case(args.case)
-    result = solve(case, tol=args.tol, solver=args.solver)
+    result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     print_text(to_json(result, profiles=not args.no_profiles) if args.json
                else format_table(result))
     for warning in modelling_warnings(case, result):
@@ -64,7 +69,7 @@ def run_plot(args) -> int:
     from ..plot import plot_equilibrium
     case = load_case(args.case)
     check_output(args.output, "--output", IMAGE_EXTENSIONS)
-    result = solve(case, tol=args.tol, solver=args.solver)
+    result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), args.output)
     print(f"wrote {args.output}")
     return EXIT_OK
@@ -74,6 +79,7 @@ def run_stiffness(args) -> int:
     from .. import load_case, solve
     from ..errors import CaseError
     from ..model import DOFS
+    from ..report.matrix import stiffness_table
     from ..report.text import format_stiffness
     from ..studies.stiffness import stiffness
     case = load_case(args.case)
@@ -84,11 +90,13 @@ def run_stiffness(args) -> int:
     if args.body is None and len(names) > 1:
         raise CaseError("--body", f"the case has {len(names)} bodies "
                                   f"({', '.join(names)}); name one")
-    result = solve(case, tol=args.tol, solver=args.solver)
+    result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     K = stiffness(result, args.body)
     body = args.body or (names[0] if names else None)
     if args.json:
-        print_text(json.dumps({"body": body, "dofs": list(DOFS), "matrix": K.tolist()},
+        table = stiffness_table(K, DOFS)
+        print_text(json.dumps({"body": body, "dofs": list(DOFS), "matrix": K.tolist(),
+                               "rows": list(table.rows), "columns": list(table.columns)},
                               indent=2))
     else:
         print_text(format_stiffness(K, body, case.name))
@@ -102,7 +110,8 @@ def run_accuracy(args) -> int:
     if args.plot:
         check_output(args.plot, "--plot", IMAGE_EXTENSIONS)
     try:
-        rungs = accuracy_ladder(case, repeats=args.repeats)
+        rungs = accuracy_ladder(case, repeats=args.repeats,
+                                allow_overload=args.allow_overload)
     except ConvergenceError as exc:
         print(f"moorsolve: the reference solve failed: {exc}", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM

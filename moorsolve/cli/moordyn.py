@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import sys
 
-from .common import EXIT_OK, YAML_EXTENSIONS, check_output, solver_option, tolerance
+from .common import (EXIT_OK, YAML_EXTENSIONS, check_output, overload_option, solver_option,
+                     tolerance)
 
 
 def add_commands(sub) -> None:
@@ -24,6 +25,7 @@ def add_commands(sub) -> None:
                         "and free points")
     p.add_argument("--tol", type=tolerance, default=None)
     solver_option(p)
+    overload_option(p)
     p.set_defaults(run=run_export)
     p = sub.add_parser("import-moorpy", help="MoorPy (or windIO) mooring YAML to a case file")
     p.add_argument("moorpy", help="MoorPy mooring YAML (water_depth, line_types, points, lines)")
@@ -82,7 +84,7 @@ def run_import(args) -> int:
 def run_export(args) -> int:
     from ..io import export_moordyn
     export_moordyn(args.case, args.output, version=args.version, equilibrium=args.equilibrium,
-                   tol=args.tol, solver=args.solver)
+                   tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     print(f"wrote {args.output}")
     return EXIT_OK
 

@@ -10,8 +10,8 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from .common import (EXIT_INTERRUPTED, EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS,
-                     YAML_EXTENSIONS, bad_input, check_output, heading_step, print_text,
-                     save_figure, solver_option, tolerance, whole_number)
+                     YAML_EXTENSIONS, bad_input, check_output, heading_step, overload_option,
+                     print_text, save_figure, solver_option, tolerance, whole_number)
 
 
 def add_commands(sub) -> None:
@@ -31,6 +31,7 @@ def add_commands(sub) -> None:
     p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                    help="run on an existing dask.distributed cluster")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    overload_option(p)
     p.set_defaults(run=run_sweep)
     p = sub.add_parser("envelope", help="offset and worst tension for every heading of the "
                                         "environment")
@@ -47,6 +48,7 @@ def add_commands(sub) -> None:
                    help="the body whose offset is reported (a case with several bodies)")
     solver_option(p, default="newton")
     p.add_argument("--tol", type=tolerance, default=None)
+    overload_option(p)
     p.set_defaults(run=run_envelope)
     p = sub.add_parser("optimise", help="least line mass or cost over a set of load cases "
                                         "(design study file)")
@@ -78,7 +80,8 @@ def run_sweep(args) -> int:
         progress = sys.stderr if (not args.quiet and sys.stderr.isatty()) else False
         table = sweep(case, grid, solver=args.solver, tol=args.tol, workers=args.workers,
                       output=args.output, resume=args.resume, overwrite=args.overwrite,
-                      scheduler=args.scheduler, progress=progress)
+                      scheduler=args.scheduler, progress=progress,
+                      allow_overload=args.allow_overload)
     except CaseError as exc:
         return bad_input(_set_field(exc))
     except KeyboardInterrupt:
@@ -116,7 +119,8 @@ def run_envelope(args) -> int:
         case = load_case(args.case)
         flows = None if args.flows is None else [f.strip() for f in args.flows.split(",")]
         envelope = offset_envelope(case, step_deg=args.step, flows=flows, solver=args.solver,
-                                   tol=args.tol, body=args.body)
+                                   tol=args.tol, body=args.body,
+                                   allow_overload=args.allow_overload)
     except CaseError as exc:
         text = str(exc)
         if exc.field in ("flows", "step_deg", "body"):
@@ -140,7 +144,8 @@ def run_envelope(args) -> int:
 def run_optimise(args) -> int:
     from .. import load_case
     from ..report.optimise import format_optimisation, optimisation_json
-    from ..io.study_file import load_study, write_case_file
+    from ..io.output_files import write_edited_case_yaml
+    from ..io.study_file import load_study
     from ..studies.optimise import optimise
     case = load_case(args.case)
     if args.output is not None:
@@ -161,7 +166,8 @@ def run_optimise(args) -> int:
     if args.output is not None:
         data = dict(opt.optimised_data)
         data["name"] = f"{case.name} (optimised)"
-        write_case_file(data, args.output, header=(
+        # The case file itself, edited: its comments and layout stay.
+        write_edited_case_yaml(args.case, case.source, data, args.output, header=(
             f"{case.name}: optimised by moorsolve optimise --study {args.study}\n"
             f"{opt.objective} {opt.objective_start:,.0f} -> {opt.objective_optimum:,.0f} "
             f"{opt.unit}"))

@@ -8,17 +8,19 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import warnings
 from collections.abc import Mapping
 from os import PathLike
 from pathlib import Path
 
 import yaml
 
-from ..errors import CaseError
+from ..errors import CaseError, UnusedInputWarning
 from ..model import Case
 from ..model.build import build_case
 from ..model.fields import FAIRLEAD_Z_MAX
 from ..model.units import show_value
+from ..model.usage import unused_inputs
 
 __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
 
@@ -92,14 +94,21 @@ def load_case(source, *, keep_source: bool = True) -> Case:
     source : str, pathlib.Path or mapping
         Path to a YAML case file, or a dictionary of the same shape.
     keep_source : bool
-        Keep a copy of the case-file data as ``Case.source`` (what sweeps edit); a
-        caller that validates many throw-away variants may skip the copy.
+        Keep a copy of the case-file data as ``Case.source`` (what sweeps edit) and warn
+        about inputs that no model uses; a caller that validates many throw-away variants
+        of a case already loaded may skip both.
 
     Returns
     -------
     moorsolve.model.Case
         The validated case, in SI units. Its name defaults to the file stem (or ``"case"``
         for a dictionary).
+
+    Warns
+    -----
+    UnusedInputWarning
+        For each input that no model uses (:func:`moorsolve.model.usage.unused_inputs`):
+        waves without a wave-drift model, a current neither the body nor a line feels, ...
 
     Raises
     ------
@@ -143,4 +152,7 @@ def load_case(source, *, keep_source: bool = True) -> Case:
         return case
     source = copy.deepcopy(dict(data))
     source["name"] = case.name
-    return dataclasses.replace(case, source=source)
+    case = dataclasses.replace(case, source=source)
+    for field, message in unused_inputs(case):
+        warnings.warn(UnusedInputWarning(field, message), stacklevel=2)
+    return case

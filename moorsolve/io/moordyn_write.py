@@ -550,7 +550,8 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
 
 
 def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool = False,
-                   tol: float | None = None, solver: str = "ipopt"):
+                   tol: float | None = None, solver: str = "ipopt",
+                   allow_overload: bool = False):
     """Write a case as a MoorDyn input file (atomically); returns the Result when solved.
 
     Parameters
@@ -563,6 +564,8 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
         See :func:`case_to_moordyn`.
     equilibrium : bool
         Solve the case first and write the equilibrium positions.
+    tol, solver, allow_overload
+        As for :func:`moorsolve.solve`, when ``equilibrium``.
 
     Raises
     ------
@@ -583,7 +586,7 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
     result = None
     if equilibrium:
         from ..solve import solve
-        result = solve(case, tol=tol, solver=solver)
+        result = solve(case, tol=tol, solver=solver, allow_overload=allow_overload)
     curves = {}
     text = case_to_moordyn(case, version=version, result=result, curves=curves,
                            curve_prefix=f"{out.stem}_")

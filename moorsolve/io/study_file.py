@@ -49,6 +49,7 @@ from ..model import Case
 from ..model.fields import check_list, check_mapping, check_name, field_path, quantity
 from .case_file import _read_yaml, load_case
 from .output_files import write_case_yaml as write_case_file
+from ..model.directions import direction_edit
 from ..model.paths import with_values
 from ..model.units import format_si, show_value
 
@@ -322,7 +323,8 @@ def _load_cases(raw, path: str, case: Case, limits: Limits) -> tuple:
             expanded = []
             for h in _headings(e["headings"], hpath):
                 turned = dict(edits)
-                turned.update({f"environment.{f}.toward_deg": h for f in flows})
+                # In the case file's own terms (from_deg, a compass bearing) if it uses them.
+                turned.update(direction_edit(variant, f, h) for f in flows)
                 if force is not None:
                     # The constant force keeps its size and turns toward the heading.
                     size = math.hypot(force[0], force[1])

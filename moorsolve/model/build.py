@@ -19,9 +19,13 @@ Schema (SI units, ``[...]`` lists)::
       gravity: > 0 [m/s^2]                     default 9.80665
       seabed: {friction: >= 0,                 default 0
                gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
-      wind: {speed: >= 0 [m/s], toward_deg}    optional; current likewise, plus an optional
+      directions: mathematical | nautical      default mathematical (ccw from +x); nautical:
+      north_deg: [deg]                         clockwise from north, north at north_deg
+                                               (ccw from +x, default 90); see directions.py
+      wind: {speed: >= 0 [m/s], toward_deg     optional; toward_deg or from_deg (one);
+             | from_deg}                       current likewise, plus an optional
                                                profile: [[z <= 0, speed], ...] z ascending
-      waves: {hs: >= 0 [m], toward_deg}        optional
+      waves: {hs: >= 0 [m], toward_deg | from_deg}   optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
              sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm},
@@ -65,6 +69,7 @@ import numbers
 from collections.abc import Mapping
 
 from ..errors import CaseError
+from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
@@ -84,11 +89,15 @@ __all__ = ["build_case"]
 # ---- environment ------------------------------------------------------------------------
 
 
-def _flow(raw, path: str, profile: bool = False) -> Flow:
+def _angle(raw, path: str) -> float:
+    return quantity(raw, path, "angle")
+
+
+def _flow(raw, path: str, compass: Compass, profile: bool = False) -> Flow:
     m = check_mapping(raw, path, required=("speed",),
-                 optional=("toward_deg", "profile") if profile else ("toward_deg",))
+                      optional=DIRECTION_KEYS + (("profile",) if profile else ()))
     speed = quantity(m["speed"], field_path(path, "speed"), "speed", ge=0, le=MAX_SPEED)
-    toward = optional_quantity(m, path, "toward_deg", "angle", 0.0)
+    toward = flow_direction(m, path, compass, _angle)
     rows = None
     if m.get("profile") is not None:
         ppath = field_path(path, "profile")
@@ -106,17 +115,17 @@ def _flow(raw, path: str, profile: bool = False) -> Flow:
     return Flow(speed=speed, toward_deg=toward, profile=rows)
 
 
-def _waves(raw, path: str) -> Waves:
-    m = check_mapping(raw, path, required=("hs",), optional=("toward_deg",))
+def _waves(raw, path: str, compass: Compass) -> Waves:
+    m = check_mapping(raw, path, required=("hs",), optional=DIRECTION_KEYS)
     hs = quantity(m["hs"], field_path(path, "hs"), "length", ge=0, le=MAX_HS)
-    toward = optional_quantity(m, path, "toward_deg", "angle", 0.0)
+    toward = flow_direction(m, path, compass, _angle)
     return Waves(hs=hs, toward_deg=toward)
 
 
 def _environment(raw, path: str) -> Environment:
     m = check_mapping(raw, path, required=("depth",),
                  optional=("water_density", "air_density", "gravity", "seabed", "wind",
-                           "current", "waves"))
+                           "current", "waves", "directions", "north_deg"))
     defaults = Environment(depth=1.0)
     dpath = field_path(path, "depth")
     depth = quantity(m["depth"], dpath, "length", gt=0, le=MAX_DEPTH)
@@ -148,12 +157,30 @@ def _environment(raw, path: str) -> Environment:
                                        f"{MAX_GRADIENT} (45 deg)")
         seabed = Seabed(friction=optional_quantity(s, sub, "friction", "dimensionless", 0.0, ge=0),
                         gradient=gradient)
-    wind = None if m.get("wind") is None else _flow(m["wind"], field_path(path, "wind"))
+    compass = _compass(m, path)
+    wind = None if m.get("wind") is None else _flow(m["wind"], field_path(path, "wind"), compass)
     current = (None if m.get("current") is None
-               else _flow(m["current"], field_path(path, "current"), profile=True))
-    waves = None if m.get("waves") is None else _waves(m["waves"], field_path(path, "waves"))
+               else _flow(m["current"], field_path(path, "current"), compass, profile=True))
+    waves = (None if m.get("waves") is None
+             else _waves(m["waves"], field_path(path, "waves"), compass))
     return Environment(depth=depth, water_density=water_density, air_density=air_density,
-                       gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves)
+                       gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves,
+                       compass=compass)
+
+
+def _compass(m: dict, path: str) -> Compass:
+    """``directions`` (mathematical or nautical) and ``north_deg`` (nautical only)."""
+    convention = m.get("directions", "mathematical")
+    if not isinstance(convention, str) or convention not in CONVENTIONS:
+        raise CaseError(field_path(path, "directions"),
+                        f"{show_value(convention)} must be one of {', '.join(CONVENTIONS)} "
+                        "(mathematical: counter-clockwise from +x; nautical: clockwise from "
+                        "north)")
+    if "north_deg" in m and convention != "nautical":
+        raise CaseError(field_path(path, "north_deg"), "applies to compass bearings only; "
+                                                       "give directions: nautical with it")
+    north = optional_quantity(m, path, "north_deg", "angle", 90.0)
+    return Compass(convention=convention, north_deg=north)
 
 
 def _checks(raw, path: str, legs: tuple) -> Checks:

@@ -1,7 +1,8 @@
 """The environment of a scene: water, seabed, wind, current and waves.
 
 Coordinates: x, y horizontal, z up, z = 0 at the still-water level. ``toward_deg`` is the
-direction a wind, current or wave train travels toward, counter-clockwise from +x.
+direction a wind, current or wave train travels toward, counter-clockwise from +x, whatever
+the case file gave (``from_deg``, a compass bearing: :mod:`moorsolve.model.directions`).
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from ..constants import AIR_DENSITY, SEAWATER_DENSITY, STANDARD_GRAVITY
+from .directions import Compass
 
 
 @dataclass(frozen=True)
@@ -62,6 +64,8 @@ class Environment:
     wind: Optional[Flow] = None
     current: Optional[Flow] = None
     waves: Optional[Waves] = None
+    #: How the case file measures directions (``toward_deg`` here is always internal).
+    compass: Compass = field(default_factory=Compass)
 
     def seabed_z(self, x: float, y: float) -> float:
         """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed)."""

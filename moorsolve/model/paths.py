@@ -6,7 +6,8 @@ Setting a path edits a copy of the case-file data, which :func:`load_case` then 
 like any case file, so a value may carry a unit (``"150 m"``) and a bad value is reported
 against its field. A missing last key is created (validation decides if it is allowed);
 a missing intermediate mapping is created too, so ``environment.current.speed`` can add a
-current to a scene that had none.
+current to a scene that had none. Setting a flow's ``toward_deg`` removes its ``from_deg``
+and the other way round (a flow takes one of them).
 """
 
 from __future__ import annotations
@@ -16,6 +17,9 @@ import re
 from collections.abc import Mapping, MutableMapping
 
 from ..errors import CaseError
+
+#: Keys that say the same thing in other terms: setting one removes the others.
+_ALTERNATIVES = {"toward_deg": ("from_deg",), "from_deg": ("toward_deg",)}
 
 _TOKEN = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[^\[\]]+\])*)$")
 
@@ -58,6 +62,9 @@ def _set(node, steps: list, value, path: str) -> None:
             raise CaseError(path, f"cannot take key {step!r} of a {type(node).__name__}")
         if not rest:
             node[step] = copy.deepcopy(value)
+            # A flow's direction is one key or the other: setting one replaces the other.
+            for other in _ALTERNATIVES.get(step, ()):
+                node.pop(other, None)
             return
         child = node.get(step)
         if child is None:
@@ -74,6 +81,22 @@ def _set(node, steps: list, value, path: str) -> None:
             _set(child, rest, value, path)
         else:
             node[index] = copy.deepcopy(value)
+
+
+def concrete_paths(data: Mapping, path: str) -> list[str]:
+    """The field paths (``legs[2].anchor``, as validation names fields) that ``path``
+    selects in ``data``: names and ``*`` resolved to positions. A missing key is kept."""
+    out = [("", data)]
+    for step in parse_path(path):
+        nxt = []
+        for prefix, node in out:
+            if isinstance(step, str):
+                child = node.get(step) if isinstance(node, Mapping) else None
+                nxt.append((f"{prefix}.{step}" if prefix else step, child))
+            elif isinstance(node, list):
+                nxt += [(f"{prefix}[{i}]", node[i]) for i in _select(node, step[0], path)]
+        out = nxt
+    return [prefix for prefix, _ in out]
 
 
 def _private(node):

@@ -10,6 +10,8 @@ Every failure raises :class:`moorsolve.errors.CaseError` naming the field.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import functools
 import math
 import numbers
@@ -21,7 +23,7 @@ import pint
 from ..errors import CaseError
 
 __all__ = ["UREG", "KINDS", "to_si", "weight_per_length_to_si", "format_si", "describe",
-           "show_value"]
+           "show_value", "recording"]
 
 #: The one unit registry of moorsolve. In pint ``t`` is the metric tonne, ``tf`` the
 #: tonne-force, ``kgf`` the kilogram-force and ``kn`` / ``kt`` the knot.
@@ -74,6 +76,34 @@ _NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
 _UNIT = r"[A-Za-z_]+(?:\s*(?:\^|\*\*)\s*[+-]?\d{1,2})?"
 _UNIT_EXPR = rf"{_UNIT}(?:\s*[*/]\s*{_UNIT}|\s+{_UNIT})*"
 _QUANTITY_RE = re.compile(rf"^\s*({_NUMBER})\s*({_UNIT_EXPR})?\s*$")
+
+#: While :func:`recording` is active: field path -> (SI value, kind) of every quantity
+#: converted (per context, so threads recording at once keep their own tables).
+_RECORDING: contextvars.ContextVar = contextvars.ContextVar("moorsolve_quantities",
+                                                            default=None)
+
+
+@contextlib.contextmanager
+def recording():
+    """Collect every quantity converted in the block: ``{field: (SI value, kind)}``.
+
+    A sweep validates each grid value as a case and reads back what the case made of it
+    (``"20 kn"`` at ``environment.wind.speed`` is 10.29 m/s), without knowing the schema.
+    """
+    table: dict = {}
+    token = _RECORDING.set(table)
+    try:
+        yield table
+    finally:
+        _RECORDING.reset(token)
+
+
+def _record(field: str, value: float, kind: str) -> float:
+    table = _RECORDING.get()
+    if table is not None and field:
+        table[field] = (value, kind)
+    return value
+
 
 _DIMENSIONALITY = {kind: UREG.parse_units(unit).dimensionality
                    for kind, (unit, _, _) in KINDS.items()
@@ -255,9 +285,9 @@ def to_si(raw, kind: str, field: str) -> float:
     if isinstance(raw, bool):
         raise _not_a(raw, kind, field)
     if isinstance(raw, numbers.Real):
-        return _real_to_float(raw, raw, field)
+        return _record(field, _real_to_float(raw, raw, field), kind)
     if isinstance(raw, str):
-        return _convert_string(raw, (kind,), field)[0]
+        return _record(field, _convert_string(raw, (kind,), field)[0], kind)
     raise _not_a(raw, kind, field)
 
 
@@ -292,5 +322,5 @@ def weight_per_length_to_si(raw, gravity: float, field: str) -> float:
         value, kind = _convert_string(raw, ("force_per_length", "mass_per_length"), field)
         if kind == "mass_per_length":
             value = _finite(value * gravity, raw, field)
-        return value
+        return _record(field, value, "force_per_length")
     return to_si(raw, "force_per_length", field)

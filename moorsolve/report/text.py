@@ -66,32 +66,45 @@ def format_table(result: Result) -> str:
     header = (f"{word:<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
               f"{'V_anch kN':>11}{'grounded m':>12}{'util':>7}  state")
     lines += ["", header, "-" * len(header)]
-    for leg in result.legs:
+    for r in leg_rows(result.legs):
+        util = f"{r['utilisation']:.2f}" if r["utilisation"] is not None else "-"
+        lines.append(
+            f"{r['name']:<8}{r['T_fair'] / 1e3:11.2f}{r['H'] / 1e3:10.2f}{r['V'] / 1e3:10.2f}"
+            f"{r['T_anchor'] / 1e3:11.2f}{r['V_anchor'] / 1e3:11.2f}"
+            f"{r['grounded']:12.2f}{util:>7}  {r['state']}")
+    for note in result.notes:
+        lines.append(f"note: {note}")
+    over = [r["name"] for r in leg_rows(result.legs) if (r["utilisation"] or 0) > 1]
+    if over:
+        lines.append(f"OVERLOAD: {', '.join(over)} above the minimum breaking load "
+                     "(accepted with --allow-overload)")
+    return "\n".join(lines)
+
+
+def leg_rows(legs) -> list[dict]:
+    """Per leg what the tables show: tensions [N], grounded length [m], utilisation and
+    state (``slack``, ``uplift``, ``touchdown`` or ``suspended``; ``OVER MBL`` added
+    when the utilisation exceeds 1)."""
+    rows = []
+    for leg in legs:
         state = "slack" if leg.slack else ("uplift" if leg.uplift else
                                            ("touchdown" if leg.grounded_length_m > 0
                                             else "suspended"))
-        util = f"{leg.utilisation:.2f}" if leg.utilisation is not None else "-"
-        lines.append(
-            f"{leg.name:<8}{leg.fairlead_tension_N / 1e3:11.2f}"
-            f"{leg.horizontal_tension_N / 1e3:10.2f}{leg.fairlead_vertical_N / 1e3:10.2f}"
-            f"{leg.anchor_tension_N / 1e3:11.2f}{leg.anchor_vertical_N / 1e3:11.2f}"
-            f"{leg.grounded_length_m:12.2f}{util:>7}  {state}")
-    for note in result.notes:
-        lines.append(f"note: {note}")
-    return "\n".join(lines)
+        if leg.utilisation is not None and leg.utilisation > 1:
+            state += ", OVER MBL"
+        rows.append({"name": leg.name, "T_fair": leg.fairlead_tension_N,
+                     "H": leg.horizontal_tension_N, "V": leg.fairlead_vertical_N,
+                     "T_anchor": leg.anchor_tension_N, "V_anchor": leg.anchor_vertical_N,
+                     "grounded": leg.grounded_length_m, "utilisation": leg.utilisation,
+                     "state": state})
+    return rows
 
 
 def format_stiffness(K, body, case_name: str = "") -> str:
-    """The 6x6 stiffness as a labelled table: rows and columns surge ... yaw, units per row
-    and column (N/m, N/rad, N m/m, N m/rad)."""
-    dofs = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-    unit_col = ("m", "m", "m", "rad", "rad", "rad")
-    unit_row = ("N", "N", "N", "N m", "N m", "N m")
-    lines = [f"{case_name}: mooring stiffness of {body or 'the fairlead frame'} about its "
-             "solved position (K = -dF/dq, global axes)"]
-    lines.append(f"{'':<16}" + "".join(f"{d + ' [' + u + ']':>16}" for d, u in
-                                         zip(dofs, unit_col)))
-    for i, d in enumerate(dofs):
-        lines.append(f"{d + ' [' + unit_row[i] + ']':<16}" + "".join(
-            f"{K[i, j]:16.5g}" for j in range(6)))
-    return "\n".join(lines)
+    """The 6x6 stiffness as a labelled table (:func:`moorsolve.report.matrix.stiffness_table`:
+    rows the forces Fx ... Mz, columns the displacements surge ... yaw, each with its unit;
+    an entry's unit is its row's over its column's: N/m, N/rad, N m/m, N m/rad)."""
+    from .matrix import stiffness_table
+    table = stiffness_table(K, ("surge", "sway", "heave", "roll", "pitch", "yaw"))
+    return (f"{case_name}: mooring stiffness of {body or 'the fairlead frame'} about its "
+            f"solved position (K = -dF/dq, global axes)\n{table!r}")

@@ -25,6 +25,7 @@ import subprocess
 import sysconfig
 import tempfile
 import threading
+import time
 from pathlib import Path
 
 import casadi as ca
@@ -79,11 +80,16 @@ def compile_function(fn: ca.Function) -> "CompiledFunction | None":
         target = cache_dir() / f"{name}_{digest}.so"
         with _LOCK:
             if not target.exists():
+                # Announced: a first solve of a new problem structure waits for this.
+                log.info("compiling %s with %s (%d kB of C; once per problem structure, "
+                         "cached in %s)", name, cc[0], len(text) // 1024, cache_dir())
+                t0 = time.perf_counter()
                 try:
                     _build(cc, flags, source, target)
                 except (OSError, subprocess.SubprocessError) as err:
                     log.warning("compiling %s failed (%s); it runs interpreted", name, err)
                     return None
+                log.info("compiled %s in %.1f s", name, time.perf_counter() - t0)
     return CompiledFunction(fn, target)
 
 

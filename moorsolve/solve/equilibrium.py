@@ -34,7 +34,7 @@ from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
-from .start import initial_point
+from .start import end_positions, initial_point
 
 log = logging.getLogger(__name__)
 
@@ -172,8 +172,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     broken = over_mbl(result)
     if broken and not allow_overload:
         raise ConvergenceError(
-            "overload: " + "; ".join(broken) + " (the mooring cannot hold this load; "
-            "pass allow_overload=True to inspect the equilibrium anyway)",
+            "overload: " + "; ".join(broken) + " (the mooring cannot hold this; to accept "
+            "the equilibrium anyway pass allow_overload=True, or --allow-overload)",
             residual_N=force_res, residual_Nm=moment_res, status=stats["status"],
             iterations=stats["iterations"], result=result)
     if assessment is not None and not assessment.stable:
@@ -366,14 +366,37 @@ def _unbalanced_force(problem, x, p) -> float:
 
 
 def over_mbl(result: Result) -> list:
-    """``"leg NAME would break ..."`` for every line above its minimum breaking load."""
+    """``"leg NAME would break ..."`` for every line above its minimum breaking load; a line
+    whose unstretched length is shorter than the distance between its ends at the case-file
+    pose (neither end a free point) says it cannot reach, with the shortfall in metres."""
     out = []
+    rest = _rest_chords(result.case) if result.case is not None else {}
     for leg in result.legs:
         u = leg.utilisation
         if u is not None and u > 1.0:
-            out.append(f"leg {leg.name} would break: tension "
-                       f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
+            tension = (f"{max(leg.fairlead_tension_N, leg.anchor_tension_N) / 1e3:.1f} kN "
                        f"> MBL {leg.mbl_N / 1e3:.1f} kN")
+            length, chord = rest.get(leg.name, (math.inf, 0.0))
+            if chord > length:
+                out.append(f"leg {leg.name} cannot reach its fairlead: it is "
+                           f"{chord - length:.2f} m short (unstretched length {length:.2f} m, "
+                           f"anchor to fairlead {chord:.2f} m at rest); stretched to reach, "
+                           f"it would break: tension {tension}")
+            else:
+                out.append(f"leg {leg.name} would break: tension {tension}")
+    return out
+
+
+def _rest_chords(case: Case) -> dict:
+    """``name -> (unstretched length, end-to-end distance at the case-file pose)`` of every
+    line whose ends are both fixed in the scene or on a body."""
+    free = {p.name for p in case.points if p.free}
+    out = {}
+    for line in case.lines:
+        if line.a.point in free or line.b.point in free:
+            continue
+        a, b = end_positions(case, line)
+        out[line.name] = (line.length, math.dist(a, b))
     return out
 
 
@@ -387,7 +410,8 @@ def _diagnose(problem, case, result) -> str:
         if fixed and not any(s.line_type.elastic for s in line.segments) \
                 and chord > line.length * (1 + 1e-9):
             reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
-                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m")
+                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
+                           f"by {chord - line.length:.2f} m")
         elif fixed and not lt.elastic and chord > line.length * (1 - 1e-4):
             reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
                            f"{line.length:.3f} m): an inextensible line would need an "

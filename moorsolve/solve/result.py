@@ -85,6 +85,10 @@ class LegResult:
     anchor_force: Optional[tuple] = None
     fibre_grounded_m: Optional[float] = None
 
+    def __repr__(self) -> str:
+        from ..report.notebook import leg_repr
+        return leg_repr(self)
+
     @property
     def utilisation(self) -> Optional[float]:
         """Largest tension over the minimum breaking load, when the MBL is known."""
@@ -219,6 +223,14 @@ class Result:
             if b["name"] == name:
                 return b
         raise KeyError(name)
+
+    def __repr__(self) -> str:
+        from ..report.notebook import result_repr
+        return result_repr(self)
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import result_html
+        return result_html(self)
 
     @property
     def iterations(self) -> int:

@@ -56,17 +56,21 @@ class Rung:
 
 
 def accuracy_ladder(case: Case, *, tolerances=TOLERANCES, solvers=("ipopt", "newton"),
-                    repeats: int = 7) -> list[Rung]:
-    """Measure both ladders on ``case``; see the module notes."""
-    reference = solve(case, tol=REFERENCE_TOL, solver="ipopt")
+                    repeats: int = 7, allow_overload: bool = False) -> list[Rung]:
+    """Measure both ladders on ``case``; see the module notes. ``allow_overload`` as for
+    :func:`moorsolve.solve` (every solve of the ladder)."""
+    over = dict(allow_overload=allow_overload)
+    reference = solve(case, tol=REFERENCE_TOL, solver="ipopt", **over)
     rungs = []
     for solver in solvers:
-        solve(case, tol=tolerances[0], solver=solver)        # build and compile outside the timing
+        # build and compile outside the timing
+        solve(case, tol=tolerances[0], solver=solver, **over)
         for tol in tolerances:
             rungs.append(_measure(case, reference, "tolerance", f"tol {tol:.0e}", solver, tol,
-                                  repeats))
+                                  repeats, over))
     for setting, variant in _fidelity_variants(case):
-        rungs.append(_measure(variant, reference, "fidelity", setting, "ipopt", 1e-9, repeats))
+        rungs.append(_measure(variant, reference, "fidelity", setting, "ipopt", 1e-9, repeats,
+                              over))
     return rungs
 
 
@@ -103,12 +107,12 @@ def _fidelity_variants(case: Case):
                                                                  lines=legs)
 
 
-def _measure(case, reference, ladder, setting, solver, tol, repeats) -> Rung:
+def _measure(case, reference, ladder, setting, solver, tol, repeats, over) -> Rung:
     times = []
     result = None
     try:
         for _ in range(repeats):
-            result = solve(case, tol=tol, solver=solver)
+            result = solve(case, tol=tol, solver=solver, **over)
             times.append(result.certificate.solve_time_s)
     except ConvergenceError as err:
         return Rung(ladder, setting, solver, tol, math.nan, err.iterations, math.nan, math.nan,

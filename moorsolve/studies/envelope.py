@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import CaseError
 from ..model import Case
+from ..model.directions import direction_edit, wrap_deg
 from .sweep import sweep
 
 FLOWS = ("wind", "current", "waves")
@@ -51,6 +52,17 @@ class Envelope:
     converged: np.ndarray
     reason: tuple
     table: object = dataclasses.field(repr=False, compare=False)
+
+    def __repr__(self) -> str:
+        ok = np.isfinite(self.worst_tension_N)
+        worst = f", worst {self.worst()['worst_leg']} toward {self.worst()['heading_deg']:g} deg" \
+            if ok.any() else ""
+        return (f"<Envelope {self.case_name!r}: {len(self.heading_deg)} headings, "
+                f"{int(ok.sum())} solved{worst}>")
+
+    def _repr_html_(self) -> str:
+        from ..report.notebook import envelope_html
+        return envelope_html(self)
 
     def worst(self) -> dict:
         """The heading with the largest worst tension (an overloaded equilibrium counts)."""
@@ -90,7 +102,8 @@ def _f(value) -> Optional[float]:
 def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, *,
                     step_deg: float = 10.0, flows: Optional[Sequence[str]] = None,
                     solver: str = "newton", tol: Optional[float] = None,
-                    workers: Optional[int] = None, body: Optional[str] = None) -> Envelope:
+                    workers: Optional[int] = None, body: Optional[str] = None,
+                    allow_overload: bool = False) -> Envelope:
     """The equilibrium of ``case`` with its environment turned to every heading.
 
     Parameters
@@ -104,7 +117,7 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         Heading step [deg] when ``headings_deg`` is not given; 0 < step <= 180.
     flows : sequence of {"wind", "current", "waves"}, optional
         Which flows turn (default: every one the case has).
-    solver, tol, workers
+    solver, tol, workers, allow_overload
         As for :func:`moorsolve.sweep`.
     body : str, optional
         The body whose offset (from its case pose) and yaw the envelope reports; default
@@ -151,9 +164,13 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
 
     reference = getattr(env, flows[0]).toward_deg
     offsets = [getattr(env, f).toward_deg - reference for f in flows]
-    paths = tuple(f"environment.{f}.toward_deg" for f in flows)
-    values = [tuple(_wrap(h + d) for d in offsets) for h in headings]
-    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers)
+    # Each heading as the case file would write it (its key and compass convention).
+    edits = [[direction_edit(case, f, wrap_deg(h + d)) for f, d in zip(flows, offsets)]
+             for h in headings]
+    paths = tuple(path for path, _ in edits[0])
+    values = [tuple(value for _, value in row) for row in edits]
+    table = sweep(case, {paths: values}, solver=solver, tol=tol, workers=workers,
+                  allow_overload=allow_overload)
 
     names = [leg.name for leg in case.legs]
     tension = np.column_stack(
@@ -183,11 +200,6 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         x_m=x, y_m=y, yaw_deg=yaw, worst_tension_N=worst,
         worst_leg=tuple(names[k] if ok else "" for k, ok in zip(worst_index, solved)),
         converged=converged, reason=tuple(table["reason"]), table=table)
-
-
-def _wrap(angle: float) -> float:
-    """An angle in [0, 360), rounded so that 0 + 360 k stays exact."""
-    return round(angle % 360.0, 10) % 360.0
 
 
 def format_envelope(envelope: Envelope) -> str:

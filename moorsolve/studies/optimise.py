@@ -397,7 +397,7 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
     sol = solver(x0=z0, p=b_val, lbx=np.concatenate(lbx), ubx=np.concatenate(ubx),
                  lbg=lbg, ubg=ubg)
     solve_time = time.perf_counter() - t_solve
-    log.info("design NLP built in %.2f s, solved in %.2f s", t_solve - t_build, solve_time)
+    log.debug("design NLP built in %.2f s, solved in %.2f s", t_solve - t_build, solve_time)
     stats = solver.stats()
     status = str(stats.get("return_status", "unknown"))
     iterations = int(stats.get("iter_count", 0))

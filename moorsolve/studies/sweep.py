@@ -42,8 +42,10 @@ import numpy as np
 
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
+from ..model.paths import concrete_paths
+from ..model.units import KINDS, recording
 from ..solve.cache import get_problem
-from ..solve.equilibrium import solve
+from ..solve.equilibrium import over_mbl, solve
 from ..solve.stability import assess
 from ..solve.start import initial_point
 from ..solve.layout import parameter_vector
@@ -60,7 +62,7 @@ _SOLVE_LOCK = threading.RLock()
 def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | None = None,
           workers: int | None = None, output=None, resume: bool = False,
           overwrite: bool = False, scheduler=None, progress=False,
-          chunk_size: int | None = None):
+          chunk_size: int | None = None, allow_overload: bool = False):
     """Solve ``case`` at every point of the cartesian product of ``grid``.
 
     Parameters
@@ -98,6 +100,9 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         Show a progress bar (tqdm) on stderr, or on the given file.
     chunk_size : int, optional
         Points per chunk (default: at least 64, at most 64 chunks).
+    allow_overload : bool
+        An equilibrium in which a line exceeds its MBL is a converged row (its ``reason``
+        still names the overload) instead of ``converged = False``.
 
     Returns
     -------
@@ -106,11 +111,14 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         position in that order): the grid values, then ``converged``, ``reason``,
         ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
         ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
-        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. With ``output``
-        it is the finished file read back (grid values that are not plain numbers are
-        text there, lists as JSON).
+        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. Grid values are
+        SI numbers in columns named with their unit (``environment.wind.speed [m/s]``
+        for ``"20 kn"``; ``body.loads.force[0] [N]`` ... for a list); values that are
+        not quantities keep the path as name. With ``output`` it is the finished file
+        read back (those other values are text there, lists as JSON).
     """
-    plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size)
+    plan = SweepPlan(case, grid, solver=solver, tol=tol, chunk_size=chunk_size,
+                     allow_overload=allow_overload)
     sink = None
     if output is not None:
         from ..io.sweep_output import open_sink
@@ -168,7 +176,8 @@ class SweepPlan:
     """
 
     def __init__(self, case: Case, grid: Mapping, *, solver: str = "newton",
-                 tol: float | None = None, chunk_size: int | None = None):
+                 tol: float | None = None, chunk_size: int | None = None,
+                 allow_overload: bool = False):
         from ..io import load_case
         from ..model.paths import with_values
 
@@ -178,6 +187,7 @@ class SweepPlan:
             raise CaseError("case", "a sweep edits the case-file data; load the case with "
                                     "moorsolve.load_case (from a file or a dict)")
         self.case, self.solver = case, solver
+        self.allow_overload = bool(allow_overload)
         self.grid = grid
         self.axes = _axes(grid)
         self.tol = case.solver.tol if tol is None else float(tol)
@@ -187,18 +197,22 @@ class SweepPlan:
         self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
         self._with_values, self._load_case = with_values, load_case
 
-        # Each axis value validated once, as a case of its own.
-        axis_cases = []
+        # Each axis value validated once, as a case of its own; what it converted to SI
+        # gives the grid's columns (numbers in SI, the unit in the name).
+        axis_cases, self._grid = [], []
         for paths, values in self.axes:
-            cases = []
+            cases, quantities = [], []
             for value in values:
                 try:
-                    cases.append(load_case(with_values(case.source, _edits(paths, value)),
-                                           keep_source=False))
+                    with recording() as converted:
+                        cases.append(load_case(with_values(case.source, _edits(paths, value)),
+                                               keep_source=False))
                 except CaseError as err:
                     raise CaseError(f"grid[{_label(paths)!r}]",
                                     f"value {value!r}: {err}") from None
+                quantities.append(converted)
             axis_cases.append(cases)
+            self._grid.append(_grid_columns(case.source, paths, values, quantities))
 
         base_key = structure_key(case)
         base_vec = _point_vector(case)
@@ -233,13 +247,15 @@ class SweepPlan:
     def spec(self) -> dict:
         """Plain data from which a worker rebuilds this plan."""
         return {"source": self.case.source, "grid": _plain_grid(self.grid),
-                "solver": self.solver, "tol": self.tol, "chunks": self.chunks}
+                "solver": self.solver, "tol": self.tol, "chunks": self.chunks,
+                "allow_overload": self.allow_overload}
 
     @classmethod
     def from_spec(cls, spec: dict) -> "SweepPlan":
         from ..io import load_case
         grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
-        plan = cls(load_case(spec["source"]), grid, solver=spec["solver"], tol=spec["tol"])
+        plan = cls(load_case(spec["source"]), grid, solver=spec["solver"], tol=spec["tol"],
+                   allow_overload=spec["allow_overload"])
         plan.chunks = spec["chunks"]
         return plan
 
@@ -247,10 +263,11 @@ class SweepPlan:
         """What a resumed sweep must share with the one that wrote the file."""
         return {"case_sha256": _sha(self.case.source),
                 "grid_sha256": _sha(_plain_grid(self.grid)),
-                "solver": self.solver, "tol": self.tol, "n_points": self.n_points}
+                "solver": self.solver, "tol": self.tol, "n_points": self.n_points,
+                "allow_overload": self.allow_overload}
 
     def grid_columns(self) -> list[str]:
-        return [p for paths, _ in self.axes for p in paths]
+        return [col.name for columns in self._grid for col in columns]
 
     def result_columns(self) -> list[str]:
         return list(_Table(0, self.names, self.body_names).columns())
@@ -300,27 +317,29 @@ class SweepPlan:
             kernel = pool.acquire()
             try:
                 _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
-                            self.tol, self.case.body is not None)
+                            self.tol, self.case.body is not None, self.allow_overload)
             finally:
                 pool.release(kernel)
             retry = np.flatnonzero(~table.done).tolist()
         else:
             retry = list(range(len(points)))
-        _solve_each(retry, points, table, self.point_case, self.tol)
+        _solve_each(retry, points, table, self.point_case, self.tol, self.allow_overload)
         return points, table.columns()
 
     # -- rows ---------------------------------------------------------------------------------
 
     def frame(self, points, columns: dict, for_file: bool = False):
-        """A DataFrame of solved ``points`` indexed by ``point``; ``for_file`` writes grid
-        values that are not plain numbers as text (lists as JSON), numbers as floats."""
+        """A DataFrame of solved ``points`` indexed by ``point``. Grid values that are
+        quantities are SI numbers in columns named with their unit (``environment.wind.speed
+        [m/s]``; a list gives one column per item, ``body.loads.force[2] [N m]``); other
+        values keep the path as name, and ``for_file`` writes them as text (lists as JSON)."""
         import pandas as pd
 
         data = {}
-        for k, (paths, values) in enumerate(self.axes):
-            for j, path in enumerate(paths):
-                col = [_component(paths, values[self.indices[i][k]], j) for i in points]
-                data[path] = _file_values(path, self.axes[k], j, col) if for_file else col
+        for k, columns_k in enumerate(self._grid):
+            for col in columns_k:
+                cells = [col.values[self.indices[i][k]] for i in points]
+                data[col.name] = col.file_cells(cells) if for_file else cells
         data.update(columns)
         if for_file:
             data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
@@ -342,15 +361,63 @@ def _label(paths: tuple) -> str:
     return paths[0] if len(paths) == 1 else ",".join(paths)
 
 
+class _GridColumn:
+    """One grid column: its name and its value for each value of the axis."""
+
+    def __init__(self, name: str, values: list, numeric: bool):
+        self.name, self.values, self.numeric = name, values, numeric
+
+    def file_cells(self, cells: list) -> list:
+        if self.numeric:
+            return [float(v) for v in cells]
+        return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in cells]
+
+
+def _unit(kind: str) -> str:
+    return KINDS[kind][1] or "-"
+
+
+def _grid_columns(source, paths: tuple, values: list, quantities: list) -> list:
+    """The columns of one axis from the quantities each value converted to SI.
+
+    A path whose every value is one quantity is one column ``PATH [unit]``; a list of
+    quantities (``anchor``, ``body.loads.force``) one column per item, ``PATH[i] [unit]``
+    (NaN where a value is shorter); anything else (a name, a list of names) one text
+    column ``PATH`` with the values as given.
+    """
+    out = []
+    for j, path in enumerate(paths):
+        found = concrete_paths(source, path)
+        field = found[0] if found else path
+        scalars = [q.get(field) for q in quantities]
+        if all(item is not None for item in scalars):
+            out.append(_GridColumn(f"{path} [{_unit(scalars[0][1])}]",
+                                   [item[0] for item in scalars], True))
+            continue
+        items = [_items(q, field) for q in quantities]
+        width = max(len(row) for row in items)
+        if width and all(items):
+            for i in range(width):
+                kind = next(row[i][1] for row in items if len(row) > i)
+                out.append(_GridColumn(f"{path}[{i}] [{_unit(kind)}]",
+                                       [row[i][0] if len(row) > i else math.nan
+                                        for row in items], True))
+            continue
+        out.append(_GridColumn(path, [_component(paths, v, j) for v in values], all(
+            _numeric(_component(paths, v, j)) for v in values)))
+    return out
+
+
+def _items(quantities: dict, field: str) -> list:
+    """``[(value, kind), ...]`` of ``field[0]``, ``field[1]``, ... while recorded."""
+    out = []
+    while f"{field}[{len(out)}]" in quantities:
+        out.append(quantities[f"{field}[{len(out)}]"])
+    return out
+
+
 def _numeric(v) -> bool:
     return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
-
-
-def _file_values(path, axis, j, col):
-    paths, values = axis
-    if all(_numeric(_component(paths, v, j)) for v in values):
-        return [float(v) for v in col]
-    return [v if isinstance(v, str) else json.dumps(_plain(v)) for v in col]
 
 
 def _plain(obj):
@@ -460,10 +527,10 @@ class _Table:
         self.t_fair = np.full((n, len(names)), np.nan)
         self.t_anchor = np.full((n, len(names)), np.nan)
 
-    def from_result(self, i: int, result, reason: str = "") -> None:
+    def from_result(self, i: int, result, reason: str = "", converged=None) -> None:
         c = result.certificate
         self.done[i] = True
-        self.converged[i] = not reason
+        self.converged[i] = not reason if converged is None else converged
         self.reason[i], self.solver[i] = reason, result.solver
         self.iterations[i] = c.iterations
         self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
@@ -492,7 +559,8 @@ def _kernel_pool(problem):
     return problem.kernel_pool()
 
 
-def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
+def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                allow_overload=False):
     n_p = problem.n_p
     # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
     check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
@@ -511,7 +579,7 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
         mbl = vectors[i, n_p:]
         over = np.maximum(tf, ta) > mbl
         table.done[row] = True
-        table.converged[row] = not over.any()
+        table.converged[row] = allow_overload or not over.any()
         table.solver[row] = "newton"
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
@@ -529,14 +597,21 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body):
                 for k in np.flatnonzero(over))
 
 
-def _solve_each(rows, points, table, point_case, tol):
+def _overload(result) -> str:
+    """The overload of an equilibrium accepted with ``allow_overload`` (else "")."""
+    over = over_mbl(result)
+    return "overload: " + "; ".join(over) if over else ""
+
+
+def _solve_each(rows, points, table, point_case, tol, allow_overload=False):
     """Full solves (IPOPT strategy), warm-started while the structure stays the same."""
     previous = {}
     for row in rows:
         pc = point_case(int(points[row]))
         key = id(get_problem(pc))        # a state is only meaningful to its own problem
         try:
-            result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key))
+            result = solve(pc, tol=tol, solver="ipopt", start=previous.get(key),
+                           allow_overload=allow_overload)
         except ConvergenceError as err:
             if err.result is not None and err.result.converged:
                 table.from_result(row, err.result, reason=err.reason)   # e.g. overload
@@ -547,7 +622,7 @@ def _solve_each(rows, points, table, point_case, tol):
                 table.residual[row, :2] = (err.residual_N, err.residual_Nm)
             continue
         previous[key] = result.state
-        table.from_result(row, result)
+        table.from_result(row, result, reason=_overload(result), converged=True)
 
 
 # ---- running the chunks ----------------------------------------------------------------------

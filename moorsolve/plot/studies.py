@@ -1,112 +1,9 @@
-"""Plan and elevation views of an equilibrium; the only module that imports matplotlib."""
+"""Pictures of studies: check utilisation, accuracy ladder, offset envelope, polar fields,
+design optimisation and restoring curves."""
 
 from __future__ import annotations
 
 import numpy as np
-
-from .solve.result import Result
-
-
-def _max_fairlead_tension(result: Result) -> float:
-    return max((leg.fairlead_tension_N for leg in result.legs), default=0.0)
-
-
-def _tension_colour(leg, t_max):
-    import matplotlib.pyplot as plt
-    return plt.get_cmap("viridis")(leg.fairlead_tension_N / t_max if t_max > 0 else 0.0)
-
-
-def plot_plan(result: Result, ax=None):
-    """Plan view: legs coloured by fairlead tension, anchors, touchdown points, body.
-
-    Returns the Axes.
-    """
-    import matplotlib.pyplot as plt
-    if ax is None:
-        _, ax = plt.subplots()
-    t_max = _max_fairlead_tension(result)
-    for leg in result.legs:
-        p = leg.profile
-        colour = _tension_colour(leg, t_max)
-        ax.plot(p["x_m"], p["y_m"], color=colour, lw=1.5, ls=":" if leg.slack else "-")
-        ax.plot(*leg.anchor[:2], marker="v", color="k", ms=5)
-        if leg.touchdown_point is not None:
-            ax.plot(*leg.touchdown_point[:2], marker="o", mfc="none", color=colour, ms=4)
-        ax.annotate(f"{leg.name}\n{leg.fairlead_tension_N / 1e3:.0f} kN", leg.anchor[:2],
-                    fontsize=7, ha="center", va="top", xytext=(0, -6),
-                    textcoords="offset points")
-    fair = np.array([leg.fairlead[:2] for leg in result.legs])
-    if result.body is not None and len(fair) > 2:
-        ax.fill(*_hull(fair).T, color="0.8", alpha=0.6, zorder=0)
-    ax.plot(fair[:, 0], fair[:, 1], "s", color="k", ms=3)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    title = "plan"
-    if result.body is not None:
-        b = result.body
-        title += (f": offset ({b['x_m']:.2f}, {b['y_m']:.2f}) m, yaw {b['yaw_deg']:.3f} deg")
-    ax.set_title(title, fontsize=9)
-    sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(0, t_max / 1e3))
-    ax.figure.colorbar(sm, ax=ax, label="fairlead tension [kN]", shrink=0.8)
-    return ax
-
-
-def plot_elevation(result: Result, ax=None, depth: float | None = None):
-    """Elevation: each leg's profile against horizontal distance from its anchor.
-
-    Returns the Axes.
-    """
-    import matplotlib.pyplot as plt
-    if ax is None:
-        _, ax = plt.subplots()
-    t_max = _max_fairlead_tension(result)
-    for leg in result.legs:
-        p = leg.profile
-        dist = np.hypot(p["x_m"] - leg.anchor[0], p["y_m"] - leg.anchor[1])
-        ax.plot(dist, p["z_m"], color=_tension_colour(leg, t_max), lw=1.2,
-                label=f"{leg.name} {leg.fairlead_tension_N / 1e3:.0f} kN")
-    if depth is not None:
-        ax.axhline(-depth, color="saddlebrown", lw=1)
-    ax.axhline(0.0, color="tab:blue", lw=0.8, ls="--")
-    ax.set_xlabel("distance from anchor [m]")
-    ax.set_ylabel("z [m]")
-    ax.set_title("elevation (each leg in its own vertical plane)", fontsize=9)
-    ax.legend(fontsize=6, ncol=2, loc="upper left")
-    return ax
-
-
-def plot_equilibrium(result: Result, depth: float | None = None):
-    """A figure with the plan and elevation views; returns the Figure."""
-    import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(13, 5.5),
-                                 gridspec_kw={"width_ratios": [1.2, 1]})
-    plot_plan(result, a1)
-    plot_elevation(result, a2, depth=depth)
-    fig.suptitle(result.case_name or "equilibrium")
-    fig.tight_layout()
-    return fig
-
-
-def _hull(points: np.ndarray) -> np.ndarray:
-    """Convex hull of 2-D points (monotone chain), to outline the body."""
-    pts = sorted(map(tuple, points))
-    if len(pts) < 3:
-        return np.array(pts)
-
-    def cross(o, a, b):
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-    lower, upper = [], []
-    for p in pts:
-        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
-            lower.pop()
-        lower.append(p)
-    for p in reversed(pts):
-        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
-            upper.pop()
-        upper.append(p)
-    return np.array(lower[:-1] + upper[:-1])
-
 
 def plot_utilisation(report, ax=None):
     """Tension utilisation per leg (columns) and condition (rows) of a check report.
@@ -140,12 +37,15 @@ def plot_utilisation(report, ax=None):
                     fontsize=7)
         for j in range(len(legs)):
             if np.isfinite(grid[i, j]):
-                ax.text(j, i, f"{grid[i, j]:.2f}", ha="center", va="center", fontsize=6,
-                        color="k")
+                r, g, b, _ = image.cmap(image.norm(grid[i, j]))
+                dark = 0.299 * r + 0.587 * g + 0.114 * b < 0.5
+                ax.text(j, i, f"{grid[i, j]:.2f}", ha="center", va="center", fontsize=7,
+                        color="white" if dark else "k")
     ax.set_xticks(range(len(legs)), legs, fontsize=7)
     ax.set_yticks(range(len(rows)), rows, fontsize=7)
     ax.set_title(f"tension utilisation ({report.standard}; 1.0 = limit)", fontsize=9)
-    ax.figure.colorbar(image, ax=ax, label="utilisation", shrink=0.8)
+    bar = ax.figure.colorbar(image, ax=ax, label="utilisation", shrink=0.8)
+    bar.ax.axhline(1.0, color="k", lw=1.5)
     return ax
 
 
@@ -164,9 +64,11 @@ def figure_png(fig, dpi: int = 110) -> bytes:
 
 def utilisation_figure(report):
     """A figure holding :func:`plot_utilisation`; returns the Figure."""
-    ax = plot_utilisation(report)
-    ax.figure.tight_layout()
-    return ax.figure
+    import matplotlib.pyplot as plt
+    legs = {i.leg for c in report.conditions for i in c.items if i.check == "tension"}
+    fig = plt.figure(figsize=(1.6 + 0.6 * max(len(legs), 4), 1.4 + 0.35 * len(report.conditions)),
+                     layout="constrained")
+    return plot_utilisation(report, fig.add_subplot()).figure
 
 
 def plot_accuracy(rungs, axes=None):
@@ -244,14 +146,15 @@ def plot_envelope(envelope, axes=None, marks=None):
     """Polar plots of an offset envelope: offset and worst tension against heading.
 
     Angles are the heading the environment travels toward, counter-clockwise from +x
-    (east up the page's right). The worst heading is ringed on both.
+    (east up the page's right). Each plot rings the heading that governs what it shows:
+    the largest offset on the left, the worst tension on the right.
 
     Parameters
     ----------
     envelope : moorsolve.studies.envelope.Envelope
     axes : pair of polar matplotlib Axes, optional
     marks : dict of str to float, optional
-        Named headings [deg] drawn as dashed rays (e.g. ``{"bora": 225}``).
+        Named headings [deg] drawn as rays (e.g. ``{"bora": 225}``).
 
     Returns
     -------
@@ -261,27 +164,29 @@ def plot_envelope(envelope, axes=None, marks=None):
 
     e = envelope
     if axes is None:
-        fig = plt.figure(figsize=(10, 4.8), layout="constrained")
+        fig = plt.figure(figsize=(10, 5.2), layout="constrained")
         axes = (fig.add_subplot(1, 2, 1, projection="polar"),
                 fig.add_subplot(1, 2, 2, projection="polar"))
     ax_off, ax_t = axes
-    ok = np.isfinite(e.worst_tension_N)
-    worst = int(np.argmax(np.where(ok, e.worst_tension_N, -np.inf))) if ok.any() else None
-    for ax, values, label in ((ax_off, e.offset_m, "offset [m]"),
-                              (ax_t, e.worst_tension_N / 1e3, "worst tension [kN]")):
+    for ax, values, label, unit, scale in (
+            (ax_off, e.offset_m, "offset", "m", 1.0),
+            (ax_t, e.worst_tension_N, "worst tension", "kN", 1e-3)):
+        values = np.asarray(values, float) * scale
+        ok = np.isfinite(values)
         theta, r = _closed(e.heading_deg, values)
         ax.plot(theta, r, "o-", markersize=3)
-        if worst is not None:
-            ax.plot(np.radians(e.heading_deg[worst]), values[worst], "o", markersize=11,
-                    markerfacecolor="none", markeredgecolor="C3")
         r_max = np.nanmax(values) * 1.05 if ok.any() else 1.0
+        if ok.any():
+            k = int(np.nanargmax(values))
+            h = float(e.heading_deg[k])
+            ax.plot(np.radians(h), values[k], "o", markersize=12, markerfacecolor="none",
+                    markeredgecolor="C3", markeredgewidth=1.8)
+            what = (f"largest offset {values[k]:.3f} m" if unit == "m"
+                    else f"worst tension {values[k]:,.0f} kN ({e.worst_leg[k]})")
+            ax.set_xlabel(f"ringed: {what}, load toward {h:g} deg", fontsize=9)
         _mark_headings(ax, marks, r_max)
         ax.set_ylim(0, r_max * 1.02)
-        ax.set_title(label + " against heading (toward)", fontsize=10)
-    if worst is not None:
-        ax_t.set_xlabel(f"worst: {e.worst_leg[worst]} "
-                        f"{e.worst_tension_N[worst] / 1e3:.0f} kN toward "
-                        f"{e.heading_deg[worst]:g} deg", fontsize=9)
+        ax.set_title(f"{label} [{unit}] against heading (toward)", fontsize=10)
     return axes
 
 
@@ -375,3 +280,68 @@ def _utilisation(c) -> float:
     if c.kind in ("safety_factor", "grounded_length"):
         return c.limit / c.value if c.value > 0 else np.inf
     return c.value / c.limit if c.limit > 0 else (0.0 if c.value <= 0 else np.inf)
+
+
+def plot_restoring(curve, ax=None, *, operating: float = 0.0, stiffness=None):
+    """A restoring curve: the mooring force on the body against an imposed offset, with
+    the operating point and, given the stiffness, its tangent there.
+
+    Parameters
+    ----------
+    curve : dict
+        From :func:`moorsolve.restoring_curve` (``dof``, ``offset``, ``force``,
+        ``max_tension_N``).
+    ax : matplotlib Axes, optional
+    operating : float
+        Offset of the operating point [m, or deg for yaw] on the curve's axis: 0 when the
+        curve was taken ``about`` the equilibrium.
+    stiffness : float or array (3, 3) or (6, 6), optional
+        The diagonal stiffness of this DOF (or the whole matrix from
+        :func:`moorsolve.stiffness`): drawn as the tangent at the operating point.
+
+    Returns
+    -------
+    matplotlib Axes
+        The force axis; the largest line tension is on a twin axis.
+    """
+    import matplotlib.pyplot as plt
+
+    six = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+    planar = ("surge", "sway", "yaw")
+    dof = curve["dof"]
+    forces = np.asarray(curve["force"], float)
+    k = (six if forces.shape[1] == 6 else planar).index(dof)
+    offset = np.asarray(curve["offset"], float)
+    rotational = dof in ("roll", "pitch", "yaw")
+    scale, unit = (1e-6, "MN m") if rotational else (1e-3, "kN")
+    force = forces[:, k] * scale
+    name = {"surge": "force Fx", "sway": "force Fy", "heave": "force Fz", "roll": "moment Mx",
+            "pitch": "moment My", "yaw": "moment Mz"}[dof]
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
+    ax.plot(offset, force, "o-", color="C0", ms=3, label=f"mooring {name} on the body")
+    f0 = float(np.interp(operating, offset, force))
+    ax.plot(operating, f0, "o", ms=10, mfc="none", mec="C3", mew=2,
+            label=f"operating point: {operating:g} {'deg' if rotational else 'm'}, "
+                  f"{f0:,.1f} {unit}")
+    if stiffness is not None:
+        K = np.asarray(stiffness, float)
+        if K.ndim == 2:
+            j = (six if K.shape == (6, 6) else planar).index(dof)
+            kk = float(K[j, j])
+        else:
+            kk = float(K)
+        per = kk * (np.pi / 180 if rotational else 1.0) * scale
+        span = np.array([offset.min(), offset.max()])
+        ax.plot(span, f0 - per * (span - operating), "--", color="C3", lw=1,
+                label=f"tangent: stiffness {kk:.4g} "
+                      f"{'N m/rad' if rotational else 'N/m'}")
+    ax.axhline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel(f"{curve['dof']} offset [{'deg' if rotational else 'm'}]")
+    ax.set_ylabel(f"{'moment' if rotational else 'force'} [{unit}]")
+    twin = ax.twinx()
+    twin.plot(offset, np.asarray(curve["max_tension_N"]) / 1e3, color="0.5", lw=1, ls=":")
+    twin.set_ylabel("largest fairlead tension [kN] (dotted)", color="0.4")
+    ax.legend(fontsize=8, loc="best")
+    ax.set_title(f"restoring curve, {curve['dof']}", fontsize=10)
+    return ax
