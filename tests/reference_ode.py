@@ -187,3 +187,207 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True, strain=None,
                 y[0] = sol.y[0, -1]
         y[2], y[3] = tx, 0.0
     return dict(X=-y[0], Z=-y[1], HA=y[2], VA=y[3], grounded=grounded)
+
+
+def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0, strain=None,
+                          strain_max=None, tension_breaks=()):
+    """Integrate a line from its anchor end, for a line that may lie along a boundary.
+
+    Written for lines bounded by the free surface (a buoyant line, ``w < 0``), and general:
+    at the anchor the line pulls the anchor with ``(HA, VA)`` (``VA`` upward positive), so
+    the tension the rest of the line exerts at ``s = 0`` is ``(Tx, Tz) = (HA, VA)``; along a
+    suspended element ``dTz/ds = w`` as in :func:`integrate_leg`. Where ``Tz`` reaches zero
+    (the vertex, ``s_v = -VA / w``) and ``float_length > 0``, the line lies along a horizontal
+    boundary at the vertex's height for ``float_length`` (unstretched) metres: ``Tz = 0``,
+    ``dx/ds = 1 + Tx/EA``, ``Tx`` constant (no friction); then it is suspended again, with
+    ``Tz = w (s - s_v - float_length)``. A slack line (``HA = 0``) is laid straight along the
+    boundary (the loose part is the caller's business, as in :func:`integrate_leg`).
+    ``strain``, ``strain_max``, ``tension_breaks``: a strain law as in :func:`integrate_leg`.
+
+    From the anchor this is an initial-value problem for a buoyant line: whether the vertex
+    lies on the surface is what the caller checks (it sets the anchor's depth to the
+    vertex height for a floating line).
+
+    Returns
+    -------
+    dict
+        ``X``, ``Z``: the far end relative to the anchor [m]; ``HF``, ``VF``: the force the
+        far end exerts on the line (``(Tx, Tz)`` at ``s = L``) [N]; ``z_vertex``,
+        ``x_vertex``: where ``Tz`` first vanishes (None if it does not within the line);
+        ``z_max``, ``z_min``: the highest and lowest heights reached; with ``n > 0`` also
+        ``s``, ``x``, ``z`` sampled at ``n`` points.
+    """
+    t_scale = max(math.hypot(HA, VA), abs(w) * L, 1e-300)
+    if strain is not None:
+        stretch_max = strain_max if strain_max is not None else strain(t_scale + abs(w) * L)
+    else:
+        stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
+    scale = (L * (1.0 + stretch_max), t_scale)
+    factor = _stretch_factor(ea, strain)
+    rhs = _suspended_rhs(w, ea, strain)
+    s_v = -VA / w if w != 0.0 else math.inf
+    has_vertex = 0.0 < s_v < L
+    s_f = min(s_v + float_length, L) if has_vertex and float_length > 0.0 else s_v
+
+    def tz(s):
+        """The vertical tension, exactly (it is linear between the breakpoints)."""
+        if not has_vertex or s <= s_v:
+            return VA + w * s
+        return 0.0 if s <= s_f else w * (s - s_f)
+
+    breaks = [0.0] + ([s_v, s_f] if has_vertex else []) + [L]
+    # Where the suspended line's tension passes a law's breakpoint T_k (Tz = +-sqrt(T_k^2 -
+    # HA^2)): before the vertex Tz = VA + w s, after the boundary Tz = w (s - s_f).
+    runs = [(0.0, s_v if has_vertex else L, lambda t_z: (t_z - VA) / w)]
+    if has_vertex:
+        runs.append((s_f, L, lambda t_z: s_f + t_z / w))
+    for tk in tension_breaks:
+        if tk > HA and w != 0.0:
+            r = math.sqrt(tk * tk - HA * HA)
+            breaks += [at(t_z) for lo, hi, at in runs for t_z in (r, -r) if lo < at(t_z) < hi]
+    breaks = sorted(set(breaks))
+    samples = np.linspace(0.0, L, n) if n else np.zeros(0)
+    xs, zs = np.full(samples.shape, np.nan), np.full(samples.shape, np.nan)
+    y = np.array([0.0, 0.0, float(HA), float(VA)])
+    heights = [0.0]
+    vertex = None
+    for s0, s1 in zip(breaks[:-1], breaks[1:]):
+        if s1 <= s0:
+            continue
+        inside = (samples >= s0) & (samples <= s1)
+        if has_vertex and s0 == s_v and s1 == s_f:
+            # On the boundary: horizontal, constant tension.
+            x0 = y[0]
+            xs[inside] = x0 + (samples[inside] - s0) * factor(HA)
+            zs[inside] = y[1]
+            y = np.array([x0 + (s1 - s0) * factor(HA), y[1], float(HA), 0.0])
+            continue
+        if inside.any():
+            sol = solve_ivp(rhs, (s0, s1), y, method="DOP853", rtol=RTOL,
+                            atol=[1e-16 * scale[0]] * 2 + [1e-16 * scale[1]] * 2,
+                            t_eval=samples[inside])
+            xs[inside], zs[inside] = sol.y[0], sol.y[1]
+        y = _integrate(rhs, s0, s1, y, scale)
+        y[2], y[3] = HA, tz(s1)
+        # Tz keeps its sign inside a piece, so the height is monotone there: the extremes
+        # are at the breakpoints.
+        heights.append(y[1])
+        if has_vertex and s1 == s_v:
+            vertex = (y[0], y[1])
+    out = dict(X=y[0], Z=y[1], HF=float(HA), VF=tz(L), z_max=max(heights),
+               z_min=min(heights), x_vertex=None if vertex is None else vertex[0],
+               z_vertex=None if vertex is None else vertex[1])
+    if n:
+        out.update(s=samples, x=xs, z=zs)
+    return out
+
+
+def integrate_to_slope(*, H, V, L, w, t, ea=None, mu=0.0):
+    """A sinking leg whose anchor lies on a seabed of slope ``t`` (rise per metre along the
+    leg, anchor toward fairlead), integrated from the fairlead end forces ``(H, V)``.
+
+    The suspended part runs down from the fairlead until its direction is the seabed's
+    (``Tz = H t``): there it touches down, tangentially, and the rest lies on the slope. Along
+    the slope the tension changes by ``w (sin(theta) + mu cos(theta))`` per metre toward the
+    anchor (weight along the slope, friction fully mobilised toward the anchor), never below
+    zero; the line stretches by ``T/EA``.
+
+    Returns ``X``, ``Z`` (fairlead relative to the anchor), ``TA`` (anchor tension, along the
+    slope), ``grounded`` and the touchdown point ``x_td``, ``z_td`` relative to the anchor.
+    """
+    c = 0.0 if ea is None else 1.0 / ea
+    rhs = _suspended_rhs(w, ea)
+    t_scale = max(math.hypot(H, V), abs(w) * L)
+    scale = (L * (1.0 + t_scale * c), t_scale)
+    s_td = L - (V - H * t) / w            # Tz = V - w (L - s) reaches H t here
+    y = _integrate(rhs, L, max(s_td, 0.0), [0.0, 0.0, float(H), float(V)], scale)
+    grounded = max(s_td, 0.0)
+    sec = math.sqrt(1.0 + t * t)
+    cos_t, sin_t = 1.0 / sec, t / sec
+    k = w * (sin_t + mu * cos_t)
+    T = H * sec if grounded > 0 else math.hypot(H, V - w * L)
+
+    def ground(s, yy):
+        tension = max(yy[1], 0.0)
+        return [1.0 + tension * c, k]
+
+    if grounded > 0:
+        sol = solve_ivp(ground, (grounded, 0.0), [0.0, T], method="DOP853", rtol=RTOL,
+                        atol=[1e-16 * scale[0], 1e-16 * scale[1]], max_step=grounded / 50)
+        along, T = -sol.y[0, -1], max(sol.y[1, -1], 0.0)
+    else:
+        along = 0.0
+    # Fairlead relative to the touchdown is minus the end state; the touchdown relative to
+    # the anchor is ``along`` metres up the slope.
+    x_td, z_td = along * cos_t, along * sin_t
+    return dict(X=x_td - y[0], Z=z_td - y[1], TA=T, grounded=grounded, x_td=x_td, z_td=z_td)
+
+
+def integrate_in_current(*, H, V, L, w, ea, diameter, rho, normal, tangential, velocity,
+                         z_fairlead):
+    """A line in a current in its vertical plane, integrated from the fairlead end forces.
+
+    ``velocity(z)`` is the current's speed along +x at height ``z`` (signed: a current
+    that reverses with depth). Per unstretched metre the line carries its weight ``w`` and
+    the flow force on its stretched length ``(1 + T/EA)``: ``(rho d/2)(C_n |U_n| U_n +
+    C_t |U_t| U_t)`` (Merkin 1980, seed 004, chapter 5). With ``T(s)`` the force the line
+    beyond ``s`` exerts, ``dT/ds = -q``; ``dr/ds = (1 + T/EA) T/|T|``. Integrated from
+    ``s = L`` (the fairlead, at height ``z_fairlead``) to 0; returns the fairlead's position
+    relative to the anchor ``X``, ``Z`` and the anchor force ``HA``, ``VA`` (the line's pull).
+    """
+    c = 0.0 if ea is None else 1.0 / ea
+    q = rho * diameter / 2
+
+    def rhs(s, y):
+        x, z, tx, tz = y
+        T = math.hypot(tx, tz)
+        ex, ez = tx / T, tz / T
+        u = velocity(z_fairlead + z)
+        along = u * ex
+        un = (u - along * ex, -along * ez)
+        un_mag = math.hypot(*un)
+        stretch = 1.0 + T * c
+        fx = q * (normal * un_mag * un[0] + tangential * abs(along) * along * ex) * stretch
+        fz = q * (normal * un_mag * un[1] + tangential * abs(along) * along * ez) * stretch
+        return [stretch * ex, stretch * ez, -fx, -(fz - w)]
+
+    sol = solve_ivp(rhs, (L, 0.0), [0.0, 0.0, float(H), float(V)], method="DOP853",
+                    rtol=1e-12, atol=1e-12 * max(L, math.hypot(H, V)))
+    if sol.status != 0:
+        raise RuntimeError(f"ODE integration failed: {sol.message}")
+    x, z, tx, tz = sol.y[:, -1]
+    return dict(X=-x, Z=-z, HA=tx, VA=tz)
+
+
+def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None):
+    """A suspended line whose upper end is ``z_top`` above the still-water level: weight
+    ``w_air`` per unstretched metre above z = 0 and ``w_water`` below, integrated from the
+    upper end's forces ``(H, V)`` down the whole length (no seabed). The crossing of the
+    surface is found as an event and the integration restarted there with the other weight.
+
+    Returns ``X``, ``Z`` (the upper end relative to the lower) and ``VA`` (the line's upward
+    pull on its lower end).
+    """
+    c = 0.0 if ea is None else 1.0 / ea
+
+    def rhs_for(w):
+        def rhs(s, y):
+            x, z, tx, tz = y
+            T = math.hypot(tx, tz)
+            return [(1 + T * c) * tx / T, (1 + T * c) * tz / T, 0.0, w]
+        return rhs
+
+    def crossing(s, y):
+        return y[1]
+    crossing.terminal = True
+    y0 = [0.0, float(z_top), float(H), float(V)]
+    scale = max(L, abs(z_top))
+    sol = solve_ivp(rhs_for(w_air), (L, 0.0), y0, method="DOP853", rtol=RTOL,
+                    atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2, events=crossing)
+    if sol.status == 1:
+        s_c = sol.t_events[0][0]
+        y_c = sol.y_events[0][0]
+        sol = solve_ivp(rhs_for(w_water), (s_c, 0.0), y_c, method="DOP853", rtol=RTOL,
+                        atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2)
+    x, z, tx, tz = sol.y[:, -1]
+    return dict(X=-x, Z=z_top - z, VA=tz)

@@ -380,7 +380,7 @@ ERROR_CASES = [
     (_set(LEG + ("name",), ""), "legs[0].name", "non-empty string"),
     (_delete(LEG + ("name",)), "legs[0].name", "missing"),
     (_set(LEG + ("anchor",), [0, 0, -30]), "legs[0].anchor", "below the seabed"),
-    (_set(LEG + ("anchor",), [-240, -120, 5]), "legs[0].anchor", "above the fairlead"),
+    (_set(LEG + ("anchor",), [-240, -120, 5]), "legs[0].anchor", "above the still-water"),
     (_set(LEG + ("anchor",), [1]), "legs[0].anchor", "[x, y] or [x, y, z]"),
     (_set(LEG + ("anchor",), "0, 0"), "legs[0].anchor", "not a list"),
     (_set(LEG + ("fairlead",), [0, 0, -25]), "legs[0].fairlead", "below the seabed"),

@@ -13,7 +13,7 @@ from scipy.optimize import brentq, fsolve
 
 import moorsolve
 from moorsolve.physics.catenary import LegKind, evaluate_leg
-from moorsolve.physics.profiles import leg_profile
+from moorsolve.physics.profile import leg_profile
 
 KGF = 9.80665
 INEXTENSIBLE_CONTACT = LegKind(elastic=False, contact=True)

@@ -97,3 +97,22 @@ def test_cli_inverse_commands(capsys):
     capsys.readouterr()
     assert main(["anchor-distance", *argv, "--tension", "12 parsecs"]) == 2
     assert "--tension" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("H", [1e-9, 1e-6, 1e-3, 1.0, 1e3, 1e6])
+def test_any_horizontal_tension_down_to_a_nearly_vertical_line(H):
+    """Issue 20: a tiny horizontal tension (a nearly vertical line) gave "no equilibrium"
+    where the answer exists. Closed form of the inextensible line touching down at its
+    anchor: ``V = sqrt((H + w h)^2 - H^2)``, ``X = (H/w) asinh(V/H)``, ``L = V/w``."""
+    from moorsolve.studies import inverse
+    w, h = 1275.0, 20.0
+    V = math.sqrt((H + w * h) ** 2 - H**2)
+    X = (H / w) * math.asinh(V / H)
+    least = inverse.minimum_anchor_distance(h, w, horizontal_tension=H)
+    assert least.anchor_distance_m == pytest.approx(X, rel=1e-8, abs=1e-12)
+    assert least.length_m == pytest.approx(V / w, rel=1e-10)
+    chain = inverse.required_chain_length(h, w, 10.0, horizontal_tension=H)
+    assert chain.length_m == pytest.approx(V / w + 10.0, rel=1e-10)
+    assert chain.anchor_distance_m == pytest.approx(X + 10.0, rel=1e-10)
+    up = inverse.uplift_at_distance(h, w, X + 5.0, horizontal_tension=H)
+    assert up.grounded_length_m == pytest.approx(5.0, rel=1e-8)

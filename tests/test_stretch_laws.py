@@ -13,7 +13,8 @@ References, none sharing code with ``moorsolve.physics``:
 For Baranov and table laws, suspended and with touchdown (with and without friction, slack,
 anchor above the seabed, buoyant, near vertical, taut beyond the table) the block's span
 residuals vanish at the ODE's spans and, inverted, it gives the ODE's fairlead tension to
-1e-8 relative.
+1e-8 relative; the same for a buoyant rope bounded by the free surface
+(``reference_ode.integrate_from_anchor`` with the law).
 """
 
 from __future__ import annotations
@@ -27,16 +28,18 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 from hypothesis_budget import examples
-from reference_ode import integrate_leg
+from reference_ode import integrate_from_anchor, integrate_leg
 from scipy.integrate import quad
 from test_leg_ode import REGIMES as ODE_REGIMES
 from test_leg_ode import _span_map
 from test_leg_ode import legs as ode_legs
 from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
-from moorsolve.physics.catenary import (LIFTED_INPUTS, SLOPED_INPUTS, LegKind,
-                                        evaluate_leg, leg_function, lifted_segment_function,
-                                        sloped_leg_function, straight_segment_function)
+from moorsolve.physics.catenary import (LIFTED_INPUTS, LegKind, evaluate_leg,
+                                        evaluate_surface_leg, leg_function,
+                                        lifted_segment_function, straight_segment_function,
+                                        surface_leg_function, surface_segment_function)
+from moorsolve.physics.sloped import SLOPED_INPUTS, sloped_leg_function
 from moorsolve.physics.stretch import Law, NumericLaw, StretchModel, evaluate, pchip_slopes
 
 REL = 1e-8
@@ -245,7 +248,7 @@ def test_hooke_as_a_general_law_equals_the_closed_forms(args):
         for h in (0.0, 3.0):
             lifted = {k: v for k, v in dict(args, h=h).items() if k in LIFTED_INPUTS}
             _agree(lifted_segment_function(True, friction).call(lifted),
-                   lifted_segment_function(True, friction, HOOKE).call(dict(lifted, **law)))
+                   lifted_segment_function(True, friction, model=HOOKE).call(dict(lifted, **law)))
         for t in (0.2, -0.05):
             sloped = {k: v for k, v in dict(args, t=t).items() if k in SLOPED_INPUTS}
             _agree(sloped_leg_function(True, friction).call(sloped),
@@ -253,6 +256,11 @@ def test_hooke_as_a_general_law_equals_the_closed_forms(args):
     straight = {k: args[k] for k in ("X", "Z", "u", "V", "L", "ea_inv")}
     _agree(straight_segment_function(True).call(straight),
            straight_segment_function(True, HOOKE).call(dict(straight, **law)))
+    # A buoyant leg bounded by the surface, solved from the anchor and from the fairlead.
+    buoyant = dict(args, Z=-args["Z"], V=-args["V"], w=-args["w"], d=4.0)
+    for from_fairlead in (False, True):
+        _agree(surface_leg_function(True, from_fairlead).call(buoyant),
+               surface_leg_function(True, from_fairlead, HOOKE).call(dict(buoyant, **law)))
 
 
 # ---- the leg block against the ODE, Baranov and table laws ---------------------------------
@@ -367,7 +375,8 @@ def test_lifted_block_on_the_seabed_is_the_leg_block(name, friction):
     model, params, _, _ = LAWS[name]
     args = dict(X=1000.0, Z=300.0, u=3e5, V=3e5, L=1200.0, w=400.0, ea_inv=0.0, mu=0.4)
     leg = leg_function(LegKind(True, True, friction, law=model)).call(dict(args, law=params))
-    lifted = lifted_segment_function(True, friction, model).call(dict(args, h=0.0, law=params))
+    lifted = lifted_segment_function(True, friction, model=model).call(
+        dict(args, h=0.0, law=params))
     for k in ("rX", "rZ", "HA", "VA", "grounded", "suspended_x"):
         assert float(lifted[k]) == pytest.approx(float(leg[k]), rel=1e-12, abs=1e-8), k
 
@@ -390,7 +399,7 @@ def test_lifted_two_sided_touchdown_matches_three_ode_pieces(name):
     LB = L - s1 - V / w
     X = descent["X"] + LB * (1 + f(H)) + rise["X"]
     Z = rise["Z"] - h
-    out = lifted_segment_function(True, False, model).call(
+    out = lifted_segment_function(True, False, model=model).call(
         dict(X=X, Z=Z, h=h, u=H, V=V, L=L, w=w, ea_inv=0.0, mu=0.0, law=params))
     assert abs(float(out["rX"])) <= 1e-10 * L and abs(float(out["rZ"])) <= 1e-10 * L
     assert float(out["VA"]) == pytest.approx(V1, rel=1e-12)
@@ -419,3 +428,84 @@ def test_straight_segment_stretches_by_the_law(name):
     out = straight_segment_function(True, model).call(
         dict(X=stretched * H / T, Z=stretched * V / T, u=H, V=V, L=L, ea_inv=0.0, law=params))
     assert abs(float(out["rX"])) <= 1e-12 * L and abs(float(out["rZ"])) <= 1e-12 * L
+
+
+# ---- buoyant ropes bounded by the free surface ---------------------------------------------
+
+SURFACE_REGIMES = ("suspended", "float_to_fairlead", "float_two_sided", "slack")
+
+
+@st.composite
+def buoyant_ropes(draw, regime):
+    """A buoyant rope in one regime of tests/test_surface_ode.py, its largest tension 5 kN
+    to 1.5 MN, its state at the anchor from the ODE with the law, and where the surface is
+    (above the highest point of a suspended rope; at the vertex of a floating one)."""
+    L = draw(log_uniform(20.0, 2000.0))
+    T = draw(log_uniform(5e3, 1.5e6))
+    w = -T / L * draw(st.floats(0.05, 0.5))
+    H = 0.0 if regime == "slack" else T * draw(log_uniform(1e-3, 0.8))
+    float_length = 0.0
+    if regime == "suspended":
+        VA = -w * L * draw(st.floats(-1.0, 1.0))
+    else:
+        s_v = L * draw(st.floats(0.02, 0.98))
+        VA = -w * s_v
+        rest = L - s_v
+        float_length = rest if regime == "float_to_fairlead" else \
+            rest * draw(st.floats(0.05, 0.95))
+    name = draw(st.sampled_from(sorted(LAWS)))
+    _, _, f, breaks = LAWS[name]
+    ref = integrate_from_anchor(HA=H, VA=VA, L=L, w=w, float_length=float_length, strain=f,
+                                tension_breaks=breaks)
+    depth_anchor = (ref["z_max"] + L * draw(st.sampled_from([0.0, 0.1])) if regime ==
+                    "suspended" else ref["z_vertex"])
+    loose = float_length * draw(st.floats(0.0, 1.0)) if regime == "slack" else 0.0
+    return dict(regime=regime, law=name, L=L, w=w, H=H, VA=VA, float_length=float_length,
+                loose=loose, ref=ref, depth_anchor=depth_anchor,
+                depth_fairlead=depth_anchor - ref["Z"])
+
+
+@pytest.mark.parametrize("regime", SURFACE_REGIMES)
+@pytest.mark.parametrize("from_fairlead", [False, True])
+@settings(max_examples=examples(10), deadline=None,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_surface_block_with_a_law_matches_the_ode(regime, from_fairlead, data):
+    """The buoyant leg block (solved from the anchor, and from a fairlead at or below the
+    surface) closes both spans at the ODE's state and gives its end forces and floating
+    length to 1e-8, with Baranov's and the table's law."""
+    rope = data.draw(buoyant_ropes(regime))
+    from_fairlead = from_fairlead and rope["depth_fairlead"] >= 0
+    model, params, _, _ = LAWS[rope["law"]]
+    ref = rope["ref"]
+    u = rope["H"] if rope["loose"] == 0.0 else rope["w"] * rope["loose"]
+    V = -rope["VA"] if from_fairlead else ref["VF"]
+    d = max(rope["depth_fairlead"], 0.0) if from_fairlead else rope["depth_anchor"]
+    out = evaluate_surface_leg(True, from_fairlead, ref["X"] - rope["loose"], ref["Z"], u, V,
+                               rope["L"], rope["w"], 0.0, d, model=model, law=params)
+    t_max = max(math.hypot(rope["H"], rope["VA"]), math.hypot(ref["HF"], ref["VF"]),
+                abs(rope["w"]) * rope["L"])
+    size = rope["L"] * 1.2
+    errors = {"X": abs(out["rX"]) / size, "Z": abs(out["rZ"]) / size,
+              "H": abs(out["H"] - rope["H"]) / t_max,
+              "VF": abs(out["VF"] - ref["VF"]) / t_max,
+              "VA": abs(out["VA"] - rope["VA"]) / t_max,
+              "floating": abs(out["floating"] - rope["float_length"]) / rope["L"]}
+    worst = max(errors, key=errors.get)
+    assert errors[worst] <= REL, (worst, errors, rope, out)
+
+
+@pytest.mark.parametrize("name", sorted(LAWS))
+def test_surface_segment_is_the_mirrored_lifted_segment(name):
+    """A buoyant segment between joints is the lifted block of the mirrored line (the
+    surface bounds it as the seabed bounds a sinking one), law and all."""
+    model, params, _, _ = LAWS[name]
+    args = dict(X=900.0, Z=-200.0, h=30.0, u=3e5, V=-2e5, L=1200.0, w=-400.0, ea_inv=0.0,
+                mu=0.0, law=params)
+    floating = surface_segment_function(True, True, model).call(args)
+    lifted = lifted_segment_function(True, False, True, model).call(
+        dict(args, Z=200.0, V=2e5, w=400.0))
+    assert float(floating["rX"]) == pytest.approx(float(lifted["rX"]), rel=1e-14, abs=1e-9)
+    assert float(floating["rZ"]) == pytest.approx(-float(lifted["rZ"]), rel=1e-14, abs=1e-9)
+    assert float(floating["floating"]) == pytest.approx(float(lifted["grounded"]), rel=1e-14)
+    assert float(lifted["grounded"]) > 0

@@ -170,6 +170,13 @@ class CheckReport:
                     for i in c.items if not i.passed]
         return out
 
+    @property
+    def warnings(self) -> list[dict]:
+        """Every solved condition's warnings (:attr:`moorsolve.Result.warnings`), each with
+        its ``condition``: what no engineer may miss, pass or fail."""
+        return [dict(w, condition=c.name) for c in self.conditions if c.result is not None
+                for w in c.result.warnings]
+
     def to_dict(self) -> dict:
         return {
             "case": self.case_name, "standard": self.standard,
@@ -185,6 +192,7 @@ class CheckReport:
             "criteria": [dataclasses.asdict(c) for c in self.criteria],
             "conditions": [c.to_dict() for c in self.conditions],
             "failures": self.failures,
+            "warnings": self.warnings,
         }
 
 

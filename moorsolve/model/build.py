@@ -25,9 +25,13 @@ Schema (SI units, ``[...]`` lists)::
       wind: {speed: >= 0 [m/s], toward_deg     optional; toward_deg or from_deg (one);
              | from_deg}                       current likewise, plus an optional
                                                profile: [[z <= 0, speed], ...] z ascending
+                                               (speed signed along toward_deg), or
+                                               [[z, speed >= 0, toward_deg], ...]
       waves: {hs: >= 0 [m], toward_deg | from_deg}   optional
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
+             weight_in_air >= weight_in_water [N/m or mass/m] (for a line end above
+             the water; a catalogue line has it from its mass),
              sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm},
              stretch: STRETCH (instead of ea), fibre: bool, min_tension >= 0 [N],
              stiffness_bounds: {lower: BOUND, upper: BOUND}}
@@ -100,19 +104,34 @@ def _flow(raw, path: str, compass: Compass, profile: bool = False) -> Flow:
     toward = flow_direction(m, path, compass, _angle)
     rows = None
     if m.get("profile") is not None:
-        ppath = field_path(path, "profile")
-        rows = []
-        for rpath, row in check_rows(m["profile"], ppath, "[z, speed]", width=2, min_rows=1,
-                                empty="a current profile (z <= 0, ascending)"):
-            z = quantity(row[0], field_path(rpath, 0), "length", le=0)
-            v = quantity(row[1], field_path(rpath, 1), "speed", ge=0)
-            if rows and not z > rows[-1][0]:
-                raise CaseError(field_path(rpath, 0), f"z = {format_si(z, 'length')} must be above "
-                                                 "the previous row's (z ascending, from the "
-                                                 "seabed up to the surface)")
-            rows.append((z, v))
-        rows = tuple(rows)
+        rows = _current_profile(m["profile"], field_path(path, "profile"), compass)
     return Flow(speed=speed, toward_deg=toward, profile=rows)
+
+
+def _current_profile(raw, ppath: str, compass: Compass) -> tuple:
+    """Rows ``[z, speed]`` (a signed speed along the current's ``toward_deg``: negative
+    flows the other way) or ``[z, speed, toward_deg]`` (a speed >= 0 and its own heading),
+    all of one form, z ascending from the seabed to the surface."""
+    first = check_list(raw, ppath, "a list of rows [z, speed] or [z, speed, toward_deg]")
+    width = 3 if first and isinstance(first[0], (list, tuple)) and len(first[0]) == 3 else 2
+    shape = "[z, speed, toward_deg]" if width == 3 else "[z, speed]"
+    rows = []
+    for rpath, row in check_rows(raw, ppath, shape, width=width, min_rows=1,
+                                 empty="a current profile (z <= 0, ascending)"):
+        z = quantity(row[0], field_path(rpath, 0), "length", le=0)
+        if width == 3:
+            v = quantity(row[1], field_path(rpath, 1), "speed", ge=0, le=MAX_SPEED)
+            # A row's heading is the direction it travels toward, in the case's convention.
+            heading = compass.toward_deg(quantity(row[2], field_path(rpath, 2), "angle"),
+                                         "toward_deg")
+        else:
+            v = quantity(row[1], field_path(rpath, 1), "speed", ge=-MAX_SPEED, le=MAX_SPEED)
+        if rows and not z > rows[-1][0]:
+            raise CaseError(field_path(rpath, 0), f"z = {format_si(z, 'length')} must be above "
+                                                  "the previous row's (z ascending, from the "
+                                                  "seabed up to the surface)")
+        rows.append((z, v, heading) if width == 3 else (z, v))
+    return tuple(rows)
 
 
 def _waves(raw, path: str, compass: Compass) -> Waves:

@@ -84,10 +84,13 @@ def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool)
                                              f"{allowed}")
         if az < bed:
             anchor = anchor[:2] + (bed,)
-        if anchor[2] > fz:
-            raise CaseError(field_path(apath, 2), f"anchor z = {format_si(az, 'length')} is above "
-                                             f"the fairlead (z = {format_si(fz, 'length')}); the "
-                                             "anchor must not be higher than its fairlead")
+        # An anchor may lie higher than its fairlead (a deep spar fairlead, an anchor up a
+        # slope or on a pile head): every line block takes either sign of the height.
+        if az > 0:
+            raise CaseError(field_path(apath, 2),
+                            f"anchor z = {format_si(az, 'length')} is above the still-water "
+                            "level (z = 0); an anchor must be in the water (a fixed point in "
+                            "air can be the leg's fairlead, with no body)")
 
     spath = field_path(path, "segments")
     segments, clumps = _segments(m["segments"], spath, environment, line_types)

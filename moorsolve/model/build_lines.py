@@ -44,8 +44,8 @@ def _line_type(name: str, raw, path: str, gravity: float,
     if isinstance(raw, Mapping) and "catalog" in raw:
         return _catalog_line_type(name, raw, path, gravity, water_density)
     m = check_mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag")
-                 + LINE_TYPE_KEYS)
+                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag",
+                           "weight_in_air") + LINE_TYPE_KEYS)
     wpath = field_path(path, "weight_in_water")
     weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
     if abs(weight) > MAX_WEIGHT:
@@ -63,7 +63,26 @@ def _line_type(name: str, raw, path: str, gravity: float,
     sealed = _sealed(m, path, diameter)
     return LineType(name=name, weight_in_water=weight, mbl=mbl, diameter=diameter,
                     sealed=sealed, drag=_line_type_drag(m, path, diameter),
+                    weight_in_air=_weight_in_air(m, path, gravity, weight),
                     **line_type_fields(m, path, ea))
+
+
+def _weight_in_air(m: dict, path: str, gravity: float, in_water: float, default=None):
+    """The optional ``weight_in_air`` [N/m, or a mass per length]: what the line weighs
+    above the water. It is at least the weight in water (the water's buoyancy only lightens
+    a line) and positive."""
+    if m.get("weight_in_air") is None:
+        return default
+    wpath = field_path(path, "weight_in_air")
+    value = weight_per_length_to_si(m["weight_in_air"], gravity, wpath)
+    if not 0 < value <= MAX_WEIGHT:
+        raise CaseError(wpath, f"{format_si(value, 'force_per_length')} must be > 0 and "
+                               f"<= {MAX_WEIGHT:g} N/m")
+    if value < in_water:
+        raise CaseError(wpath, f"{format_si(value, 'force_per_length')} is less than the "
+                               f"weight in water ({format_si(in_water, 'force_per_length')}); "
+                               "a line weighs at least as much in air as in water")
+    return value
 
 
 def _sealed(m: dict, path: str, diameter) -> bool:
@@ -90,6 +109,7 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
     """
     m = check_mapping(raw, path, required=("catalog", "diameter"),
                  optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
+                           "weight_in_air",
                            "drag") + LINE_TYPE_KEYS)
     known = line_catalog.entries()
     entry = m["catalog"]
@@ -121,7 +141,10 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
                     drag=_line_type_drag(m, path, diameter),
                     corrosion_allowance=allowance, source=props.source,
                     **line_type_fields(m, path, props.ea if ea is None else ea,
-                                       catalogue=props))
+                                       catalogue=props),
+                    # The catalogue knows the mass: the weight in air follows.
+                    weight_in_air=_weight_in_air(m, path, gravity, weight,
+                                                 props.mass_per_length * gravity))
 
 
 def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_DENSITY) -> dict:

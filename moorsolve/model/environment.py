@@ -7,8 +7,11 @@ the case file gave (``from_deg``, a compass bearing: :mod:`moorsolve.model.direc
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Optional
+
+import numpy
 
 from ..constants import AIR_DENSITY, SEAWATER_DENSITY, STANDARD_GRAVITY
 from .directions import Compass
@@ -18,15 +21,40 @@ from .directions import Compass
 class Flow:
     """A wind or current: speed [m/s] toward ``toward_deg``.
 
-    A current may carry a ``profile`` of ``(z, speed)`` rows (z ascending, m and m/s) that
-    the lines see, interpolated linearly and held constant beyond its ends; ``speed`` is
-    then what the body's load models see. Without a profile the lines see ``speed`` at
-    every depth.
+    A current may carry a ``profile`` that the lines see, z ascending [m], interpolated
+    linearly and held constant beyond its ends: rows ``(z, speed)`` with a signed speed
+    along ``toward_deg`` [m/s] (negative: the other way), or ``(z, speed, toward_deg)``
+    with each row's own heading (a current that turns with depth; the velocity vectors are
+    interpolated). ``speed`` is then what the body's load models see. Without a profile the
+    lines see ``speed`` at every depth.
     """
 
     speed: float
     toward_deg: float = 0.0
     profile: Optional[tuple] = None
+
+    @property
+    def profile_headings(self) -> bool:
+        """The profile gives a heading per row (``(z, speed, toward_deg)`` rows)."""
+        return bool(self.profile) and len(self.profile[0]) == 3
+
+    def profile_vectors(self) -> tuple:
+        """The profile as ``(z, ux, uy)`` rows [m, m/s] in the global frame."""
+        out = []
+        for row in self.profile or ():
+            heading = math.radians(row[2] if len(row) == 3 else self.toward_deg)
+            out.append((row[0], row[1] * math.cos(heading), row[1] * math.sin(heading)))
+        return tuple(out)
+
+    def velocity(self, z: float) -> tuple:
+        """The current's horizontal velocity ``(ux, uy)`` [m/s] the lines see at height z."""
+        if not self.profile:
+            heading = math.radians(self.toward_deg)
+            return self.speed * math.cos(heading), self.speed * math.sin(heading)
+        rows = self.profile_vectors()
+        zs = [r[0] for r in rows]
+        return (float(numpy.interp(z, zs, [r[1] for r in rows])),
+                float(numpy.interp(z, zs, [r[2] for r in rows])))
 
 
 @dataclass(frozen=True)

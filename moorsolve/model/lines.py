@@ -7,7 +7,6 @@ from typing import Optional
 
 from .stretch import StiffnessBounds, StretchLaw
 
-
 @dataclass(frozen=True)
 class LineDrag:
     """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
@@ -76,6 +75,10 @@ class LineType:
     catalog: Optional[str] = None
     corrosion_allowance: float = 0.0
     source: Optional[str] = None
+    #: Weight per unit length in air [N/m], for the part of a line above the water (a
+    #: fairlead in air); None when the case gives none (that part then takes the weight in
+    #: water, with a warning).
+    weight_in_air: Optional[float] = None
     stretch: Optional[StretchLaw] = None
     fibre: bool = False
     min_tension: Optional[float] = None

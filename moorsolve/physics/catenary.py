@@ -21,6 +21,22 @@ anchor as ``H_A = max(H - mu w L_B, 0)``. It changes the anchor load and the ela
 stretch of the grounded part; an inextensible line's shape does not depend on it. The
 opposite "as laid" assumption (no friction relief) is ``mu = 0``.
 
+The free surface
+----------------
+The still-water level ``z = 0`` bounds a buoyant line as the seabed bounds a sinking one
+(REFERENCE.md section 7): where the catenary of a buoyant line would rise above the surface,
+the line reaches it tangentially (vertical tension zero: the vertex of the suspended part is
+at ``z = 0``), floats along it with constant tension (its buoyancy taken by the surface, no
+drag along it) and, if its far end is below the surface, leaves it tangentially again. That
+is exactly the seabed model mirrored in ``z`` (``w -> -w``, ``z -> -z``, vertical forces
+change sign), so :func:`surface_segment_equations` *is* :func:`lifted_segment_equations`
+called on the mirrored arguments: one model, one set of regimes (suspended, a two-sided
+contact, slack with loose line floating), the same signed unknown ``u``. A leg whose
+fairlead is at the surface is solved from the fairlead end (``LegKind.from_fairlead``), so
+the floating length sits at the block's lower end as the grounded length does in the leg
+block, where the equations stay well conditioned (a line arriving along a boundary at the
+end whose vertical tension is the unknown has a span insensitive to it: ``Z ~ V|V|``).
+
 Stretch laws
 ------------
 Hooke's law (``ea_inv = 1/EA``) has its own closed forms below. A line following another law
@@ -41,9 +57,9 @@ from functools import lru_cache
 from typing import Optional
 
 import casadi as ca
-import numpy as np
 
-from .stretch import Law, StretchModel
+from .block_laws import bind, ground_stretch, law_inputs, law_tag, shared
+from .stretch import StretchModel
 
 #: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
 _H_FLOOR = 1e-9
@@ -64,7 +80,20 @@ class LegKind:
     neutral : bool
         Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
     sloped : bool
-        The anchor rests on a sloped seabed (:func:`sloped_leg_equations`; needs ``contact``).
+        The anchor rests on a sloped seabed
+        (:func:`~moorsolve.physics.sloped.sloped_leg_equations`; needs ``contact``).
+    lifted : bool
+        A sinking line whose anchor is above a flat seabed: the seabed still bounds it
+        (:func:`lifted_segment_equations` with the anchor's height above the seabed).
+    air : bool
+        The upper end is above the water and the line type gives its weight in air: the
+        part above the surface is the catenary of :func:`air_part`.
+    surface : bool
+        A buoyant line bounded by the free surface (:func:`surface_leg_equations`).
+    from_fairlead : bool
+        With ``surface``: the fairlead is at (or above) the surface, so the block is solved
+        from the fairlead end and the unknown ``V`` is the vertical force at the anchor end
+        (see the module notes).
     law : StretchModel or None
         The stretch law of an elastic line other than Hooke's (its parameters are then the
         block's input ``law``); None: Hooke, with the compliance ``ea_inv``.
@@ -75,13 +104,20 @@ class LegKind:
     friction: bool = False
     neutral: bool = False
     sloped: bool = False
+    lifted: bool = False
+    surface: bool = False
+    from_fairlead: bool = False
+    air: bool = False
     law: Optional[StretchModel] = None
+
+    @property
+    def bounded(self) -> bool:
+        """The line can lie on a boundary (seabed or surface): ``u < 0`` is a loose line."""
+        return self.contact or self.lifted or self.surface
 
     @property
     def tag(self) -> str:
         parts = ["elastic" if self.elastic else "inextensible"]
-        if self.law is not None:
-            parts.append(self.law.tag)
         if self.neutral:
             parts.append("neutral")
         elif self.contact:
@@ -90,9 +126,37 @@ class LegKind:
                 parts.append("friction")
             if self.sloped:
                 parts.append("sloped")
+        elif self.lifted:
+            parts.append("lifted")
+        elif self.surface:
+            parts.append("surface_from_fairlead" if self.from_fairlead else "surface")
         else:
             parts.append("suspended")
+        if self.air:
+            parts.append("air")
+        if self.law is not None:
+            parts.append(self.law.tag)
         return "_".join(parts)
+
+
+def _suspended_spans(H, Hg, V, VA, w, L, c):
+    """Spans ``(X, Z)`` of a fully suspended elastic catenary, free of cancellation.
+
+    ``[asinh(V/H) - asinh(V_A/H)]`` loses ``eps asinh(V/H)`` to cancellation when ``V`` and
+    ``V_A`` have the same sign (a nearly taut line: ``H/w`` times that can exceed the span
+    tolerance); there it equals ``asinh(w L (V + V_A) / (V T_A + V_A T_F))``, which has
+    none. ``[sqrt(H^2+V^2) - sqrt(H^2+V_A^2)]/w`` is written as ``L (V + V_A)/(T_F + T_A)``
+    (the denominator is at least ``|w| L``). Square roots carry a 1e-9 N floor so that
+    derivatives exist at ``H = V = 0``; it cancels exactly from the difference.
+    """
+    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
+    same_side = V * VA > 0
+    dasinh = ca.if_else(same_side,
+                        ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
+                        ca.asinh(V / Hg) - ca.asinh(VA / Hg))
+    Xs = (H / w) * dasinh + H * L * c
+    Zs = L * (V + VA) / (_hyp(H, V) + _hyp(H, VA)) + L * c * (V - w * L / 2)
+    return Xs, Zs
 
 
 def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
@@ -152,38 +216,27 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     (:mod:`moorsolve.physics.stretch`).
     """
     H = ca.fmax(u, 0)
-    bound = _bind(kind, law)
+    bound = bind(kind.law, law)
     if kind.neutral:
         return _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound)
 
     Hg = ca.fmax(H, _H_FLOOR)
     VA = V - w * L
+    c = ea_inv if kind.elastic and bound is None else 0
+    stretch = H * L * c
+    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
     if bound is not None:
         psi_V, psi_VA = bound.horizontal(Hg, V, VA)
-        stretch = (H / w) * (psi_V - psi_VA)
-    else:
-        stretch = H * L * ea_inv if kind.elastic else 0
-
-    # asinh(V/H) - asinh(VA/H) loses eps*asinh(V/H) to cancellation when V and VA have the
-    # same sign (a nearly taut line: H/w times that can exceed the span tolerance); there
-    # it equals asinh(w L (V + VA) / (V T_A + VA T_F)), which has none.
-    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
-    same_side = V * VA > 0
-    dasinh = ca.if_else(same_side,
-                        ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
-                        ca.asinh(V / Hg) - ca.asinh(VA / Hg))
-    Xs = (H / w) * dasinh + stretch
-    # [sqrt(H^2+V^2) - sqrt(H^2+VA^2)]/w without the cancellation that loses eps*H/w
-    # on a nearly taut line (V - VA = w L); the denominator is at least |w| L.
-    Zs = L * (V + VA) / (ca.sqrt(H**2 + V**2) + ca.sqrt(H**2 + VA**2))
-    if bound is not None:
-        Zs = Zs * (1 + bound.mean(ca.sqrt(H**2 + VA**2), ca.sqrt(H**2 + V**2)))
-    elif kind.elastic:
-        Zs = Zs + L * ea_inv * (V - w * L / 2)
+        Xs = Xs + (H / w) * (psi_V - psi_VA)
+        Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
 
     if not kind.contact:
-        # No seabed under the line: one catenary whatever the sign of V_A.
-        return dict(rX=Xs - X, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
+        # No seabed under the line: one catenary whatever the sign of V_A. ``u < 0`` (no
+        # physical state of a line with nothing to lie on) continues the span monotonically,
+        # so that a line folded straight down (H = 0, X = 0) is an interior root, not a
+        # bound the solver must reach.
+        loose = ca.fmax(-u, 0) / ca.fabs(w)
+        return dict(rX=Xs - X - loose, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
                     grounded=0 * H, suspended_x=Xs)
 
     loose = ca.fmax(-u, 0) / w
@@ -208,7 +261,7 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     else:
         HA_t = H
     if bound is not None:
-        Xt = LB + _ground_stretch(bound, H, LB, HA_t, mu * w if kind.friction else None) \
+        Xt = LB + ground_stretch(bound, H, LB, HA_t, mu * w if kind.friction else None) \
             + Xsusp_t
 
     suspended = VA >= 0
@@ -224,28 +277,6 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, Xsusp_t),
     )
-
-
-def _bind(kind, law):
-    """The stretch law of ``kind`` bound to its parameters ``law`` (None for Hooke)."""
-    model = getattr(kind, "law", None)
-    if model is None:
-        return None
-    if law is None:
-        raise ValueError(f"a {model.tag} line needs its law parameters (input 'law')")
-    return Law(model, law if isinstance(law, (list, tuple)) else ca.vertsplit(law))
-
-
-def _ground_stretch(bound, H, LB, HA, decay):
-    """Stretch of ``LB`` of line lying on a flat seabed with tension ``H`` at touchdown.
-
-    Without friction (``decay`` None) the tension is ``H`` throughout: ``LB eps(H)``. With
-    friction it falls by ``decay = mu w`` per metre toward the anchor, to ``HA`` there (or
-    to zero at ``H/decay`` from touchdown): the loaded length times the mean strain.
-    """
-    if decay is None:
-        return LB * bound.strain(H)
-    return ca.fmin(LB, H / decay) * bound.mean(HA, H)
 
 
 def _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound=None):
@@ -270,22 +301,6 @@ LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
 LEG_INPUTS = ("X", "Z", "u", "V", "L", "w", "ea_inv", "mu")
 
 
-def _shared(outputs, law):
-    """A block's outputs with common subexpressions merged when it has a stretch law (the
-    law's pieces are picked at the same tension by several terms); Hooke's graph as built."""
-    return outputs if law is None else ca.cse(outputs)
-
-
-def _law_inputs(kind, names):
-    """Input names and symbols of a block: ``names``, plus ``law`` for a non-Hooke line."""
-    model = getattr(kind, "law", None)
-    args = [ca.SX.sym(n) for n in names]
-    if model is None:
-        return list(names), args, None
-    law = ca.SX.sym("law", model.n_params)
-    return list(names) + ["law"], args + [law], ca.vertsplit(law)
-
-
 @lru_cache(maxsize=None)
 def leg_function(kind: LegKind) -> ca.Function:
     """The leg block for ``kind`` as one ``casadi.Function``, built once and reused.
@@ -294,9 +309,9 @@ def leg_function(kind: LegKind) -> ca.Function:
     (its parameters); outputs ``LEG_OUTPUTS``; see :func:`leg_equations`. Call it on
     SX/MX symbols to embed it, or on floats.
     """
-    names, args, law = _law_inputs(kind, LEG_INPUTS)
+    names, args, law = law_inputs(kind.law, LEG_INPUTS)
     out = leg_equations(kind, *args[:len(LEG_INPUTS)], law=law)
-    return ca.Function(f"leg_{kind.tag}", args, _shared([out[k] for k in LEG_OUTPUTS], law),
+    return ca.Function(f"leg_{kind.tag}", args, shared([out[k] for k in LEG_OUTPUTS], law),
                        names, list(LEG_OUTPUTS))
 
 
@@ -307,67 +322,49 @@ def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0, law=None) 
     return {k: float(v) for k, v in zip(LEG_OUTPUTS, vals)}
 
 
-# ---- starting point of a leg (floats) ---------------------------------------------------
+# ---- a line end above the water -------------------------------------------------------
 
 
-def _bisect(f, lo, hi, iters=200):
-    """Root of an increasing function on [lo, hi] by bisection in log space."""
-    flo = f(lo)
-    if flo > 0:
-        return lo
-    for _ in range(iters):
-        mid = np.sqrt(lo * hi)
-        if f(mid) > 0:
-            hi = mid
-        else:
-            lo = mid
-        if hi / lo < 1 + 1e-10:
-            break
-    return np.sqrt(lo * hi)
+def air_part(H, V, z_top, w_air, ea_inv, law=None):
+    """The part of a line between the surface and an upper end ``z_top > 0`` above it.
 
+    Above the water the line weighs ``w_air`` per metre (no buoyancy). From the upper end's
+    vertical tension ``V`` down to the crossing of the surface, the vertical tension falls
+    by ``w_air`` per metre; the rise is ``f(T) - f(T_c) = w_air z_top`` with
+    ``f(T) = T + T^2/(2 EA)`` (the elastic catenary's height, Merkin 1980, seed 004, sections
+    2.1 and 2.3, written in the tensions ``T``, ``T_c`` at the two ends), so the tension at
+    the crossing is closed form: ``T_c = 2 r / (1 + sqrt(1 + 2 r/EA))``, ``r = f(T) - w_air
+    z_top``, and ``V_c = sqrt(T_c^2 - H^2)`` (continued as ``-sqrt(H^2 - T_c^2)`` where the
+    line could not reach the surface: no root there).
 
-def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
-                  ea: float | None) -> tuple[float, float]:
-    """A starting ``(u, V)`` for one leg from the inextensible closed forms.
+    With another stretch law (``law``, a bound :class:`~moorsolve.physics.stretch.Law`) the
+    tension drop ``T - T_c`` solves ``(T - T_c)(1 + mean_strain(T_c, T)) = w_air z_top``
+    (:meth:`~moorsolve.physics.stretch.Law.drop`) and the horizontal extent gains
+    ``(H/w_air)[Psi(V) - Psi(V_c)]``.
 
-    Slack when the line is long enough to hang straight down and reach the anchor along the
-    seabed; touchdown when a grounded length remains; suspended otherwise; a straight
-    stretched line when the chord exceeds the length.
+    Returns
+    -------
+    dict
+        ``V`` the vertical tension at the crossing [N], ``length`` the unstretched length in
+        air [m], ``x`` its horizontal extent [m].
     """
-    D = float(np.hypot(X, Z))
-    if kind.neutral:
-        if D >= L and ea:
-            return ea * (D / L - 1), 0.0
-        return -(L - D), 0.0
-    aw = abs(w)
-    if D >= L * (1 - 1e-9):
-        # Taut: straight stretched line carrying half its weight at each end.
-        T = (ea * (D / L - 1) if ea else 0.0) + aw * L
-        return T * X / max(D, 1e-12), T * Z / max(D, 1e-12) + w * L / 2
-    if kind.contact and X <= L - Z:
-        return -w * (L - Z - X), w * Z
-    if kind.contact:
-        # Touchdown: find H with L_B + suspended span = X, while the suspended part fits in L.
-        def span(H):
-            Ls = np.sqrt(Z**2 + 2 * Z * H / w)
-            return L - Ls + (H / w) * np.arcsinh(w * Ls / H) - X
-        H_max = w * (L**2 - Z**2) / (2 * Z)
-        if span(H_max) >= 0:
-            H = _bisect(span, 1e-9 * w * L, H_max)
-            return H, w * np.sqrt(Z**2 + 2 * Z * H / w)
-    # Suspended: sqrt(L^2 - Z^2) = 2 (H/|w|) sinh(|w| X / (2 H)) for the chord's sag.
-    target = np.sqrt(max(L**2 - Z**2, 0.0))
-    if X <= 0:
-        return 0.0, w * L if w > 0 else 0.0
-
-    def chord(H):
-        return target - 2 * (H / aw) * np.sinh(min(aw * X / (2 * H), 700))
-    H = _bisect(chord, 1e-12 * aw * L + 1e-12, 1e3 * aw * L + aw * X)
-    V = (w / 2) * (Z / np.tanh(w * X / (2 * H)) + L)
-    return H, V
-
-
-# Profiles along a solved line (floats): moorsolve.physics.profiles.
+    T = _hyp(H, V)
+    if law is not None:
+        Tc = T - law.drop(T, w_air * z_top)
+        q = Tc**2 - H**2
+        Vc = ca.sign(q) * ca.sqrt(ca.fabs(q) + _H_FLOOR**2) - ca.sign(q) * _H_FLOOR
+        Hg = ca.fmax(H, _H_FLOOR)
+        psi_V, psi_c = law.horizontal(Hg, V, Vc)
+        x = (H / w_air) * (ca.asinh(V / Hg) - ca.asinh(Vc / Hg) + psi_V - psi_c)
+        return dict(V=Vc, length=(V - Vc) / w_air, x=x)
+    r = ca.fmax(T + ea_inv * T**2 / 2 - w_air * z_top, 0)
+    Tc = 2 * r / (1 + ca.sqrt(1 + 2 * ea_inv * r))
+    q = Tc**2 - H**2
+    Vc = ca.sign(q) * ca.sqrt(ca.fabs(q) + _H_FLOOR**2) - ca.sign(q) * _H_FLOOR
+    Hg = ca.fmax(H, _H_FLOOR)
+    length = (V - Vc) / w_air
+    x = (H / w_air) * (ca.asinh(V / Hg) - ca.asinh(Vc / Hg)) + H * length * ea_inv
+    return dict(V=Vc, length=length, x=x)
 
 
 # ---- segments of a multi-segment leg ----------------------------------------------------
@@ -400,7 +397,7 @@ def descent_force(H, h, w, ea_inv, law=None):
     With ``d = w h (w h + 2 H)``, ``a = w h + H`` and ``c = 1/EA``:
     ``t = 2 d / (1 + a c + sqrt(1 + 2 a c + c^2 H^2))``, which is ``d`` when ``c = 0``
     (Merkin 1980, seed 004, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
-    With another stretch law ``law`` (a bound :class:`~moorsolve.physics.stretch.Law`) the
+    With another stretch law (``law``, a bound :class:`~moorsolve.physics.stretch.Law`) the
     tension gain ``delta = T_1 - H`` solves ``delta (1 + mean_strain(H, H + delta)) = w h``
     (:meth:`~moorsolve.physics.stretch.Law.descent`) and ``t = delta (delta + 2 H)``.
     """
@@ -421,15 +418,17 @@ def _hyp(a, b):
 
 
 def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
-                             friction: bool = False, model=None, law=None):
+                             friction: bool = False, between_joints: bool = False,
+                             model=None, law=None):
     """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
 
     The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
     that need not rest on the seabed: a joint lifted by a buoy, an anchor on a pile. Three
     regimes, chosen in the graph:
 
-    - suspended (``V_A >= V1(h)``): one catenary, which may dip below its lower end without
-      reaching the seabed (the S between a buoy and a fairlead);
+    - suspended (``V_A >= V1(h)``, or ``V < 0``: no vertex inside the segment): one
+      catenary, which may dip below its lower end without reaching the seabed (the S
+      between a buoy and a fairlead);
     - two-sided touchdown (``V_A < V1``): the line runs down from the lower end to the seabed
       (vertical force ``V1`` from :func:`descent_force`), lies on it for ``L_B`` and rises to the
       upper end (the U under a buoyed joint, or a line between two points on the seabed);
@@ -438,7 +437,9 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
     1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
     ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
-    decays toward the lower end as in :func:`leg_equations`. A stretch law other than
+    decays toward the lower end as in :func:`leg_equations`. ``between_joints``: the segment
+    joins two free joints of a multi-segment leg, whose span may be negative: loose line is
+    then counted only where the line lies, at most all of it. A stretch law other than
     Hooke's (``model``, a :class:`~moorsolve.physics.stretch.StretchModel`, with parameters
     ``law``) enters as in :func:`leg_equations`.
 
@@ -452,12 +453,11 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     """
     H = ca.fmax(u, 0)
     Hg = ca.fmax(H, _H_FLOOR)
-    bound = _bind(_Kind(model), law) if elastic else None
+    bound = bind(model, law) if elastic else None
     c = ea_inv if elastic and bound is None else 0
     VA = V - w * L
     V1 = descent_force(H, h, w, c, bound)
-    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
-    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
+    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
     s1 = -V1 / w
     x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
     LB = L - s1 - V / w
@@ -478,12 +478,22 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
             Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
         HA_t = ca.fmax(H - mu * w * LB, 0)
     if bound is not None:
-        Xt = x1 + LB + _ground_stretch(bound, H, LB, HA_t, mu * w if friction else None) \
+        Xt = x1 + LB + ground_stretch(bound, H, LB, HA_t, mu * w if friction else None) \
             + x_rise
     loose = ca.fmax(-u, 0) / w
-    suspended = VA >= V1
+    if between_joints:
+        # Between two free joints the span may be negative: loose line is then only where
+        # the line lies, and at most all of that, or a slack segment folded back past its
+        # upper end (a negative span made of loose line) would be a false root.
+        loose = ca.fmin(loose, ca.fmax(LB, 0))
+    # Suspended when the line leaves the lower end less steeply than one that just touches
+    # the seabed at its vertex, or when it has no vertex inside (still descending at the
+    # upper end, V < 0: its lowest point is that end, which the caller puts on or above
+    # the seabed). V = 0 with a steep start is a line arriving along the seabed.
+    suspended = ca.logic_or(VA >= V1, V < 0)
     return dict(
-        rX=ca.if_else(suspended, Xs, Xt) - X - loose,
+        rX=(ca.if_else(suspended, Xs, Xt - loose) - X if between_joints
+            else ca.if_else(suspended, Xs, Xt) - X - loose),
         rZ=ca.if_else(suspended, Zs, Zt) - Z,
         H=H, VF=V, HA=ca.if_else(suspended, H, HA_t),
         VA=ca.if_else(suspended, VA, V1),
@@ -491,6 +501,120 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         suspended_x=ca.if_else(suspended, Xs, x_rise),
         descent_x=ca.if_else(suspended, 0, x1),
     )
+
+
+def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
+                              between_joints: bool = False, model=None, law=None):
+    """A buoyant segment (``w < 0``) whose lower end is ``d >= 0`` below the surface.
+
+    The free surface bounds it as the seabed bounds a sinking segment: this is
+    :func:`lifted_segment_equations` on the mirrored line (``w -> -w``, ``Z -> -Z``,
+    ``V -> -V``, the seabed at the surface and ``h = d``), its outputs mirrored back. Three
+    regimes, chosen in the graph:
+
+    - suspended: one catenary below the surface, which may rise above its lower end;
+    - floating: the line rises from the lower end to the surface, reaching it tangentially
+      (the suspended part's vertex at ``z = 0``), floats along it at constant tension for
+      ``floating`` metres and leaves it tangentially down to the upper end (which may be
+      at the surface: then it floats up to it);
+    - slack (``u < 0``): ``H = 0``; the line rises vertically to the surface and
+      ``-u / |w|`` of it floats loose.
+
+    "Lower end" is the block's start (``Z`` is the other end's height above it, of either
+    sign). Returns ``SEGMENT_OUTPUTS`` in the real orientation (``VF`` upward force on the
+    upper end of the line, ``VA`` signed upward pull on the lower end), with ``grounded``
+    0 and ``floating`` the unstretched length on the surface [m]; ``descent_x`` is the
+    horizontal extent of the rise from the lower end to the surface.
+
+    Notes
+    -----
+    REFERENCE.md section 7 ("Free surface": a buoyant line meets the surface as a chain
+    meets the seabed, mirrored). The surface carries the floating part's buoyancy as the
+    seabed carries a grounded part's weight; no drag or friction acts along it.
+    """
+    m = lifted_segment_equations(elastic, X, -Z, d, u, -V, L, -w, ea_inv,
+                                 between_joints=between_joints, model=model, law=law)
+    return dict(rX=m["rX"], rZ=-m["rZ"], H=m["H"], VF=-m["VF"], HA=m["HA"], VA=-m["VA"],
+                grounded=0 * m["H"], floating=m["grounded"], suspended_x=m["suspended_x"],
+                descent_x=m["descent_x"])
+
+
+SURFACE_INPUTS = LEG_INPUTS + ("d",)
+SURFACE_OUTPUTS = LEG_OUTPUTS + ("floating", "touchup_x")
+
+
+def surface_leg_equations(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, ea_inv,
+                          mu, d, model=None, law=None):
+    """A buoyant leg from its anchor to its fairlead, bounded by the free surface.
+
+    Parameters as :func:`leg_equations`, plus ``d``, the depth [m] below the surface of
+    the end the block starts from: the anchor, or with ``from_fairlead`` the fairlead
+    (which then lies at or above the surface: ``d = 0``). With ``from_fairlead`` the unknown
+    ``V`` is the upward force the anchor exerts on the line's end there (the block's top
+    tension), so that the floating length, next to the fairlead, is at the block's lower end.
+    ``mu`` is unused (no friction along the surface).
+
+    Returns
+    -------
+    dict
+        ``SURFACE_OUTPUTS`` in the leg's orientation: ``LEG_OUTPUTS`` (``grounded`` 0) plus
+        ``floating``, the unstretched length floating on the surface [m], and
+        ``touchup_x``, the horizontal distance from the anchor at which the line first
+        reaches the surface [m] (meaningful when ``floating > 0``).
+    """
+    del mu
+    if not from_fairlead:
+        o = surface_segment_equations(elastic, X, Z, d, u, V, L, w, ea_inv, model=model,
+                                      law=law)
+        return dict(rX=o["rX"], rZ=o["rZ"], H=o["H"], VF=o["VF"], HA=o["HA"], VA=o["VA"],
+                    grounded=o["grounded"], suspended_x=X - o["descent_x"],
+                    floating=o["floating"], touchup_x=o["descent_x"])
+    o = surface_segment_equations(elastic, X, -Z, d, u, V, L, w, ea_inv, model=model, law=law)
+    # Back to the leg's orientation: the fairlead holds the block's lower end, the anchor
+    # its upper end.
+    return dict(rX=o["rX"], rZ=-o["rZ"], H=o["H"], VF=-o["VA"], HA=o["HA"], VA=-o["VF"],
+                grounded=o["grounded"], suspended_x=X - o["suspended_x"],
+                floating=o["floating"], touchup_x=o["suspended_x"])
+
+
+@lru_cache(maxsize=None)
+def surface_leg_function(elastic: bool, from_fairlead: bool,
+                         model: Optional[StretchModel] = None) -> ca.Function:
+    """:func:`surface_leg_equations` as a ``casadi.Function`` (inputs ``SURFACE_INPUTS``,
+    and ``law`` for a stretch law ``model`` other than Hooke's; outputs
+    ``SURFACE_OUTPUTS``)."""
+    names, args, law = law_inputs(model if elastic else None, SURFACE_INPUTS)
+    out = surface_leg_equations(elastic, from_fairlead, *args[:len(SURFACE_INPUTS)],
+                                model=model, law=law)
+    tag = law_tag(elastic, model) + ("_from_fairlead" if from_fairlead else "")
+    return ca.Function(f"leg_surface_{tag}", args,
+                       shared([out[k] for k in SURFACE_OUTPUTS], law), names,
+                       list(SURFACE_OUTPUTS))
+
+
+@lru_cache(maxsize=None)
+def surface_segment_function(elastic: bool, between_joints: bool = False,
+                             model: Optional[StretchModel] = None) -> ca.Function:
+    """:func:`surface_segment_equations` as a ``casadi.Function`` (inputs
+    ``LIFTED_INPUTS`` with ``h`` the lower end's depth below the surface, and ``law`` for a
+    stretch law ``model``; outputs ``SEGMENT_OUTPUTS + ("floating",)``)."""
+    names_in, args, law = law_inputs(model if elastic else None, LIFTED_INPUTS)
+    X, Z, h, u, V, L, w, ea_inv, _ = args[:len(LIFTED_INPUTS)]
+    out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv, between_joints,
+                                    model=model, law=law)
+    names = SEGMENT_OUTPUTS + ("floating",)
+    tag = law_tag(elastic, model) + ("_joints" if between_joints else "")
+    return ca.Function(f"segment_surface_{tag}", args, shared([out[k] for k in names], law),
+                       names_in, list(names))
+
+
+def evaluate_surface_leg(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, ea_inv=0.0,
+                         d=0.0, model=None, law=None) -> dict:
+    """Evaluate :func:`surface_leg_function` on floats; a dict of floats."""
+    extra = () if model is None else (list(law),)
+    vals = surface_leg_function(elastic, from_fairlead, model)(X, Z, u, V, L, w, ea_inv, 0.0,
+                                                               d, *extra)
+    return {k: float(v) for k, v in zip(SURFACE_OUTPUTS, vals)}
 
 
 def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None, law=None):
@@ -504,7 +628,7 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None,
     """
     H = ca.fmax(u, 0)
     T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
-    bound = _bind(_Kind(model), law) if elastic else None
+    bound = bind(model, law) if elastic else None
     if bound is not None:
         k = L * (1 + bound.strain(T)) / T
     else:
@@ -513,29 +637,19 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None,
                 suspended_x=X, descent_x=0 * H)
 
 
-@dataclass(frozen=True)
-class _Kind:
-    """The stretch law of a block that has no kind of its own (segments, sloped legs)."""
-
-    law: Optional[StretchModel] = None
-
-
-def _law_tag(elastic: bool, model) -> str:
-    return ("elastic" if elastic else "inextensible") + (
-        f"_{model.tag}" if elastic and model is not None else "")
-
-
 @lru_cache(maxsize=None)
 def lifted_segment_function(elastic: bool, friction: bool = False,
+                            between_joints: bool = False,
                             model: Optional[StretchModel] = None) -> ca.Function:
     """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``,
     and ``law`` for a stretch law ``model`` other than Hooke's)."""
-    names, args, law = _law_inputs(_Kind(model if elastic else None), LIFTED_INPUTS)
+    names, args, law = law_inputs(model if elastic else None, LIFTED_INPUTS)
     out = lifted_segment_equations(elastic, *args[:len(LIFTED_INPUTS)], friction=friction,
-                                   model=model, law=law)
-    tag = _law_tag(elastic, model) + ("_friction" if friction else "")
+                                   between_joints=between_joints, model=model, law=law)
+    tag = (law_tag(elastic, model) + ("_friction" if friction else "")
+           + ("_joints" if between_joints else ""))
     return ca.Function(f"segment_lifted_{tag}", args,
-                       _shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
+                       shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
                        list(SEGMENT_OUTPUTS))
 
 
@@ -546,128 +660,9 @@ STRAIGHT_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv")
 def straight_segment_function(elastic: bool,
                               model: Optional[StretchModel] = None) -> ca.Function:
     """:func:`straight_segment_equations` as a ``casadi.Function``."""
-    names, args, law = _law_inputs(_Kind(model if elastic else None), STRAIGHT_INPUTS)
+    names, args, law = law_inputs(model if elastic else None, STRAIGHT_INPUTS)
     out = straight_segment_equations(elastic, *args[:len(STRAIGHT_INPUTS)], model=model,
                                      law=law)
-    return ca.Function(f"segment_straight_{_law_tag(elastic, model)}", args,
-                       _shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
+    return ca.Function(f"segment_straight_{law_tag(elastic, model)}", args,
+                       shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
                        list(SEGMENT_OUTPUTS))
-
-
-# ---- a leg on a sloped seabed -------------------------------------------------------------
-
-SLOPED_INPUTS = LEG_INPUTS + ("t",)
-
-
-def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv, mu, t,
-                         model=None, law=None):
-    """A sinking leg whose anchor is on a seabed of slope ``t = tan(theta)`` in its plane.
-
-    ``t`` is the seabed's rise per metre along the leg's horizontal direction (anchor toward
-    fairlead), so the seabed in the leg's vertical plane is ``z = t x`` from the anchor.
-    Regimes, chosen in the graph:
-
-    - suspended (``V_A >= H t``): the line leaves the anchor at least as steeply as the
-      seabed; the ordinary elastic catenary;
-    - touchdown (``V_A < H t``): ``L_B = L - (V - H t)/w`` lies on the slope; the line
-      leaves it tangentially, where the vertical tension is ``H t`` and the tension
-      ``H sqrt(1 + t^2)``;
-    - slack (``u < 0``): ``H = 0``; the line hangs vertically from the fairlead onto the
-      slope and ``-u/w`` of it lies loose on the slope.
-
-    On the slope the tension falls from the touchdown toward the anchor by
-    ``k = w (sin(theta) + mu cos(theta))`` per metre (the weight's component along the slope,
-    and fully mobilised friction), down to zero at most: ``T_A = max(H sqrt(1+t^2) - k L_B,
-    0)``; with ``theta < 0`` (seabed falling toward the fairlead) and little friction the
-    tension grows toward the anchor instead. The anchor force is ``T_A`` along the slope.
-
-    Notes
-    -----
-    Suspended part from the touchdown (Merkin 1980, seed 004, sections 2.1, 2.3, integrated
-    from the vertical tension ``H t`` instead of 0)::
-
-        X_s = (H/w)[asinh(V/H) - asinh(t)] + H L_s/EA,   L_s = (V - H t)/w
-        Z_s = [sqrt(H^2+V^2) - H sqrt(1+t^2)]/w + (V^2 - H^2 t^2)/(2 w EA)
-
-    The grounded part adds ``(L_B + stretch)(cos, sin)(theta)`` with the stretch
-    ``int T/EA ds`` over the slope. With ``t = 0`` this is :func:`leg_equations`. Another
-    stretch law (``model`` with parameters ``law``) enters as there: the suspended part
-    from ``T_v = H t``, the grounded part the loaded length times the mean strain between
-    the anchor's and the touchdown's tension.
-    The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
-    the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
-    """
-    H = ca.fmax(u, 0)
-    Hg = ca.fmax(H, _H_FLOOR)
-    bound = _bind(_Kind(model), law) if elastic else None
-    c = ea_inv if elastic and bound is None else 0
-    sec = ca.sqrt(1 + t**2)
-    cos_t, sin_t = 1 / sec, t / sec
-    VA = V - w * L
-    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
-    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
-
-    Vtd = H * t
-    loose = ca.fmax(-u, 0) / w
-    LB = L - (V - Vtd) / w
-    Ls = L - LB
-    x_susp = (H / w) * (ca.asinh(V / Hg) - ca.asinh(t)) + H * Ls * c
-    # Rise of the suspended part; below V = Vtd (a negative suspended length, outside the
-    # regime) a monotone continuation, so that no false root appears there (for H = 0 it
-    # is the sgn(V) form of the leg block).
-    if bound is None:
-        rise = (_hyp(H, V) - _hyp(H, Vtd)) / w + c * (V**2 - Vtd**2) / (2 * w)
-        below = (V - Vtd) / w + c * (V * ca.fabs(V) - Vtd * ca.fabs(Vtd)) / (2 * w)
-    else:
-        psi_V, psi_VA, psi_td = bound.horizontal(Hg, V, VA, Vtd)
-        Xs = Xs + (H / w) * (psi_V - psi_VA)
-        Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
-        x_susp = x_susp + (H / w) * (psi_V - psi_td)
-        rise = (_hyp(H, V) - _hyp(H, Vtd)) / w * (1 + bound.mean(_hyp(H, Vtd), _hyp(H, V)))
-
-        def signed_energy(v):
-            return ca.sign(v) * bound.energy(ca.fabs(v))
-        below = (V - Vtd + signed_energy(V) - signed_energy(Vtd)) / w
-    z_susp = ca.if_else(V >= Vtd, rise, below)
-    k = w * (sin_t + (mu * cos_t if friction else 0))
-    T_td = H * sec
-    TA_raw = T_td - k * LB
-    if elastic:
-        # Stretch of the grounded part: the tension is max(TA_raw + k s, 0) along it.
-        k_pos = ca.fmax(k, 1e-300)
-        s0 = ca.if_else(k > 0, ca.fmin(ca.fmax(-TA_raw / k_pos, 0), LB), 0)
-        if bound is None:
-            ground_stretch = c * (TA_raw * (LB - s0) + k * (LB**2 - s0**2) / 2)
-        else:
-            ground_stretch = (LB - s0) * bound.mean(ca.fmax(TA_raw, 0), T_td)
-    else:
-        ground_stretch = 0
-    on_ground = LB - loose + ground_stretch
-    Xt = on_ground * cos_t + x_susp
-    Zt = on_ground * sin_t + z_susp
-    TA = ca.fmax(TA_raw, 0)
-    suspended = VA >= Vtd
-    return dict(
-        rX=ca.if_else(suspended, Xs, Xt) - X,
-        rZ=ca.if_else(suspended, Zs, Zt) - Z,
-        H=H, VF=V,
-        HA=ca.if_else(suspended, H, TA * cos_t),
-        VA=ca.if_else(suspended, VA, TA * sin_t),
-        grounded=ca.if_else(suspended, 0, LB),
-        suspended_x=ca.if_else(suspended, Xs, x_susp),
-    )
-
-
-@lru_cache(maxsize=None)
-def sloped_leg_function(elastic: bool, friction: bool,
-                        model: Optional[StretchModel] = None) -> ca.Function:
-    """:func:`sloped_leg_equations` as a ``casadi.Function`` (inputs ``SLOPED_INPUTS``,
-    and ``law`` for a stretch law ``model`` other than Hooke's)."""
-    names, args, law = _law_inputs(_Kind(model if elastic else None), SLOPED_INPUTS)
-    out = sloped_leg_equations(elastic, friction, *args[:len(SLOPED_INPUTS)], model=model,
-                               law=law)
-    tag = _law_tag(elastic, model) + ("_friction" if friction else "")
-    return ca.Function(f"leg_sloped_{tag}", args, _shared([out[k] for k in LEG_OUTPUTS], law),
-                       names, list(LEG_OUTPUTS))
-
-

@@ -75,3 +75,19 @@ def current_speed(z, profile):
         ramp = v0 + (v1 - v0) * (z - z0) / (z1 - z0)
         speed = ca.if_else(z >= z0, ca.if_else(z <= z1, ramp, v1), speed)
     return speed
+
+
+def current_velocity(z, profile, heading, directions: bool):
+    """Current velocity [m/s] at height ``z`` as a 3-vector (horizontal).
+
+    ``profile`` rows are ``(z_k, v_k)``, a signed speed along the unit ``heading``
+    (``directions`` False), or ``(z_k, ux_k, uy_k)``, velocity components in the global
+    frame (``directions`` True), interpolated component by component: a current turning or
+    reversing with depth. Linear between rows, constant beyond the first and last.
+    """
+    rows = list(profile)
+    if not directions:
+        return current_speed(z, rows) * heading
+    ux = current_speed(z, [(r[0], r[1]) for r in rows])
+    uy = current_speed(z, [(r[0], r[2]) for r in rows])
+    return ca.vertcat(ux, uy, 0)

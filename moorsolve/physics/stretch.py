@@ -489,6 +489,30 @@ class Law:
             delta = self.xp.fmax(delta - f / (1 + self.strain(H + delta)), 0)
         return delta
 
+    def drop(self, T, rise):
+        """Tension drop ``delta = T - T_c`` [N] down a catenary from tension ``T`` over a
+        rise of ``rise / w``: ``delta (1 + mean(T - delta, T)) = rise``, with ``0 <= delta
+        <= T`` (``T_c = 0`` where the line cannot fall that far). The mirror of
+        :meth:`descent` (here the upper end's tension is known), by the same unrolled Newton
+        steps from the midpoint estimate; Hooke's closed form is
+        ``T_c = 2 r / (1 + sqrt(1 + 2 c r))``, ``r = T + c T^2/2 - rise``.
+        """
+        if self.model.name == HOOKE:
+            c = self.params[0]
+            r = self.xp.fmax(T + c * T**2 / 2 - rise, 0)
+            return T - 2 * r / (1 + self.xp.sqrt(1 + 2 * c * r))
+        return _drop(self, T, rise)
+
+
+def _drop(law, T, rise):
+    """See :meth:`Law.drop`."""
+    xp = law.xp
+    delta = xp.fmin(xp.fmax(rise / (1 + law.strain(xp.fmax(T - rise / 2, 0))), 0), T)
+    for _ in range(_DESCENT_STEPS):
+        f = delta * (1 + law.mean(T - delta, T)) - rise
+        delta = xp.fmin(xp.fmax(delta - f / (1 + law.strain(T - delta)), 0), T)
+    return delta
+
 
 def strain(model: StretchModel, T, params):
     """Strain at tension ``T``; see :meth:`Law.strain`."""
@@ -569,6 +593,12 @@ class NumericLaw:
     @cached_property
     def _law(self) -> Law:
         return Law(self.model, [float(v) for v in self.params], ARRAYS)
+
+    @cached_property
+    def bound(self) -> Law:
+        """The law with CasADi operations on its float parameters, for the blocks' own
+        functions (:func:`~moorsolve.physics.catenary.air_part`) evaluated on floats."""
+        return Law(self.model, [float(v) for v in self.params])
 
     def _run(self, method, *args):
         if all(isinstance(a, (float, int)) or np.ndim(a) == 0 for a in args):

@@ -169,6 +169,11 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
                  ["run time", f"{report.time_s:.2f} s"],
              ], left=2, cls="meta").replace('<td class="l">' + digest,
                                             '<td class="l mono">' + digest)]
+    if report.warnings:
+        # What no engineer may miss (moorsolve.solve.audit.result_warnings), before all else.
+        parts.append('<div class="fail"><p>Warnings:</p><ul>' + "".join(
+            f"<li>{_e(w['condition'])}: {_e(w['message'])}</li>" for w in report.warnings)
+            + "</ul></div>")
     parts += _case_section(report, case)
     parts.append("<h2>2. Plan, elevation and 3-D view</h2>")
     if "intact" in images:

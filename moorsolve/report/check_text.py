@@ -71,6 +71,7 @@ def format_check_table(report: CheckReport) -> str:
                  f"conditions pass ({report.time_s:.2f} s)")
     for failure in failures:
         lines.append(f"  failed: {failure}")
+    lines += [f"WARNING: {w['condition']}: {w['message']}" for w in report.warnings]
     return "\n".join(lines)
 
 

@@ -78,6 +78,8 @@ def format_table(result: Result) -> str:
     if over:
         lines.append(f"OVERLOAD: {', '.join(over)} above the minimum breaking load "
                      "(accepted with --allow-overload)")
+    # Last, where a terminal leaves them in view (moorsolve.solve.audit.result_warnings).
+    lines += [f"WARNING: {w['message']}" for w in result.warnings]
     return "\n".join(lines)
 
 
@@ -90,6 +92,8 @@ def leg_rows(legs) -> list[dict]:
         state = "slack" if leg.slack else ("uplift" if leg.uplift else
                                            ("touchdown" if leg.grounded_length_m > 0
                                             else "suspended"))
+        if leg.floating_length_m > 0:
+            state += ", floating"
         if leg.utilisation is not None and leg.utilisation > 1:
             state += ", OVER MBL"
         rows.append({"name": leg.name, "T_fair": leg.fairlead_tension_N,

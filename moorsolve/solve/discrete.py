@@ -20,9 +20,13 @@ element and, for each inner node, its horizontal position ``(x, y)`` and a signe
 Seabed contact is exact complementarity through the signed unknown, as for the joints of the
 analytic multi-segment legs: the node's height above the seabed is ``max(zeta, 0)`` and the
 seabed pushes it along the plane's normal with ``max(-zeta, 0) force_scale / length_scale``
-[N]. A node on the seabed is frictionless (seabed friction acts only on analytic legs); on a
-sloped seabed a grounded node can slide down the plane. The fairlead node carries half of the
-top element's weight and flow force onto the body, the anchor node half of the first one's.
+[N]. The free surface bounds the node from above by the same unknown: its height above the
+seabed is capped at the local water depth ``D`` (``clip(zeta, 0, D)``) and the surface holds a
+node that would rise above it down with ``max(zeta - D, 0) force_scale / length_scale`` [N]
+(a buoyant line floats; REFERENCE.md section 7). A node on the seabed is frictionless
+(seabed friction acts only on analytic legs); on a sloped seabed a grounded node can slide
+down the plane. The fairlead node carries half of the top element's weight and flow force
+onto the body, the anchor node half of the first one's.
 
 The discretisation is the midpoint rule for the distributed load: without current it tends
 to the elastic catenary with the element count; the tests report the observed order. The
@@ -33,7 +37,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ..physics.drag import current_speed, line_drag
+from ..physics.drag import current_velocity, line_drag
 from ..physics.stretch import Law
 from .layout import DISCRETE_PARAMS
 from .lines import LineBlock
@@ -42,7 +46,8 @@ from .lines import LineBlock
 #: first), its position [m], the line tension there [N] (the end resultant at the anchor and
 #: fairlead, the mean of the two elements elsewhere), the seabed's reaction [N], and whether
 #: it rests on the seabed.
-NODE_COLUMNS = ("leg", "node", "x", "y", "z", "tension", "reaction", "grounded")
+NODE_COLUMNS = ("leg", "node", "x", "y", "z", "tension", "reaction", "grounded",
+                "surface_reaction", "floating")
 
 _FLOOR = 1e-12
 
@@ -78,11 +83,12 @@ def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair)
         return -depth + gx * px + gy * py
 
     # Nodes 0 (end A) .. n (end B).
-    nodes, zeta = [anchor], []
+    nodes, zeta, water = [anchor], [], []
     for j in range(1, n):
         px, py, zj = x[base + 3 * (j - 1)], x[base + 3 * (j - 1) + 1], x[base + 3 * (j - 1) + 2]
         zeta.append(zj)
-        nodes.append(ca.vertcat(px, py, bed(px, py) + ca.fmax(zj, 0)))
+        water.append(-bed(px, py))              # water depth at the node
+        nodes.append(ca.vertcat(px, py, bed(px, py) + ca.fmin(ca.fmax(zj, 0), water[-1])))
     nodes.append(fair)
 
     # Element properties, anchor first; joints are the nodes between segments.
@@ -115,21 +121,25 @@ def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair)
         stiff = ca.fmax(ca.fabs(T[e]) / L_e, fs / ls)
         mismatch.append(ca.fabs(r) * (ca.fmax(1 / (L_e * c), stiff) if elastic else stiff))
         z_mid = (nodes[e][2] + nodes[e + 1][2]) / 2
-        speed = (current_speed(z_mid, current["profile"]) if current["profile"]
-                 else current["speed"])
+        flow = (current_velocity(z_mid, current["profile"], heading, current["headings"])
+                if current["profile"] else current["speed"] * heading)
         side = sp["side"] if kind.side else 0.0
-        drag = line_drag(t, speed * heading, sp["diameter"], rho, sp["normal"],
+        drag = line_drag(t, flow, sp["diameter"], rho, sp["normal"],
                          sp["tangential"], side) * length * current["factor"]
         weight = ca.vertcat(0, 0, -sp["weight"] * L_e)
         tau.append(t)
         loads.append(drag + weight)
 
-    reactions, grounded_node = [], []
+    reactions, grounded_node, holds, floating_node = [], [], [], []
     for j in range(1, n):
         N = ca.fmax(-zeta[j - 1], 0) * k_N
+        S = ca.fmax(zeta[j - 1] - water[j - 1], 0) * k_N
         reactions.append(N)
+        holds.append(S)
         grounded_node.append(ca.if_else(zeta[j - 1] <= 0, 1, 0))
-        force = T[j] * tau[j] - T[j - 1] * tau[j - 1] + _node_share(loads, j) + N * normal
+        floating_node.append(ca.if_else(zeta[j - 1] >= water[j - 1], 1, 0))
+        force = (T[j] * tau[j] - T[j - 1] * tau[j - 1] + _node_share(loads, j) + N * normal
+                 - S * ca.vertcat(0, 0, 1))
         if j in joint_nodes:
             force = force - ca.vertcat(0, 0, joint_nodes[j])
         res += [force[0] / fs, force[1] / fs, force[2] / fs]
@@ -142,12 +152,15 @@ def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair)
     anchor_down = ca.if_else(anchor[2] <= bed(anchor[0], anchor[1]) + tol, 1, 0)
     fair_down = ca.if_else(fair[2] <= bed(fair[0], fair[1]) + tol, 1, 0)
     flags = [anchor_down] + grounded_node + [fair_down]
-    grounded = 0
+    afloat = ([ca.if_else(anchor[2] >= 0, 1, 0)] + floating_node
+              + [ca.if_else(fair[2] >= 0, 1, 0)])
+    grounded = floating = 0
     run, touchdown = anchor_down, 0
     for e in range(n):
         L_e = props[e][1]
         both = flags[e] * flags[e + 1]
         grounded = grounded + L_e * both
+        floating = floating + L_e * afloat[e] * afloat[e + 1]
         run = run * flags[e + 1]
         d = nodes[e + 1] - nodes[e]
         touchdown = touchdown + run * ca.sqrt(d[0]**2 + d[1]**2 + _FLOOR**2)
@@ -158,14 +171,16 @@ def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair)
     X = ca.sqrt((fair[0] - anchor[0])**2 + (fair[1] - anchor[1])**2 + _FLOOR**2)
     row = dict(H=H, VF=-on_fair[2], HA=ca.sqrt(on_anchor[0]**2 + on_anchor[1]**2),
                VA=on_anchor[2], grounded=grounded, suspended_x=X - touchdown, rX=worst,
-               rZ=0 * worst, J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=fair[2] - anchor[2])
+               rZ=0 * worst, J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=fair[2] - anchor[2],
+               floating=floating)
     rows = []
     for j in range(n + 1):
         if j == 0:
-            tension, reaction = ca.norm_2(on_anchor), 0
+            tension, reaction, hold = ca.norm_2(on_anchor), 0, 0
         elif j == n:
-            tension, reaction = ca.norm_2(on_fair), 0
+            tension, reaction, hold = ca.norm_2(on_fair), 0, 0
         else:
             tension, reaction = (T[j - 1] + T[j]) / 2, reactions[j - 1]
-        rows.append(ca.vertcat(i, j, nodes[j], tension, reaction, flags[j]))
+            hold = holds[j - 1]
+        rows.append(ca.vertcat(i, j, nodes[j], tension, reaction, flags[j], hold, afloat[j]))
     return LineBlock(res, on_anchor, on_fair, worst, row, [], rows)

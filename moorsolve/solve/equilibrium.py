@@ -21,6 +21,7 @@ found by :func:`_diagnose` and the best residual reached.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -30,7 +31,8 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
-from .newton import STATUS_TEXT
+from .audit import audit, audit_findings, result_warnings
+from .newton import CONVERGED, STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
@@ -152,6 +154,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
         outside = hull_out_of_range(problem, x, p_full) if certified else []
         elapsed = time.perf_counter() - t0
+        stats["status"] = explain_status(stats["status"], certified,
+                                         stats.get("polish_steps", 0))
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
                            iterations=stats["iterations"], solve_time_s=elapsed)
@@ -179,7 +183,25 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     if assessment is not None and not assessment.stable:
         log.warning("%s: only an unstable equilibrium was found (unstable in %s)",
                     case.name, ", ".join(assessment.unstable_dofs) or "a coupled mode")
-    return result
+    # An independent check of what is reported (raises AuditFailure), and the warnings.
+    audit(result, case)
+    return dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))
+
+
+#: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
+SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
+                    STATUS_TEXT[CONVERGED])
+
+
+def explain_status(status: str, certified: bool, polish_steps: int) -> str:
+    """The solver status a result reports: the solver's own, explained when it is not a
+    success but the point certifies (a certified point is an equilibrium whatever the
+    solver's stopping reason: the certificate is recomputed from it)."""
+    if not certified or status in SUCCESS_STATUSES:
+        return status
+    how = (f"after {polish_steps} Newton polish step{'s' if polish_steps != 1 else ''}"
+           if polish_steps else "as the solver left it")
+    return f"{status}; the point reached is certified {how}"
 
 
 def _newton_strategy(problem, case, kernel, p_full, tol, start, stats):
@@ -229,6 +251,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         st = solver.stats()
         stats["iterations"] += int(st.get("iter_count", 0))
         stats["status"] = st.get("return_status", "unknown")
+        stats["polish_steps"] = 0
         x = np.asarray(sol["x"]).ravel()
         x = polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
@@ -333,10 +356,15 @@ def polish(problem, x, p, lb, ub, stats, tol):
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
         J = np.asarray(problem.jacobian(x, p))
+        if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
+            break           # absurd input (a 1e30 coefficient): nothing to polish
         try:
             step = np.linalg.solve(J, g)
         except np.linalg.LinAlgError:
-            step, *_ = np.linalg.lstsq(J, g, rcond=None)
+            try:
+                step, *_ = np.linalg.lstsq(J, g, rcond=None)
+            except np.linalg.LinAlgError:
+                break
         improved = False
         alpha = 1.0
         for _ in range(6):
@@ -348,6 +376,7 @@ def polish(problem, x, p, lb, ub, stats, tol):
                 break
             alpha *= 0.5
         stats["iterations"] += 1
+        stats["polish_steps"] = stats.get("polish_steps", 0) + 1
         if not improved:
             break
     return x
@@ -425,8 +454,27 @@ def _diagnose(problem, case, result) -> str:
                            f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
-        reasons.append(f"the solver stopped with status {result.certificate.status}")
+        found = audit_findings(result, case, boundaries_only=True)
+        reasons.append(f"the solver stopped with status {result.certificate.status}"
+                       + (f"; at the best point reached: {'; '.join(found)}" if found else "")
+                       + _along_a_boundary(case, result))
     return "; ".join(reasons)
+
+
+def _along_a_boundary(case, result) -> str:
+    """Name a segment lying along the seabed or the surface over its whole length between
+    two ends both on it: its height equation is degenerate there (``Z ~ V|V|`` at ``V = 0``),
+    which limits how closely its state can be certified."""
+    for line, lr in zip(case.lines, result.legs):
+        for k, seg in enumerate(lr.segments):
+            lying = max(seg.get("grounded_length_m", 0.0), seg.get("floating_length_m", 0.0))
+            if lying >= seg["length_m"] * (1 - 1e-9):
+                where = "surface" if seg.get("floating_length_m", 0.0) > 0 else "seabed"
+                return (f" (leg {line.name}: segment {k + 1} lies along the {where} over its "
+                        "whole length between two ends on it, where its height equation is "
+                        "degenerate: join it with the segment beside it, or move an end off "
+                        f"the {where})")
+    return ""
 
 
 __all__ = ["solve", "rest_point", "polish", "over_mbl", "get_problem", "initial_point",

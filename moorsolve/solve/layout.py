@@ -36,7 +36,7 @@ from .stretch_params import law_slot, stretch_parameters
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
               "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor")
 LINE_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
-               "length", "weight", "ea_inv", "friction")
+               "length", "weight", "ea_inv", "friction", "weight_air")
 #: The ``legs:`` form's name for :data:`LINE_PARAMS`.
 LEG_PARAMS = LINE_PARAMS
 SEABED_PARAMS = ("depth", "gradient_x", "gradient_y")
@@ -75,7 +75,8 @@ def line_parameters(case: Case) -> np.ndarray:
     for line in case.lines:
         lt = line.line_type
         rows.append([*_end_coordinates(line.a), *_end_coordinates(line.b), line.length,
-                     lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0, mu])
+                     lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0, mu,
+                     lt.weight_in_air if lt.weight_in_air is not None else lt.weight_in_water])
     return np.asarray(rows, dtype=float).reshape(-1)
 
 
@@ -103,8 +104,11 @@ def segment_parameters(case: Case, kinds) -> np.ndarray:
                            lt.diameter or 0.0, drag.normal if drag else 0.0,
                            drag.tangential if drag else 0.0, drag.side if drag else 0.0]
             values += [c.weight if c is not None else 0.0 for c in line.joint_clumps]
-    if discrete_profile and case.environment.current.profile:
-        values += [v for row in case.environment.current.profile for v in row]
+    current = case.environment.current
+    if discrete_profile and current.profile:
+        # (z, signed speed along the heading) rows, or (z, ux, uy) when each has a heading.
+        rows = current.profile_vectors() if current.profile_headings else current.profile
+        values += [v for row in rows for v in row]
     return np.asarray(values, dtype=float)
 
 
@@ -218,8 +222,9 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
                     add(f"line[{line.name}].segment[{k}].{key}")
             for j in range(len(line.segments) - 1):
                 add(f"line[{line.name}].clump[{j}]")
-    if has_discrete and case.environment.current.profile:
-        add("current.profile", 2 * len(case.environment.current.profile))
+    current = case.environment.current
+    if has_discrete and current.profile:
+        add("current.profile", (3 if current.profile_headings else 2) * len(current.profile))
     for body in case.bodies:
         add(f"body[{body.name}].pose", 6)
         add(f"body[{body.name}].force", 6)

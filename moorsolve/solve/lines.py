@@ -59,9 +59,11 @@ import casadi as ca
 
 from ..model import Case, Line
 from ..model.build_network import end_position
-from ..physics.catenary import (LegKind, leg_function, lifted_segment_function,
-                                sloped_leg_function, straight_segment_function)
-from ..physics.stretch import StretchModel
+from ..physics.catenary import (LegKind, air_part, descent_force, leg_function,
+                                lifted_segment_function, straight_segment_function,
+                                surface_leg_function, surface_segment_function)
+from ..physics.sloped import sloped_leg_function
+from ..physics.stretch import Law, StretchModel
 from .stretch_params import law_model
 
 #: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment line
@@ -72,7 +74,7 @@ from .stretch_params import law_model
 #: and its mismatch as a force.
 SEGMENT_COLUMNS = ("leg", "segment", "H", "VF", "HA", "VA", "grounded", "suspended_x",
                    "descent_x", "rX", "rZ", "X", "Z", "lower_h", "lower_xi", "lower_z",
-                   "joint_unbalanced", "joint_reaction", "mismatch_N")
+                   "joint_unbalanced", "joint_reaction", "mismatch_N", "floating")
 
 #: Keeps derivatives finite for a vertical line (X = 0); moves X by less than 1e-18 m.
 _X_FLOOR = 1e-12
@@ -82,10 +84,11 @@ _X_FLOOR = 1e-12
 class SegmentKind:
     """Which block a segment of a multi-segment line uses.
 
-    ``block`` is ``"leg"`` (the leg block of :func:`leg_function` with ``leg``: a buoyant
-    segment that never touches the seabed), ``"lifted"`` (a sinking segment whose lower end
-    may be above the seabed; ``friction`` for the anchor segment) or ``"straight"``
-    (weightless).
+    ``block`` is ``"lifted"`` (a sinking segment whose lower end may be above the seabed;
+    ``friction`` for the anchor segment), ``"floating"`` (a buoyant segment bounded by the
+    free surface, :func:`~moorsolve.physics.catenary.surface_segment_equations`),
+    ``"straight"`` (weightless) or ``"leg"`` (the leg block of :func:`leg_function` with
+    ``leg``). ``law``: its stretch law when it is not Hooke's.
     """
 
     block: str
@@ -100,9 +103,10 @@ class MultiLegKind:
     """The physics of a multi-segment line: one :class:`SegmentKind` per segment, from the
     lower end.
 
-    ``reversed_top``: the top end rests on the seabed and the top segment sinks, so that
-    segment is solved from the top end (its block's lower end), where the line may lie
-    flat; the unknown ``V`` is then its vertical tension at the joint below.
+    ``reversed_top``: the top end rests on the seabed and the top segment sinks (or the top
+    end is at the surface and the top segment floats), so that segment is solved from the
+    top end (its block's lower end), where the line may lie flat; the unknown ``V`` is then
+    its vertical tension at the joint below.
     """
 
     segments: tuple
@@ -125,6 +129,10 @@ class MultiLegKind:
     def elastic(self) -> bool:
         return any(s.elastic for s in self.segments)
 
+    @property
+    def surface(self) -> bool:
+        return any(s.block == "floating" for s in self.segments)
+
     neutral = False
     sloped = False
 
@@ -143,6 +151,11 @@ class DiscreteLegKind:
     elastic_segments: tuple
     profile_rows: int = 0
     side: bool = False
+    profile_headings: bool = False
+    #: Some part of the line is buoyant: the free surface may hold nodes (the node heights
+    #: are clipped to the water column in every lumped-node line).
+    surface: bool = False
+    #: Each segment's stretch law when it is not Hooke's (:class:`StretchModel` or None).
     laws: tuple = ()
 
     @property
@@ -212,6 +225,11 @@ class LineKind:
         return self.block.neutral
 
     @property
+    def surface(self) -> bool:
+        """The free surface bounds the line (a buoyant line or segment, lumped nodes)."""
+        return bool(getattr(self.block, "surface", False))
+
+    @property
     def sloped(self) -> bool:
         return self.block.sloped
 
@@ -273,6 +291,9 @@ def line_kind(case: Case, line: Line) -> LineKind:
             elements=counts,
             elastic_segments=tuple(seg.line_type.elastic for seg in line.segments),
             profile_rows=len(profile) if profile else 0,
+            profile_headings=case.environment.current.profile_headings,
+            surface=any(seg.line_type.weight_in_water < 0 for seg in line.segments)
+            or any(c is not None and c.weight < 0 for c in line.joint_clumps),
             side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
                      for seg in line.segments),
             laws=tuple(law_model(seg.line_type) for seg in line.segments))
@@ -286,21 +307,33 @@ def line_kind(case: Case, line: Line) -> LineKind:
         flipped = _start_height(case, line.b) < _start_height(case, line.a)
     lower, upper = (role_b, role_a) if flipped else (role_a, role_b)
     segments = line.segments[::-1] if flipped else line.segments
+    tx, ty, tz = _start_position(case, line.a if flipped else line.b)
     if len(segments) > 1:
-        tx, ty, tz = _start_position(case, line.a if flipped else line.b)
         on_bed = tz <= case.environment.seabed_z(tx, ty) + 1e-9
-        return LineKind(_multi_kind(case, segments, lower, on_bed), flipped, lower, upper)
+        return LineKind(_multi_kind(case, segments, lower, on_bed, at_surface(tz)), flipped,
+                        lower, upper)
     lt = line.line_type
     w = lt.weight_in_water
     contact = lower == "anchor" and w > 0
+    # The free surface bounds every buoyant line; one whose upper end is at (or above) the
+    # surface is solved from that end (LegKind.from_fairlead). An upper end above the water
+    # with a weight in air given: the part in air is its own catenary (LegKind.air).
+    air = tz > 1e-9 and w != 0 and lt.weight_in_air is not None
     block = LegKind(elastic=lt.elastic, contact=contact,
                     friction=contact and case.environment.seabed.friction > 0,
                     neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
-                    law=law_model(lt))
+                    surface=w < 0, from_fairlead=w < 0 and at_surface(tz) and not air,
+                    air=air, law=law_model(lt))
     return LineKind(block, flipped, lower, upper, lifted=(w > 0 and lower != "anchor"))
 
 
-def _multi_kind(case: Case, segments, lower: str, top_on_seabed: bool) -> MultiLegKind:
+def at_surface(z: float) -> bool:
+    """Whether a point at height ``z`` [m] is at or above the still-water level."""
+    return z >= -1e-9
+
+
+def _multi_kind(case: Case, segments, lower: str, top_on_seabed: bool,
+                top_at_surface: bool = False) -> MultiLegKind:
     kinds = []
     for k, seg in enumerate(segments):
         lt = seg.line_type
@@ -309,14 +342,15 @@ def _multi_kind(case: Case, segments, lower: str, top_on_seabed: bool) -> MultiL
         if w == 0:
             kinds.append(SegmentKind("straight", lt.elastic, law=law))
         elif w < 0:
-            kinds.append(SegmentKind("leg", lt.elastic, LegKind(lt.elastic, contact=False,
-                                                                 law=law), law=law))
+            # Bounded by the free surface, which may hold the joint above it down.
+            kinds.append(SegmentKind("floating", lt.elastic, law=law))
         else:
             # Friction acts on the anchor segment's grounded length only (README).
             friction = k == 0 and lower == "anchor" and case.environment.seabed.friction > 0
             kinds.append(SegmentKind("lifted", lt.elastic, friction=friction, law=law))
-    return MultiLegKind(tuple(kinds), reversed_top=top_on_seabed
-                        and kinds[-1].block == "lifted")
+    return MultiLegKind(tuple(kinds), reversed_top=(
+        (top_on_seabed and kinds[-1].block == "lifted")
+        or (top_at_surface and kinds[-1].block == "floating")))
 
 
 def line_kinds(case: Case) -> list:
@@ -375,18 +409,36 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     block = kind.block
     args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"], ea_inv=P["ea_inv"],
                 mu=P["friction"])
+    law = None
     if block.law is not None:
         # The stretch law's parameters (solve/stretch_params.py).
         args["law"] = ca.vertcat(*problem.line_laws[i][0])
+        law = Law(block.law, problem.line_laws[i][0])
+    air = None
+    if block.air:
+        # The upper end is above the water: its part in air, in closed form, then the water
+        # block up to the surface crossing (its top, at z = 0).
+        air = air_part(ca.fmax(u, 0), V, upper[2], P["weight_air"],
+                       P["ea_inv"] if block.elastic else 0, law=law)
+        args = dict(args, X=X - air["x"], Z=-lower[2], V=air["V"],
+                    L=P["length"] - air["length"])
     if kind.lifted:
         h = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
-        out = lifted_segment_function(block.elastic, False, block.law).call(dict(args, h=h))
+        out = lifted_segment_function(block.elastic, False, model=block.law).call(
+            dict(args, h=h))
+    elif block.surface:
+        # Depth below the surface of the end the block starts from.
+        start_z = upper[2] if block.from_fairlead else lower[2]
+        out = surface_leg_function(block.elastic, block.from_fairlead, block.law).call(
+            dict(args, d=ca.fmax(-start_z, 0)))
     elif block.sloped:
         # The seabed's rise per metre along the line, lower end toward upper end.
         args["t"] = seabed["gradient_x"] * ux + seabed["gradient_y"] * uy
         out = sloped_leg_function(block.elastic, block.friction, block.law).call(args)
     else:
         out = leg_function(block).call(args)
+    if air is not None:
+        out = dict(out, VF=V, suspended_x=out["suspended_x"] + air["x"])
     scale = 1.0 / P["length"]
     residuals = [out["rX"] * scale, out["rZ"] * scale]
     J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
@@ -422,15 +474,7 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
     xi = [x[iu + 2 + 2 * j] for j in range(nj)]
     sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
     z_bed = seabed_height(seabed, lower[0], lower[1])
-    Vs, N = [], []
-    for j in range(nj):
-        if _can_ground(block.segments[j]):
-            Vs.append(ca.fmax(sigma[j], 0))
-            N.append(ca.fmax(-sigma[j], 0))
-        else:
-            Vs.append(sigma[j])
-            N.append(0 * sigma[j])
-    Vs.append(V_top)
+    Vs, N = [None] * nj + [V_top], []
     node_xi = [0] + xi + [X]
     node_z = [lower[2]]
     outs, res, mismatch = [], [], []
@@ -441,18 +485,30 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
         # equation defines it instead of being a residual.
         Zk = upper[2] - node_z[k] if top else 0
         h = ca.fmax(node_z[k] - z_bed, 0)
+        d = ca.fmax(-node_z[k], 0)          # depth below the surface
         if top and block.reversed_top:
-            # Solved from the top end (on the seabed) toward the joint below.
+            # Solved from the top end (on the seabed, or at the surface for a floating top
+            # segment) toward the joint below.
             Zk = node_z[k] - upper[2]
             h = ca.fmax(upper[2] - z_bed, 0)
+            d = ca.fmax(-upper[2], 0)
         L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
+        # A stretch law other than Hooke's: its parameters (solve/stretch_params.py).
         law = {} if sk.law is None else {"law": ca.vertcat(*laws[k])}
+        if not top:
+            bound = None if sk.law is None else Law(sk.law, laws[k])
+            Vs[k], Nk = _joint_split(sk, sigma[k], u, L, w, c if sk.elastic else 0, h, d,
+                                     bound)
+            N.append(Nk)
         if sk.block == "leg":
             o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
                                                ea_inv=c, mu=P["friction"], **law))
             o["descent_x"] = 0 * u
+        elif sk.block == "floating":
+            o = surface_segment_function(sk.elastic, True, sk.law).call(dict(
+                X=Xk, Z=Zk, h=d, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=0, **law))
         elif sk.block == "lifted":
-            o = lifted_segment_function(sk.elastic, sk.friction, sk.law).call(dict(
+            o = lifted_segment_function(sk.elastic, sk.friction, True, sk.law).call(dict(
                 X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"], **law))
         else:
             o = straight_segment_function(sk.elastic, sk.law).call(dict(
@@ -493,19 +549,48 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
         worst = ca.fmax(worst, m)
     top, bottom = outs[-1][0], outs[0][0]
     grounded = sum((o["grounded"] for o, _, _, _ in outs), 0 * u)
+    floating = sum((o.get("floating", 0 * u) for o, _, _, _ in outs), 0 * u)
     row = dict(H=top["H"], VF=top["VF"], HA=bottom["HA"], VA=bottom["VA"],
                grounded=grounded, suspended_x=top["suspended_x"], rX=worst, rZ=0 * u,
-               J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=Z)
+               J=ca.DM([1.0, 0.0, 0.0, 1.0]), X=X, Z=Z, floating=floating)
     rows = []
     for k, (o, Xk, Zk, h) in enumerate(outs):
         rows.append(ca.vertcat(
             i, k, o["H"], o["VF"], o["HA"], o["VA"], o["grounded"], o["suspended_x"],
             o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
-            joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k]))
+            joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k],
+            o.get("floating", 0 * u)))
     on_upper = ca.vertcat(-top["H"] * ux, -top["H"] * uy, -top["VF"])
     on_lower = ca.vertcat(bottom["HA"] * ux, bottom["HA"] * uy, bottom["VA"])
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(res, force_a, force_b, worst, row, rows, [])
+
+
+def _joint_split(kind: SegmentKind, sigma, u, L, w, c, h, d, law=None):
+    """The top tension ``V`` of the segment below a joint and the boundary's reaction on
+    the joint [N, upward], from the joint's signed unknown ``sigma``.
+
+    A sinking segment arrives at a joint on the seabed along it (``V = 0``) and the seabed
+    pushes the joint up: ``V = max(sigma, 0)``, ``N = max(-sigma, 0)``; a buoyant segment
+    mirrors it at the surface (``V = min(sigma, 0)``, ``N = -max(sigma, 0)``). The split is
+    offered only where the segment, hanging with ``V = 0`` from its lower end (``h`` above
+    the seabed, or ``d`` below the surface), reaches the boundary at all; otherwise ``V =
+    sigma`` and no reaction. Without that condition a state with the segment's vertex at the
+    joint, clear of the boundary, and a reaction holding the joint there would satisfy every
+    equation: a false root the solver can fall into (issue 20). ``law``: the segment's
+    bound stretch law when it is not Hooke's.
+    """
+    if kind.block == "lifted":
+        V1 = descent_force(ca.fmax(u, 0), h, w, c, law)
+        reaches = w * L > -V1
+        return (ca.if_else(reaches, ca.fmax(sigma, 0), sigma),
+                ca.if_else(reaches, ca.fmax(-sigma, 0), 0))
+    if kind.block == "floating":
+        V1 = descent_force(ca.fmax(u, 0), d, -w, c, law)
+        reaches = -w * L > -V1
+        return (ca.if_else(reaches, ca.fmin(sigma, 0), sigma),
+                ca.if_else(reaches, -ca.fmax(sigma, 0), 0))
+    return sigma, 0 * sigma
 
 
 def _can_ground(kind: SegmentKind) -> bool:

@@ -15,12 +15,13 @@ import math
 import numpy as np
 
 from ..model import Case
-from ..physics.catenary import LegKind
-from ..physics.profiles import leg_profile, segment_profile, sloped_leg_profile
+from ..physics.catenary import LegKind, air_part
+from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
+                               surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.wall_tension import wall_tension
+from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
 from .problem import LINE_COLUMNS, ROTATIONS
-from .fibre import fibre_grounded, fibre_notes
 from .result import LegResult, Result
 from .stretch_params import numeric_law
 
@@ -117,26 +118,14 @@ def hull_out_of_range(problem, x, p) -> list:
 
 
 def _line_notes(case, problem, legs) -> list:
-    env = case.environment
+    # A line through the seabed or out of the water, a joint held off its boundary: the
+    # audit's findings (moorsolve.solve.audit), errors of a certified point and reasons of
+    # one that is not; not notes.
     notes = []
     for lr, kind in zip(legs, problem.kinds):
-        if kind.single and not kind.contact and lr.profile["z_m"].size and np.any(
-                lr.profile["z_m"] < np.array([env.seabed_z(px, py) for px, py in zip(
-                    lr.profile["x_m"], lr.profile["y_m"])]) - 1e-6):
-            notes.append(f"leg {lr.name}: the line passes below the seabed (contact is not "
-                         "modelled for a buoyant line)")
         if kind.discrete and np.any(lr.profile["tension_N"][1:-1] < 0):
             notes.append(f"leg {lr.name}: some elements of the discretised line are in "
                          "compression (a loose line; its lumped-node shape is not unique)")
-        for j, joint in enumerate(lr.joints):
-            if joint["position_m"][2] > 0:
-                notes.append(f"leg {lr.name}: joint {j + 1} is {joint['position_m'][2]:.2f} m "
-                             "above the still-water level (its buoyancy is taken as fully "
-                             "submerged; the buoy is too large for this leg)")
-            if joint["seabed_reaction_N"] > 0 and joint["height_above_seabed_m"] > 1e-6:
-                notes.append(f"leg {lr.name}: joint {j + 1} is held by a seabed reaction but "
-                             f"hangs {joint['height_above_seabed_m']:.3f} m above the seabed "
-                             "(a segment hanging down into a joint is outside the model)")
     return notes
 
 
@@ -163,15 +152,17 @@ def _end_fields(name, a, b, fa, fb) -> dict:
         fairlead_force=tuple(float(v) for v in fb), anchor_force=tuple(float(v) for v in fa))
 
 
-def _orient(profile: dict, lower, upper, flipped: bool) -> dict:
+def _orient(profile: dict, lower, upper, flipped: bool, length: float) -> dict:
     """A planar profile (x along the lower-to-upper direction, z up from the lower end) in
-    3-D, running from end A."""
+    3-D, running from end A, with ``s_m`` the unstretched arc length from end A."""
     X = math.hypot(upper[0] - lower[0], upper[1] - lower[1])
     ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-12 else (1.0, 0.0)
-    out = {"x_m": lower[0] + ux * profile["x"], "y_m": lower[1] + uy * profile["x"],
+    out = {"s_m": np.asarray(profile["s"], float),
+           "x_m": lower[0] + ux * profile["x"], "y_m": lower[1] + uy * profile["x"],
            "z_m": lower[2] + profile["z"], "tension_N": profile["tension"]}
     if flipped:
         out = {k: v[::-1].copy() for k, v in out.items()}
+        out["s_m"] = length - out["s_m"]
     return out
 
 
@@ -195,21 +186,41 @@ def _single_result(case, line, kind, row, u) -> LegResult:
     ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-9 else (1.0, 0.0)
     mu = env.seabed.friction if kind.friction else 0.0
     slope = 0.0
+    floating = row["floating"]
+    length, V_top, X_top, Z_top = line.length, VF, X, Z
+    law = numeric_law(lt)
+    if kind.block.air:
+        # The water part up to the surface crossing; the part in air is added below.
+        part = {k: float(v) for k, v in air_part(
+            H, VF, upper[2], lt.weight_in_air, 1.0 / lt.ea if lt.ea else 0.0,
+            law=law.bound if law is not None else None).items()}
+        length, VF, X, Z = line.length - part["length"], part["V"], X - part["x"], -lower[2]
     if kind.lifted:
         h = max(lower[2] - env.seabed_z(lower[0], lower[1]), 0.0)
-        prof = segment_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea, h=h,
-                               X=X, Z=Z, n=_PROFILE_POINTS, law=numeric_law(lt))
+        prof = segment_profile(H=H, V=VF, L=length, w=lt.weight_in_water, ea=lt.ea, h=h,
+                               X=X, Z=Z, n=_PROFILE_POINTS, law=law)
+    elif kind.surface:
+        start_z = upper[2] if kind.block.from_fairlead else lower[2]
+        prof = surface_leg_profile(from_fairlead=kind.block.from_fairlead, H=H, VF=VF, VA=VA,
+                                   L=length, w=lt.weight_in_water, ea=lt.ea,
+                                   d=max(-start_z, 0.0), X=X, Z=Z, n=_PROFILE_POINTS,
+                                   law=law)
     elif kind.sloped:
         slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy
-        prof = sloped_leg_profile(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea,
-                                  mu=mu, t=slope, X=X, Z=Z, n=_PROFILE_POINTS,
-                                  law=numeric_law(lt))
+        prof = sloped_leg_profile(H=H, V=VF, L=length, w=lt.weight_in_water, ea=lt.ea,
+                                  mu=mu, t=slope, X=X, Z=Z, n=_PROFILE_POINTS, law=law)
     else:
-        prof = leg_profile(kind.block, H=H, V=VF, L=line.length, w=lt.weight_in_water,
-                           ea=lt.ea, mu=mu, X=X, Z=Z, n=_PROFILE_POINTS, law=numeric_law(lt))
-    profile = _orient(prof, lower, upper, kind.flipped)
+        prof = leg_profile(kind.block, H=H, V=VF, L=length, w=lt.weight_in_water,
+                           ea=lt.ea, mu=mu, X=X, Z=Z, n=_PROFILE_POINTS, law=law)
+    if kind.block.air:
+        prof = with_air_part(prof, H=H, V=V_top, z_top=upper[2], w_air=lt.weight_in_air,
+                             ea=lt.ea, L=line.length, law=law)
+        VF, X, Z = V_top, X_top, Z_top
+    profile = _orient(prof, lower, upper, kind.flipped, line.length)
     _add_wall_tension(profile, line, env)
     fields = _end_fields(line.name, a, b, fa, fb)
+    fields.update(floating_length_m=floating,
+                  touchup_from_anchor_m=_first_at_surface(profile, a) if floating > 0 else 0.0)
     anchored = kind.block.contact
     td = max(X - susp_x, 0.0) if (anchored and grounded > 0) else 0.0
     lower_pull = fb if kind.flipped else fa
@@ -241,7 +252,8 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
     H, VF, HA, VA, grounded = row["H"], row["VF"], row["HA"], row["VA"], row["grounded"]
     X = row["X"]
     ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-12 else (1.0, 0.0)
-    parts = {k: [] for k in ("x", "z", "tension")}
+    parts = {k: [] for k in ("s", "x", "z", "tension")}
+    arc_below = 0.0
     segments, joints = [], []
     for k, (seg, sk, r) in enumerate(zip(segments_lf, block.segments, rows)):
         lt = seg.line_type
@@ -253,16 +265,29 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
                                n=_PROFILE_POINTS, law=law)
         elif k == len(rows) - 1 and block.reversed_top:
             # Solved from the top end: draw it from there, then turn it round.
-            back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water,
-                                   ea=lt.ea, h=max(upper[2] - env.seabed_z(*upper[:2]), 0.0),
-                                   X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
-            prof = {"x": (r["X"] - back["x"])[::-1], "z": (r["Z"] + back["z"])[::-1],
-                    "tension": back["tension"][::-1]}
+            if sk.block == "floating":
+                back = surface_segment_profile(
+                    H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water, ea=lt.ea,
+                    d=max(-upper[2], 0.0), X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
+            else:
+                back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length,
+                                       w=lt.weight_in_water, ea=lt.ea,
+                                       h=max(upper[2] - env.seabed_z(*upper[:2]), 0.0),
+                                       X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
+            prof = {"s": (seg.length - back["s"])[::-1], "x": (r["X"] - back["x"])[::-1],
+                    "z": (r["Z"] + back["z"])[::-1], "tension": back["tension"][::-1]}
+        elif sk.block == "floating":
+            prof = surface_segment_profile(H=r["H"], V=r["VF"], L=seg.length,
+                                           w=lt.weight_in_water, ea=lt.ea,
+                                           d=max(-r["lower_z"], 0.0), X=r["X"], Z=r["Z"],
+                                           n=_PROFILE_POINTS, law=law)
         else:
             prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                    ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
                                    n=_PROFILE_POINTS, law=law)
         sl = slice(1, None) if k else slice(None)
+        parts["s"].append(arc_below + prof["s"][sl])
+        arc_below += seg.length
         parts["x"].append(r["lower_xi"] + prof["x"][sl])
         parts["z"].append(r["lower_z"] + prof["z"][sl])
         parts["tension"].append(prof["tension"][sl])
@@ -271,6 +296,7 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
                          "bottom_tension_N": math.hypot(r["HA"], r["VA"]),
                          "horizontal_tension_N": r["H"], "top_vertical_N": r["VF"],
                          "bottom_vertical_N": r["VA"], "grounded_length_m": r["grounded"],
+                         "floating_length_m": r["floating"],
                          "max_tension_N": float(np.max(prof["tension"])),
                          "utilisation": (float(np.max(prof["tension"])) / lt.mbl
                                          if lt.mbl else None)})
@@ -282,17 +308,25 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
                            "on_seabed": bool(rows[k - 1]["joint_reaction"] > 0
                                              or r["lower_h"] <= 0),
                            "seabed_reaction_N": max(rows[k - 1]["joint_reaction"], 0.0),
+                           # The surface holds a joint down (a negative reaction).
+                           "on_surface": bool(rows[k - 1]["joint_reaction"] < 0
+                                              or r["lower_z"] >= 0),
+                           "surface_reaction_N": max(-rows[k - 1]["joint_reaction"], 0.0),
                            "clump_weight_N": clump.weight if clump is not None else 0.0})
     td = _touchdown(rows, segments_lf, block)
-    prof = {"x": np.concatenate(parts["x"]), "z": np.concatenate(parts["z"]) - lower[2],
+    prof = {"s": np.concatenate(parts["s"]), "x": np.concatenate(parts["x"]),
+            "z": np.concatenate(parts["z"]) - lower[2],
             "tension": np.concatenate(parts["tension"])}
-    profile = _orient(prof, lower, upper, kind.flipped)
+    profile = _orient(prof, lower, upper, kind.flipped, line.length)
     if kind.flipped:
         segments, joints = segments[::-1], joints[::-1]
     first = rows[0]
     uplift = VA > 0 and first["grounded"] <= 0
     mbl = min((seg.line_type.mbl for seg in line.segments if seg.line_type.mbl), default=None)
     fields = _end_fields(line.name, a, b, fa, fb)
+    fields.update(floating_length_m=row["floating"],
+                  touchup_from_anchor_m=(_first_at_surface(profile, a) if row["floating"] > 0
+                                         else 0.0))
     if kind.lower == "anchor" and not kind.flipped:
         fields["anchor_vertical_N"] = max(fields["anchor_vertical_N"], 0.0)
         fields["anchor_tension_N"] = math.hypot(fields["anchor_horizontal_N"],
@@ -306,6 +340,15 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
                          if td is not None else None),
         mbl_N=mbl, profile=profile, segments=tuple(segments), joints=tuple(joints),
         **fields)
+
+
+def _first_at_surface(profile: dict, a) -> float:
+    """Horizontal distance [m] from end A of the first profile point at the surface."""
+    at = np.flatnonzero(np.asarray(profile["z_m"]) >= -1e-9)
+    if not at.size:
+        return 0.0
+    k = int(at[0])
+    return float(math.hypot(profile["x_m"][k] - a[0], profile["y_m"][k] - a[1]))
 
 
 def _touchdown(rows, segments, block):
@@ -331,8 +374,12 @@ def _discrete_result(case, line, kind, row, nodes) -> LegResult:
     on_bed = a[2] <= env.seabed_z(a[0], a[1]) + 1e-9 * max(env.depth, 1.0)
     flags = nodes[:, 7] > 0.5
     td = X - susp_x if (on_bed and flags[1]) else None
-    profile = {"x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
-               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy()}
+    arc = np.concatenate([[0.0], np.cumsum(np.repeat(
+        [seg.length / m for seg, m in zip(line.segments, block.elements)], block.elements))])
+    profile = {"s_m": arc,
+               "x_m": nodes[:, 2].copy(), "y_m": nodes[:, 3].copy(), "z_m": nodes[:, 4].copy(),
+               "tension_N": nodes[:, 5].copy(), "seabed_reaction_N": nodes[:, 6].copy(),
+               "surface_reaction_N": nodes[:, 8].copy()}
     _add_wall_tension(profile, line, env)
     segments, joints = [], []
     start = 0
@@ -358,6 +405,9 @@ def _discrete_result(case, line, kind, row, nodes) -> LegResult:
     mbl = min((seg.line_type.mbl for seg in line.segments if seg.line_type.mbl), default=None)
     u_dir = ((b[0] - a[0]) / X, (b[1] - a[1]) / X) if X > 1e-12 else (1.0, 0.0)
     fields = _end_fields(line.name, a, b, fa, fb)
+    fields.update(floating_length_m=row["floating"],
+                  touchup_from_anchor_m=(_first_at_surface(profile, a) if row["floating"] > 0
+                                         else 0.0))
     if on_bed:
         # The anchor's vertical pull: the seabed takes a downward one.
         fields["anchor_vertical_N"] = max(VA_raw, 0.0)

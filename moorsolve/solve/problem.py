@@ -53,7 +53,7 @@ from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geom
 #: (column-major); end A's global position and end B's z; the forces on A and B [N].
 LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X", "Z",
                 "bx", "by", "fx", "fy", "J00", "J10", "J01", "J11",
-                "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz")
+                "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz", "floating")
 ROTATIONS = ("roll", "pitch", "yaw")
 POINT_DOFS = ("x", "y", "zeta")
 
@@ -155,6 +155,8 @@ class EquilibriumProblem:
             effects.append("nonlinear_stretch")
         if any(k.contact for k in kinds):
             effects.append("seabed_contact")
+        if any(k.surface for k in kinds):
+            effects.append("surface_contact")
         if any(k.friction for k in kinds):
             effects.append("seabed_friction")
         if any(k.sloped for k in kinds):
@@ -289,7 +291,7 @@ class EquilibriumProblem:
                 row["H"], row["VF"], row["HA"], row["VA"], row["grounded"],
                 row["suspended_x"], row["rX"], row["rZ"], row["X"], row["Z"],
                 pos_b[0], pos_b[1], fb[0], fb[1], J,
-                pos_a, pos_b[2], fa, fb))
+                pos_a, pos_b[2], fa, fb, row.get("floating", 0 * row["H"])))
 
         # -- body loads -------------------------------------------------------------------
         load_vectors, self.load_names = [], []
@@ -446,13 +448,17 @@ class EquilibriumProblem:
         return out
 
     def _current(self, E, p) -> dict:
-        rows = next((k.block.profile_rows for k in self.kinds if k.discrete), 0)
+        first = next((k.block for k in self.kinds if k.discrete), None)
+        rows = first.profile_rows if first is not None else 0
+        headings = first is not None and first.profile_headings
         profile = None
         if rows:
+            # (z, signed speed along the heading) rows, or (z, ux, uy) with a heading each.
+            width = 3 if headings else 2
             flat = ca.vertsplit(p[self.layout.slice("current.profile")])
-            profile = [(flat[2 * r], flat[2 * r + 1]) for r in range(rows)]
+            profile = [tuple(flat[width * r: width * (r + 1)]) for r in range(rows)]
         return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
-                    factor=E["load_factor"])
+                    headings=headings, factor=E["load_factor"])
 
     # -- certificate ------------------------------------------------------------------
     def certify(self, x, p, tol: float) -> tuple:
@@ -529,9 +535,10 @@ class EquilibriumProblem:
             if dof == "pitch":
                 # z-y-x angles are singular at +-90 deg of pitch.
                 lb[j], ub[j] = -0.49 * math.pi, 0.49 * math.pi
-        for i, kind in enumerate(self.kinds):
-            if kind.single and not kind.contact and not kind.neutral:
-                lb[self.line_offsets[i]] = 0.0   # a hanging catenary cannot go slack
+        # No bound on a line's u: every block continues its spans monotonically for u < 0
+        # (loose line on a boundary, or, for a line with nothing to lie on, no root there),
+        # so H = max(u, 0) = 0 is an interior root, not a bound IPOPT must reach (a folded
+        # line hit IPOPT's iteration limit at that bound, issue 20).
         return lb, ub
 
     def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:

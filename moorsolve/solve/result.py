@@ -57,6 +57,9 @@ class LegResult:
     segment utilisation. ``fairlead_force`` and ``anchor_force`` are the forces [N] the
     line exerts on its ends B and A, global ``(Fx, Fy, Fz)``: in the line's vertical plane
     for an analytic line, with a sideways part for a line in a current.
+    ``floating_length_m`` is the unstretched length floating on the free surface (a buoyant
+    line, the analogue of ``grounded_length_m``) and ``touchup_from_anchor_m`` the horizontal
+    distance from end A at which the line first reaches the surface (0 when nothing floats).
     ``fibre_grounded_m`` is the length of fibre rope lying on the seabed [m] (None for a
     line without fibre rope).
     """
@@ -84,6 +87,8 @@ class LegResult:
     fairlead_force: Optional[tuple] = None
     anchor_force: Optional[tuple] = None
     fibre_grounded_m: Optional[float] = None
+    floating_length_m: float = 0.0
+    touchup_from_anchor_m: float = 0.0
 
     def __repr__(self) -> str:
         from ..report.notebook import leg_repr
@@ -110,6 +115,8 @@ class LegResult:
             "anchor_vertical_N": self.anchor_vertical_N,
             "grounded_length_m": self.grounded_length_m,
             "touchdown_from_anchor_m": self.touchdown_from_anchor_m,
+            "floating_length_m": self.floating_length_m,
+            "touchup_from_anchor_m": self.touchup_from_anchor_m,
             "uplift": self.uplift,
             "slack": self.slack,
             "uplift_angle_deg": self.uplift_angle_deg,
@@ -212,6 +219,8 @@ class Result:
     points: tuple = ()
     stability: Optional[Stability] = None
     form: str = "legs"
+    #: What an engineer must not miss (wall compression, line floating, an end in air):
+    #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.solve.audit.result_warnings`.
     warnings: tuple = ()
 
     @property
@@ -262,6 +271,8 @@ class Result:
             "legs": [leg.to_dict(profile=profiles) for leg in self.legs],
             "loads": {k: list(v) for k, v in self.loads.items()},
             "notes": list(self.notes),
+            # Always present, with or without profiles: empty means none.
+            "warnings": [dict(w) for w in self.warnings],
             "case": self.case_name,
         }
         if self.form == "network" or len(self.bodies) > 1 or self.points:
@@ -269,6 +280,4 @@ class Result:
             out["points"] = [dict(pt) for pt in self.points]
         if self.stability is not None:
             out["stability"] = self.stability.to_dict()
-        if self.warnings:
-            out["warnings"] = list(self.warnings)
         return out

@@ -9,13 +9,15 @@ where the case puts them. :func:`rest_point` solves the unloaded state once per 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import numpy as np
 
 from ..model import Case
 from ..model.build_network import end_position as case_end_position
-from ..physics.catenary import LegKind, initial_state
-from ..physics.profiles import leg_profile
+from ..physics.catenary import LegKind
+from ..physics.closed_form import initial_state
+from ..physics.profile import leg_profile
 from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
 from .lines import line_kinds as line_kind_list
@@ -101,8 +103,20 @@ def _compute_rest_states(case: Case) -> list:
             states.append(initial_state(eq_kind, X, Z, line.length, w, None))
             continue
         lt = line.line_type
-        states.append(initial_state(kind.block, X, Z, line.length, lt.weight_in_water,
-                                    start_ea(lt)))
+        block = kind.block
+        if block.sloped and X > 0:
+            # As on a flat seabed under the upper end's height above the slope (a shear of
+            # the line's plane), the touchdown's vertical force shifted by H t.
+            g = case.environment.seabed.gradient
+            t = (g[0] * (upper[0] - lower[0]) + g[1] * (upper[1] - lower[1])) / X
+            u, V = initial_state(dataclasses.replace(block, sloped=False), X, Z - t * X,
+                                 line.length, lt.weight_in_water, start_ea(lt))
+            states.append((u, V + max(u, 0.0) * t))
+            continue
+        # A buoyant line solved from its lower end starts from its depth there.
+        gap = -lower[2] if block.surface and not block.from_fairlead else 0.0
+        states.append(initial_state(block, X, Z, line.length, lt.weight_in_water,
+                                    start_ea(lt), max(gap, 0.0)))
     return states
 
 
@@ -138,6 +152,9 @@ def _multi_start(case, line, kind, lower, upper, segments, clumps, u, V, force_s
     for j in range(block.n_joints):
         if grounded[j] and _can_ground(block.segments[j]):
             sigma = -(max(weights[j], 0.0) + 1e-6 * force_scale)
+        elif z[j] >= 0 and block.segments[j].block == "floating":
+            # A joint afloat starts held down by the surface (the mirror image).
+            sigma = max(-weights[j], 0.0) + 1e-6 * force_scale
         else:
             sigma = Vs[j]
         joints += [float(xi[j]), float(sigma)]
@@ -157,14 +174,12 @@ def line_load(case: Case, line) -> tuple:
     _, w = equivalent_line(case, line, a)
     env = case.environment
     cur = env.current
-    speed = cur.speed
-    if cur.profile:
-        zs, vs = zip(*cur.profile)
-        speed = float(np.interp(-env.depth / 2, zs, vs))
+    ux, uy = cur.velocity(-env.depth / 2)
+    speed = math.hypot(ux, uy)
     drag = sum(0.5 * env.water_density * (seg.line_type.diameter or 0.0)
                * (seg.line_type.drag.normal if seg.line_type.drag else 0.0) * speed**2
                * seg.length for seg in line.segments) / line.length
-    th = math.radians(cur.toward_deg)
+    th = math.atan2(uy, ux)
     q = np.array([drag * math.cos(th), drag * math.sin(th), -w])
     size = float(np.linalg.norm(q))
     return size, (q / size if size > 0 else np.array([0.0, 0.0, -1.0]))

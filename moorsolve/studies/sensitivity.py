@@ -70,6 +70,7 @@ class Sensitivity:
 
 
 _LEG_PATH = re.compile(r"(?:legs|lines)\[([^\[\]]+)\]\.(\w+)$")
+_SEGMENT_PATH = re.compile(r"(?:legs|lines)\[([^\[\]]+)\]\.segments\[(\d+)\]\.length$")
 _BODY_PATH = re.compile(r"bodies\[([^\[\]]+)\]\.(\w+)$")
 _TYPE_PATH = re.compile(r"line_types\[([^\[\]]+)\]\.(\w+)$")
 _FORCE_PATH = re.compile(r"body\.loads\.force\[([0-2])\]$")
@@ -167,30 +168,56 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         return columns[m.group(2)](case, layout, m.group(1))
     if m:
         field = m.group(2)
-        lines = [i for i, line in enumerate(case.lines)
-                 if line.line_type.name == m.group(1)]
-        if not lines:
-            raise ValueError(f"{name}: no leg uses line type {m.group(1)!r}")
         if field not in ("ea", "weight_in_water"):
             raise ValueError(f"{name}: line-type parameters are ea, weight_in_water, n "
                              "(Baranov) and stiffness_scale")
-        for i in lines:
-            col += _parameter_column(case, problem, f"legs[{i}]." + (
-                "ea" if field == "ea" else "weight"))
+        used = [(i, k, seg) for i, line in enumerate(case.lines)
+                for k, seg in enumerate(line.segments) if seg.line_type.name == m.group(1)]
+        if not used:
+            raise ValueError(f"{name}: no leg uses line type {m.group(1)!r}")
+        for i, k, seg in used:
+            # Every segment of the type, in every line (a multi-segment or lumped-node
+            # line's own segment parameters, else the line's).
+            if field == "ea":
+                if seg.line_type.ea is None:
+                    raise ValueError(f"{name}: line type {m.group(1)!r} "
+                                     f"{_no_ea(seg.line_type)}")
+                col[_segment_slot(case, problem, i, k, "ea_inv")] += -1.0 / seg.line_type.ea ** 2
+            else:
+                col[_segment_slot(case, problem, i, k, "weight")] += 1.0
+        return col
+    m = _SEGMENT_PATH.match(name)
+    if m:
+        i = _line_index(case, m.group(1), name)
+        k = _segment_of_item(case.lines[i], int(m.group(2)), name)
+        col[_segment_slot(case, problem, i, k, "length")] += 1.0
         return col
     m = _LEG_PATH.match(name)
     if m and m.group(2) in _LEG_PARAMETERS:
         i = _line_index(case, m.group(1), name)
         line, field = case.lines[i], m.group(2)
         kind = problem.kinds[i]
-        if not kind.single and field in ("length", "ea", "weight"):
-            raise ValueError(f"{name}: leg {line.name} has several segments or lumped nodes; "
-                             "its segments' properties are not sensitivity parameters")
+        if line.multi_segment and field in ("length", "ea", "weight"):
+            raise ValueError(f"{name}: leg {line.name} has {len(line.segments)} segments; give "
+                             f"legs[{line.name}].segments[K].length, or "
+                             "line_types[NAME].ea / .weight_in_water")
+        if field in ("length", "ea", "weight") and not kind.single:
+            # A one-segment lumped-node line: its segment's own parameters.
+            key = "ea_inv" if field == "ea" else field
+            if field == "ea" and line.line_type.ea is None:
+                raise ValueError(f"{name}: leg {line.name}'s line {_no_ea(line.line_type)}")
+            col[_segment_slot(case, problem, i, 0, key)] = (
+                -1.0 / line.line_type.ea ** 2 if field == "ea" else 1.0)
+            return col
+        if field == "fairlead_z" and kind.single and getattr(kind.block, "from_fairlead",
+                                                             False):
+            raise ValueError(f"{name}: leg {line.name}'s fairlead is at the surface; raised it "
+                             "leaves the water (another model), lowered under a floating line "
+                             "the line must leave the surface to reach it (its force changes "
+                             "like the square root of the depth): there is no derivative")
         if field == "ea":
             if line.line_type.ea is None:
-                what = ("follows a stretch law (use line_types[NAME].stiffness_scale)"
-                        if line.line_type.stretch is not None else "is inextensible (no ea)")
-                raise ValueError(f"{name}: leg {line.name}'s line {what}")
+                raise ValueError(f"{name}: leg {line.name}'s line {_no_ea(line.line_type)}")
             col[line_slot(i, "ea_inv")] = -1.0 / line.line_type.ea ** 2
         elif field == "anchor_z" and line.a.on_seabed:
             raise ValueError(f"{name}: leg {line.name}'s anchor lies on the seabed; raising "
@@ -207,9 +234,59 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
     raise ValueError(
         f"parameter {name!r}: must be legs[NAME].FIELD with FIELD in "
         f"{', '.join(_LEG_PARAMETERS)}, line_types[NAME].ea, .weight_in_water, .n or "
-        f".stiffness_scale, "
+        ".stiffness_scale, "
         f"{', '.join(_ENV_PARAMETERS)}, environment.seabed.friction, body.loads.force[0-2] "
         "or bodies[NAME].loads.force[0-5]")
+
+
+def _no_ea(line_type) -> str:
+    """Why a line type has no ``ea`` to differentiate by."""
+    if line_type.stretch is not None:
+        return "follows a stretch law (use line_types[NAME].stiffness_scale)"
+    return "is inextensible (no ea)"
+
+
+def _segment_slot(case: Case, problem, i: int, k: int, key: str) -> int:
+    """Slot of segment ``k``'s ``key`` (length, weight, ea_inv) of line ``i``: its own
+    segment parameter for a multi-segment or lumped-node line, else the line's."""
+    line = case.lines[i]
+    name = f"line[{line.name}].segment[{k}].{key}"
+    if name in problem.layout.names:
+        return problem.layout.index(name)
+    return problem.layout.index(f"line[{line.name}].{key}")
+
+
+def _segment_of_item(line, item: int, name: str) -> int:
+    """The segment at ``segments[item]`` of the line's case-file list, where a clump between
+    two segments is an item too (as in sweep paths)."""
+    k = 0
+    for j, clump in enumerate(line.joint_clumps + (None,)):
+        if item == 0:
+            return k
+        item -= 1
+        if clump is not None:
+            if item == 0:
+                raise ValueError(f"{name}: that item of leg {line.name}'s segments is a "
+                                 "clump, which has no length")
+            item -= 1
+        k = j + 1
+    raise ValueError(f"{name}: leg {line.name} has no such segment (its case-file list has "
+                     f"{len(line.segments) + sum(c is not None for c in line.joint_clumps)} "
+                     "items)")
+
+
+def _reported_anchor(case: Case, problem, i: int, fa, table, cols):
+    """The anchor's upward pull and tension as the result reports them: clipped at 0 for
+    an anchor lying on the seabed in sloped, multi-segment and lumped-node lines (the seabed
+    takes a downward pull; a sloped line's tension stays the whole pull)."""
+    kind = problem.kinds[i]
+    line = case.lines[i]
+    VA, TA = fa[2], ca.norm_2(fa)
+    if not line.a.on_seabed or (kind.single and not kind.sloped) or \
+            (kind.multi and kind.flipped):
+        return VA, TA
+    clipped = ca.fmax(VA, 0)
+    return clipped, (TA if kind.single else ca.hypot(ca.hypot(fa[0], fa[1]), clipped))
 
 
 def _sensitivity_function(problem) -> ca.Function:
@@ -227,8 +304,9 @@ def _sensitivity_function(problem) -> ca.Function:
         for i in range(problem.n_legs):
             fa = ca.vertcat(*(table[i, cols[k]] for k in ("FAx", "FAy", "FAz")))
             fb = ca.vertcat(*(table[i, cols[k]] for k in ("FBx", "FBy", "FBz")))
-            rows += [ca.norm_2(fb), ca.hypot(fb[0], fb[1]), -fb[2], ca.norm_2(fa),
-                     ca.hypot(fa[0], fa[1]), fa[2], table[i, cols["grounded"]]]
+            VA, TA = _reported_anchor(problem.case, problem, i, fa, table, cols)
+            rows += [ca.norm_2(fb), ca.hypot(fb[0], fb[1]), -fb[2], TA,
+                     ca.hypot(fa[0], fa[1]), VA, table[i, cols["grounded"]]]
         deg = 180.0 / math.pi
         for b in range(len(problem.case.bodies)):
             q = poses[6 * b: 6 * b + 6]
@@ -253,11 +331,13 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
         ``bodies[NAME].x_m | y_m | z_m | roll_deg | pitch_deg | yaw_deg`` and
         ``legs[NAME].FIELD`` with FIELD one of ``LEG_OUTPUTS``.
     parameters : str or sequence of str
-        ``legs[NAME].length | ea | weight | anchor_x | anchor_y | anchor_z | fairlead_x |
-        fairlead_y | fairlead_z`` (that leg's line only), ``line_types[NAME].ea`` and
-        ``.weight_in_water`` (every leg of the type), ``line_types[NAME].n`` (Baranov's
-        coefficient) and ``.stiffness_scale`` (per unit factor on the tension at every
-        strain: a stiffer rope; any stretch law or Hooke, every segment of the type),
+        ``legs[NAME].length | ea | weight`` (a one-segment line only),
+        ``legs[NAME].segments[K].length`` (item K of the case file's segment list, clumps
+        counted), ``legs[NAME].anchor_x | anchor_y | anchor_z | fairlead_x | fairlead_y |
+        fairlead_z``, ``line_types[NAME].ea`` and ``.weight_in_water`` (every segment of
+        the type in every line), ``line_types[NAME].n`` (Baranov's coefficient) and
+        ``.stiffness_scale`` (per unit factor on the tension at every strain: a stiffer
+        rope; any stretch law or Hooke, every segment of the type),
         ``environment.wind.speed``,
         ``environment.current.speed``, ``environment.waves.hs`` and their
         ``toward_deg``, ``environment.seabed.friction``, ``body.loads.force[0|1|2]``,
