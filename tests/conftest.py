@@ -13,9 +13,10 @@ import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-ROOT = Path(__file__).resolve().parent.parent
+TESTS = Path(__file__).resolve().parent
+ROOT = TESTS.parent
 CASES = ROOT / "cases"
-DATA = Path(__file__).resolve().parent / "data"
+DATA = TESTS / "data"
 
 
 @pytest.fixture(scope="session")

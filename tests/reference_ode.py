@@ -43,6 +43,7 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
 RTOL = 1e-13
 
@@ -391,3 +392,34 @@ def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None):
                         atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2)
     x, z, tx, tz = sol.y[:, -1]
     return dict(X=-x, Z=z_top - z, VA=tz)
+
+
+# ---- a tension-strain table as a plain function ---------------------------------------------
+
+
+def reference_interpolant(strain, tension):
+    """The table law by scipy: PCHIP's slopes, the end slopes kept between ``delta^2 /
+    d_next`` and ``3 delta`` (scipy would take 0 where its estimate is not positive;
+    moorsolve's documented rule, so that the rope is not rigid beyond the table)."""
+    T, e = np.asarray(tension, float), np.asarray(strain, float)
+    d = PchipInterpolator(T, e).derivative()(T)
+    if len(T) > 2:
+        delta = np.diff(e) / np.diff(T)
+        h = np.diff(T)
+        for i, (h0, h1, m0, m1, dn) in ((0, (h[0], h[1], delta[0], delta[1], d[1])),
+                                        (-1, (h[-1], h[-2], delta[-1], delta[-2], d[-2]))):
+            three = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+            d[i] = min(max(three, m0 * m0 / dn), 3 * m0)
+    return CubicHermiteSpline(T, e, d)
+
+
+def table_reference(strain, tension):
+    """The table law as a plain function: the interpolant, linear beyond the last row."""
+    spline = reference_interpolant(strain, tension)
+    slope = float(spline.derivative()(tension[-1]))
+
+    def f(T):
+        if T <= tension[-1]:
+            return float(spline(T))
+        return strain[-1] + slope * (T - tension[-1])
+    return f

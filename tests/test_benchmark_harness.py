@@ -7,18 +7,17 @@ import dataclasses
 import importlib.util
 import math
 import os
-import pathlib
 import sys
 
 import numpy as np
 import pytest
 
 import moorsolve
+from conftest import ROOT
 
 os.environ.setdefault("PYTHONBREAKPOINT", "0")    # some MoorPy error branches call it
 pytest.importorskip("moorpy")
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def _load_peer():

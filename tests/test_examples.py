@@ -1,11 +1,11 @@
 """Every example runs headless and says what it promises."""
 
-import pathlib
 import runpy
 import sys
+from conftest import ROOT
 
 
-EXAMPLES = pathlib.Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = ROOT / "examples"
 
 
 def run_example(name, argv, capsys, monkeypatch):

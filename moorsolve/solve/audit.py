@@ -24,8 +24,10 @@ Per line:
   seabed has the same horizontal tension at both ends;
 - a joint the seabed or the surface pushes is on it.
 
-Per free body: the reported fairlead forces, recomputed from each line's horizontal tension
-and end positions, balance the reported loads in every free degree of freedom.
+Per free body, in every free degree of freedom of six: the reported end forces at their
+reported positions, the reported loads, the weight, the hydrostatics (recomputed here: the
+linear model, and hull members by quadrature rather than the solver's closed form) and the
+springs balance.
 
 Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
 engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
@@ -343,44 +345,64 @@ def _plane(leg) -> tuple[float, float]:
 def _audit_body(result, case) -> list[str]:
     """The reported line forces balance every free body and free point.
 
-    Per body free in surge, sway or yaw: the global horizontal forces and the moment about
-    the vertical through the body's origin, from every line end on the body (the reported
-    end forces at the reported end positions) and every reported load; weight and buoyancy
-    are vertical and take no part. (Heave, roll and pitch would need the hydrostatics: not
-    recomputed here; a body with extra springs is left to the certificate.) Per free point:
-    all three components, with its weight in water and the seabed's reported reaction.
+    Per body, in every free degree of freedom: the force and the moment about the body's
+    origin (global axes) of every line end on the body (the reported end forces at the
+    reported end positions), every reported load, the weight at the centre of gravity, the
+    hydrostatics recomputed here (the linear model; hull members by Gauss quadrature over
+    their cross-section, not by the solver's closed form) and the extra springs; the
+    moments are taken about the axes the body's angles turn about. Per free point: all
+    three components, with its weight in water and the seabed's reported reaction.
     """
     out = []
+    env = case.environment
     t_max = max([1.0] + [max(leg.fairlead_tension_N, leg.anchor_tension_N)
                          for leg in result.legs])
-    tol = max(10.0 * result.certificate.tolerance, FORCE_REL) * t_max
     for bi, body in enumerate(case.bodies):
-        free = [d for d in ("surge", "sway", "yaw") if d in body.free]
-        if not free or body.stiffness is not None or bi >= len(result.bodies):
+        if not body.free or bi >= len(result.bodies):
             continue
-        origin = result.bodies[bi]
-        x0, y0 = origin["x_m"], origin["y_m"]
-        total = np.zeros(3)
+        pose = result.bodies[bi]
+        q = np.array([pose["x_m"], pose["y_m"], pose["z_m"]] + [
+            math.radians(pose[k]) for k in ("roll_deg", "pitch_deg", "yaw_deg")])
+        origin, R = q[:3], _rotation(*q[3:])
+        force, moment = np.zeros(3), np.zeros(3)
+        scale = t_max
         radius = 1.0
         for line, leg in zip(case.lines, result.legs):
-            for end, pos, force in ((line.a, leg.anchor, _end_force(leg, "a")),
-                                    (line.b, leg.fairlead, _end_force(leg, "b"))):
-                if end.body != body.name or force is None:
+            for end, pos, f in ((line.a, leg.anchor, _end_force(leg, "a")),
+                                (line.b, leg.fairlead, _end_force(leg, "b"))):
+                if end.body != body.name or f is None:
                     continue
-                rx, ry = pos[0] - x0, pos[1] - y0
-                total += (force[0], force[1], rx * force[1] - ry * force[0])
-                radius = max(radius, math.hypot(rx, ry))
+                arm = np.asarray(pos, float) - origin
+                force += f
+                moment += np.cross(arm, f)
+                radius = max(radius, float(np.hypot(arm[0], arm[1])))
         for name, load in result.loads.items():
             if len(case.bodies) > 1 and not name.startswith(body.name + "."):
                 continue
             f = np.asarray(load, float)
-            total += (f[0], f[1], f[2] if f.size == 3 else f[5])
-        for dof in free:
-            k, unit = {"surge": (0, "N"), "sway": (1, "N"), "yaw": (2, "N m")}[dof]
-            if abs(total[k]) > tol * (radius if dof == "yaw" else 1.0):
-                out.append(f"body {body.name} is not in balance in {dof}: {total[k]:.4g} "
-                           f"{unit} unbalanced by the reported line forces and loads")
-    env = case.environment
+            if f.size == 3:                       # the legs form: [Fx, Fy, Mz]
+                f = np.array([f[0], f[1], 0.0, 0.0, 0.0, f[2]])
+            force += f[:3]
+            moment += f[3:]
+            scale = max(scale, float(np.linalg.norm(f[:3])))
+        for f, m in _hydrostatic_wrenches(body, origin, R, env):
+            force += f
+            moment += m
+            scale = max(scale, float(np.linalg.norm(f)))
+        generalized = np.concatenate([force, _angle_axes(q[4], q[5]).T @ moment])
+        if body.stiffness is not None:
+            q0 = np.array(list(body.position) + [math.radians(a) for a in
+                                                 body.orientation_deg])
+            generalized -= np.asarray(body.stiffness, float) @ (q - q0)
+        tol = max(10.0 * result.certificate.tolerance, FORCE_REL) * scale
+        for dof in body.free:
+            k = ("surge", "sway", "heave", "roll", "pitch", "yaw").index(dof)
+            unit = "N" if k < 3 else "N m"
+            if abs(generalized[k]) > tol * (1.0 if k < 3 else max(radius, 1.0) * 10.0):
+                out.append(f"body {body.name} is not in balance in {dof}: "
+                           f"{generalized[k]:.4g} {unit} unbalanced by the reported line "
+                           "forces, loads, weight and hydrostatics")
+    tol = max(10.0 * result.certificate.tolerance, FORCE_REL) * t_max
     for point, reported in zip(case.free_points, result.points):
         total = np.array([0.0, 0.0, -env.gravity * (point.mass
                                                     - env.water_density * point.volume)])
@@ -396,6 +418,74 @@ def _audit_body(result, case) -> list[str]:
             out.append(f"point {point.name} is not in balance: {np.linalg.norm(total):.4g} N "
                        "unbalanced by the reported line forces, its weight and the seabed")
     return out
+
+
+def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """``Rz(yaw) Ry(pitch) Rx(roll)`` as the product of the three elementary rotations."""
+    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
+                              math.sin(pitch), math.cos(yaw), math.sin(yaw))
+    rz = np.array([[cy, -sy, 0.0], [sy, cy, 0.0], [0.0, 0.0, 1.0]])
+    ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
+    rx = np.array([[1.0, 0.0, 0.0], [0.0, cr, -sr], [0.0, sr, cr]])
+    return rz @ ry @ rx
+
+
+def _angle_axes(pitch: float, yaw: float) -> np.ndarray:
+    """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles)."""
+    rz = _rotation(0.0, 0.0, yaw)
+    return np.column_stack([rz @ _rotation(0.0, pitch, 0.0) @ [1.0, 0.0, 0.0],
+                            rz @ [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _hydrostatic_wrenches(body, origin, R, env):
+    """Weight, buoyancy and heave restoring of a body, as ``(force, moment)`` pairs."""
+    g, rho = env.gravity, env.water_density
+    out = []
+    if body.mass is not None:
+        w = np.array([0.0, 0.0, -body.mass * g])
+        out.append((w, np.cross(R @ np.asarray(body.centre_of_gravity, float), w)))
+    hydro = body.hydrostatics
+    if hydro is not None:
+        b = np.array([0.0, 0.0, rho * g * hydro.displaced_volume])
+        out.append((b, np.cross(R @ np.asarray(hydro.metacentre, float), b)))
+        out.append((np.array([0.0, 0.0, -rho * g * hydro.waterplane_area * origin[2]]),
+                    np.zeros(3)))
+    for member in body.hull:
+        volume, centroid = _member_volume(member, origin, R)
+        b = np.array([0.0, 0.0, rho * g * volume])
+        out.append((b, np.cross(R @ centroid, b)))
+    return out
+
+
+_GAUSS = np.polynomial.legendre.leggauss(24)
+
+
+def _member_volume(member, origin, R) -> tuple:
+    """Submerged volume [m^3] and its centroid (body frame) of a vertical prism, by Gauss
+    quadrature of the submerged column height over its cross-section."""
+    nodes, weights = _GAUSS
+    cx, cy = member.centre
+    if member.shape == "cylinder":
+        # Polar: r = a (n + 1) / 2 over [0, a], theta over [0, 2 pi]; dA = r dr dtheta.
+        r = member.radius * (nodes + 1) / 2
+        th = math.pi * (nodes + 1)
+        rr, tt = np.meshgrid(r, th, indexing="ij")
+        ww = np.outer(weights * member.radius / 2 * r, weights * math.pi)
+        xs, ys = cx + rr * np.cos(tt), cy + rr * np.sin(tt)
+    else:
+        xs1 = cx + member.length / 2 * nodes
+        ys1 = cy + member.width / 2 * nodes
+        xs, ys = np.meshgrid(xs1, ys1, indexing="ij")
+        ww = np.outer(weights * member.length / 2, weights * member.width / 2)
+    # The water surface along the member's axis at (x, y): origin_z + (R [x, y, z])_z = 0.
+    surface = -(origin[2] + R[2, 0] * xs + R[2, 1] * ys) / R[2, 2]
+    h = np.clip(surface - member.bottom, 0.0, member.top - member.bottom)
+    volume = float(np.sum(ww * h))
+    if volume <= 0.0:
+        return 0.0, np.zeros(3)
+    centroid = np.array([np.sum(ww * h * xs), np.sum(ww * h * ys),
+                         np.sum(ww * h * (member.bottom + h / 2))]) / volume
+    return volume, centroid
 
 
 def _end_force(leg, which: str):

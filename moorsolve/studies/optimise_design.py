@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-
+from ..errors import CaseError
 from ..model import Case
 from ..model.study import Study
 
@@ -23,18 +23,29 @@ def _anchor_line(case: Case, leg, kind: str) -> tuple:
 
 
 def design_edits(case: Case, study: Study, values) -> dict:
-    """Case-file edits (dotted path -> value) that put design ``values`` into ``case``."""
+    """Case-file edits (dotted path -> value) that put design ``values`` into ``case``.
+
+    In a network case the lines are ``lines[NAME]`` and an anchor is end A (``from``), which
+    a design variable may move only where the case gives it as coordinates.
+    """
     legs = {leg.name: leg for leg in case.legs}
+    network = case.form == "network"
+    prefix = "lines" if network else "legs"
     edits = {}
     for var, value in zip(study.variables, values):
         for name in var.legs:
             leg = legs[name]
             if var.kind == "length":
-                edits[f"legs[{name}].segments[0].length"] = float(value)
-            else:
-                (ox, oy), (ux, uy) = _anchor_line(case, leg, var.kind)
-                edits[f"legs[{name}].anchor"] = [ox + ux * float(value), oy + uy * float(value),
-                                                 float(leg.anchor[2])]
+                edits[f"{prefix}[{name}].segments[0].length"] = float(value)
+                continue
+            if network and not (leg.a.fixed and leg.a.label is None):
+                raise CaseError(f"variables.{var.name}.legs",
+                                f"line {name!r} starts at a named point or a body: an anchor "
+                                "variable moves end A given as coordinates only")
+            (ox, oy), (ux, uy) = _anchor_line(case, leg, var.kind)
+            key = "from" if network else "anchor"
+            edits[f"{prefix}[{name}].{key}"] = [ox + ux * float(value),
+                                                 oy + uy * float(value), float(leg.anchor[2])]
     return edits
 
 

@@ -14,7 +14,6 @@ buoyant line and a leg from an anchor above the seabed.
 from __future__ import annotations
 
 import copy
-import pathlib
 
 import numpy as np
 import pytest
@@ -22,8 +21,9 @@ import pytest
 import moorsolve
 from moorsolve.model.paths import with_values
 from test_study import _outputs as outputs_of
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 TOL = 1e-12
 LEG_OUTPUTS = ("fairlead_tension_N", "horizontal_tension_N", "fairlead_vertical_N",
                "anchor_tension_N", "anchor_horizontal_N", "anchor_vertical_N",

@@ -15,17 +15,17 @@ from __future__ import annotations
 
 import copy
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 import yaml
 
 from moorsolve import ConvergenceError, load_case, solve
+from conftest import TESTS
 
-HERE = Path(__file__).resolve().parent
-CORPUS = HERE / "data" / "hard_cases"
-CASES = HERE.parent / "cases"
+
+CORPUS = TESTS / "data" / "hard_cases"
+CASES = TESTS.parent / "cases"
 
 
 def certified(result):

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,8 +18,9 @@ import moorsolve
 from moorsolve.model.paths import with_values
 from moorsolve.studies.stiffness import (mooring_force, natural_periods, restoring_curve,
                                    stiffness)
+from conftest import ROOT
 
-CASES = Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 TOL = 1e-12
 
 

@@ -4,7 +4,6 @@ import importlib
 import io
 import json
 import os
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -14,9 +13,9 @@ import moorsolve
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
 from moorsolve.model.paths import parse_assignment, parse_values
+from conftest import ROOT
 
 sweep_module = importlib.import_module("moorsolve.studies.sweep")
-ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "cases"
 BUOY = CASES / "buoy_vida.yaml"
 GRID = {"environment.wind.toward_deg": list(range(0, 360, 30)),

@@ -2,7 +2,6 @@
 
 import copy
 import math
-import pathlib
 
 import numpy as np
 import pytest
@@ -10,8 +9,9 @@ import yaml
 
 from moorsolve import load_case, solve
 from moorsolve.solve.cache import get_problem
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 SHIPPED = sorted(CASES.glob("*.yaml"))
 
 

@@ -2,7 +2,6 @@
 
 import itertools
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,8 +10,9 @@ import moorsolve
 from moorsolve.errors import CaseError, ConvergenceError
 from moorsolve.model.paths import with_values
 from moorsolve.studies.sweep import snake_order
+from conftest import ROOT
 
-CASES = Path(__file__).parent.parent / "cases"
+CASES = ROOT / "cases"
 
 
 def _point(case, edits):

@@ -8,7 +8,6 @@ with ``dT_v/ds = w`` from ``T_v = H tan(theta)``.
 
 import copy
 import math
-import pathlib
 
 import numpy as np
 import pytest
@@ -18,8 +17,9 @@ from scipy.integrate import solve_ivp
 from moorsolve import CaseError, load_case, solve
 from moorsolve.physics.catenary import LEG_OUTPUTS, LegKind, evaluate_leg
 from moorsolve.physics.sloped import sloped_leg_function
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 
 
 def one_leg(gradient, friction=0.0, ea=5e8, X=400.0):

@@ -9,7 +9,6 @@ end forces and require the line to land on its fairlead.
 
 import copy
 import math
-import pathlib
 
 import numpy as np
 import pytest
@@ -22,8 +21,9 @@ from moorsolve.solve.cache import get_problem
 from moorsolve.solve.layout import (ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS,
                                     parameter_vector)
 from moorsolve.solve.lines import MultiLegKind
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 
 
 def vida():

@@ -3,7 +3,6 @@ windIO/RAFT spelling, MoorPy's ``file:`` key, bridles in the network form, and a
 through export-moorpy."""
 
 import math
-import pathlib
 
 import pytest
 import yaml
@@ -11,10 +10,11 @@ import yaml
 import moorsolve
 from moorsolve.cli import main
 from moorsolve.io import read_import, read_moorpy
+from conftest import TESTS
 
-HERE = pathlib.Path(__file__).resolve().parent
-DATA = HERE / "data" / "moorpy"
-MOORDYN = HERE / "data" / "moordyn"
+
+DATA = TESTS / "data" / "moorpy"
+MOORDYN = TESTS / "data" / "moordyn"
 
 
 def test_moorpy_spelling():

@@ -158,7 +158,7 @@ def test_neutral_line_is_a_straight_stretched_bar(angle, T, L, ea):
 
 def _span_map(kind):
     """(u, V, X, Z, L, w, ea_inv, mu) -> span residuals and their Jacobian in (u, V); a
-    kind with a stretch law (tests/test_stretch_laws.py) takes its parameters last."""
+    kind with a stretch law (tests/physics/test_stretch_laws.py) takes its parameters last."""
     args = {n: ca.SX.sym(n) for n in LEG_INPUTS}
     if kind.law is not None:
         args["law"] = ca.SX.sym("law", kind.law.n_params)

@@ -7,7 +7,8 @@ References, none sharing code with ``moorsolve.physics``:
   rtol 1e-13) for any strain law given as a Python function. It is first checked against
   the exact Hooke catenary (the leg block's closed forms) to 1e-9.
 - The table law is ``scipy.interpolate.PchipInterpolator`` continued linearly with its end
-  slope; Baranov's law is ``n sqrt(T)`` (Alekseev, seed 003; REFERENCE.md section 5).
+  slope (``reference_ode.table_reference``); Baranov's law is ``n sqrt(T)`` (Alekseev,
+  seed 003; REFERENCE.md section 5).
 - Integrals of the laws by ``scipy.integrate.quad``.
 
 For Baranov and table laws, suspended and with touchdown (with and without friction, slack,
@@ -28,12 +29,13 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 from hypothesis_budget import examples
-from reference_ode import integrate_from_anchor, integrate_leg
+from reference_ode import (integrate_from_anchor, integrate_leg, reference_interpolant,
+                           table_reference)
 from scipy.integrate import quad
 from test_leg_ode import REGIMES as ODE_REGIMES
 from test_leg_ode import _span_map
 from test_leg_ode import legs as ode_legs
-from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
+from scipy.interpolate import PchipInterpolator
 
 from moorsolve.physics.catenary import (LIFTED_INPUTS, LegKind, evaluate_leg,
                                         evaluate_surface_leg, leg_function,
@@ -48,34 +50,6 @@ REL = 1e-8
 STRAIN = [0.0, 0.01, 0.02, 0.035, 0.05, 0.07]
 TENSION = [0.0, 1.0e5, 3.0e5, 7.0e5, 1.2e6, 2.0e6]
 BARANOV_N = 8e-5                     # [N^-1/2]: 5.7 % at 0.5 MN
-
-
-def reference_interpolant(strain, tension):
-    """The table law by scipy: PCHIP's slopes, the end slopes kept between ``delta^2 /
-    d_next`` and ``3 delta`` (scipy would take 0 where its estimate is not positive;
-    moorsolve's documented rule, so that the rope is not rigid beyond the table)."""
-    T, e = np.asarray(tension, float), np.asarray(strain, float)
-    d = PchipInterpolator(T, e).derivative()(T)
-    if len(T) > 2:
-        delta = np.diff(e) / np.diff(T)
-        h = np.diff(T)
-        for i, (h0, h1, m0, m1, dn) in ((0, (h[0], h[1], delta[0], delta[1], d[1])),
-                                        (-1, (h[-1], h[-2], delta[-1], delta[-2], d[-2]))):
-            three = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
-            d[i] = min(max(three, m0 * m0 / dn), 3 * m0)
-    return CubicHermiteSpline(T, e, d)
-
-
-def table_reference(strain, tension):
-    """The table law as a plain function: the interpolant, linear beyond the last row."""
-    spline = reference_interpolant(strain, tension)
-    slope = float(spline.derivative()(tension[-1]))
-
-    def f(T):
-        if T <= tension[-1]:
-            return float(spline(T))
-        return strain[-1] + slope * (T - tension[-1])
-    return f
 
 
 LAWS = {

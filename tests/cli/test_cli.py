@@ -17,8 +17,8 @@ import pytest
 import yaml
 
 from moorsolve.cli import main
+from conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 CASES_DIR = ROOT / "cases"
 CASES = sorted(CASES_DIR.glob("*.yaml"))
 BUOY = CASES_DIR / "buoy_vida.yaml"

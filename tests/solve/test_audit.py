@@ -11,18 +11,20 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import pathlib
 
 import numpy as np
 import pytest
+
+import moorsolve
 
 from moorsolve import ConvergenceError, load_case, solve
 from moorsolve.cli import main
 from moorsolve.report.text import format_table
 from moorsolve.solve import outcome
 from moorsolve.solve.audit import AuditFailure, audit
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 
 
 def one_leg(w, anchor, fairlead, L, ea=1e8, depth=50.0, **line):
@@ -200,3 +202,48 @@ def test_warnings_in_the_check_report(tmp_path, capsys):
     assert any(w["code"] == "floating" for w in data["warnings"])
     main(["check", str(path), "--no-damaged"])
     assert "WARNING: intact: leg H1:" in capsys.readouterr().out
+
+
+def test_audit_checks_every_free_dof_of_a_six_dof_body_with_its_hydrostatics():
+    """The OC3 spar: the audit recomputes weight, linear buoyancy and springs itself; a
+    reported fairlead force moved down by 1 kN (or a buoyancy the case does not have) shows
+    as an imbalance in heave."""
+    import dataclasses as dc
+
+    from conftest import CASES
+    from moorsolve.solve.audit import audit_findings
+    case = moorsolve.load_case(CASES / "oc3_spar.yaml")
+    result = moorsolve.solve(case)
+    assert audit_findings(result, case) == []
+    leg = result.legs[0]
+    wrong = dc.replace(leg, fairlead_force=tuple(leg.fairlead_force[:2])
+                       + (leg.fairlead_force[2] - 1e3,))
+    bad = dc.replace(result, legs=[wrong] + list(result.legs[1:]))
+    found = audit_findings(bad, case)
+    assert any("heave" in f for f in found)
+    lighter = dc.replace(case.bodies[0], mass=case.bodies[0].mass * 0.999)
+    assert any("heave" in f for f in audit_findings(
+        result, dc.replace(case, bodies=(lighter,))))
+
+
+def test_audit_integrates_hull_members_by_quadrature():
+    """A floating box solved with the exact (closed-form) buoyancy passes the audit, which
+    integrates the submerged volume by Gauss quadrature instead; heeled as well."""
+    from moorsolve.solve.audit import audit_findings
+    data = {
+        "environment": {"depth": 100.0},
+        "line_types": {"rope": {"weight_in_water": 0.0, "ea": 1e8}},
+        "bodies": [{"name": "barge", "mass": 1.0e6, "free": ["heave", "roll", "pitch"],
+                    "centre_of_gravity": [0, 0, -1.0],
+                    "hull": [{"shape": "box", "length": 40.0, "width": 10.0,
+                              "bottom": -5.0, "top": 3.0},
+                             {"shape": "cylinder", "radius": 2.0, "bottom": -5.0,
+                              "top": 3.0, "centre": [15.0, 0.0]}],
+                    "loads": {"force": [0, 0, 0, 2.0e6, 5.0e5, 0]}}],
+        "lines": [{"name": "L", "from": [0, 0, -100], "to": {"body": "barge",
+                                                              "at": [0, 0, -5]},
+                   "segments": [{"type": "rope", "length": 200.0}]}]}
+    case = moorsolve.load_case(data)
+    result = moorsolve.solve(case)
+    assert abs(result.bodies[0]["roll_deg"]) > 0.5
+    assert audit_findings(result, case) == []

@@ -11,11 +11,12 @@ import moorsolve
 from moorsolve.cli import main
 from moorsolve.io import case_to_moordyn, import_moordyn, moordyn_to_case_data, read_moordyn
 from moorsolve.io.moordyn import MoorDynError
+from conftest import TESTS
 
-HERE = pathlib.Path(__file__).resolve().parent
-V2 = HERE / "data" / "moordyn" / "semisub_v2.dat"
-V1 = HERE / "data" / "moordyn" / "spar_v1.dat"
-CASES = HERE.parent / "cases"
+
+V2 = TESTS / "data" / "moordyn" / "semisub_v2.dat"
+V1 = TESTS / "data" / "moordyn" / "spar_v1.dat"
+CASES = TESTS.parent / "cases"
 
 
 def _same(a: str, b: str) -> bool:
@@ -350,7 +351,7 @@ def test_missing_sections_and_unrepresentable_topology(tmp_path):
     with pytest.raises(MoorDynError, match=r"nolines\.dat: missing section LINES"):
         read_moordyn(tmp_path / "nolines.dat")
     # A free point joining three lines (a bridle) and a line onto a rod end are MoorDyn
-    # topology: they import in the network form (tests/test_moordyn_corpus.py).
+    # topology: they import in the network form (tests/io/test_moordyn_corpus.py).
     path = _broken(tmp_path, "6     rope       9        8", "6     rope       5        8")
     assert moordyn_to_case_data(read_moordyn(path))["lines"][5]["from"] == "point5"
     # A points row of 8 columns (MoorDyn needs 9).

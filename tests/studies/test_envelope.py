@@ -1,7 +1,6 @@
 """Offset envelope: symmetry, agreement with individual solves, the command and its plot."""
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,8 +9,9 @@ import moorsolve
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
 from moorsolve.model.paths import with_values
+from conftest import ROOT
 
-CASES = Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 BUOY = CASES / "buoy_vida.yaml"
 DOCK = CASES / "floating_dock.yaml"
 

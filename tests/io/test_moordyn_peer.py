@@ -11,17 +11,16 @@ mapping error (a wrong weight in water, length, anchor or pose changes the force
 """
 
 import math
-import pathlib
 
 import numpy as np
 import pytest
 
 import moorsolve
 from moorsolve.studies.stiffness import mooring_force
+from conftest import ROOT
 
 moordyn = pytest.importorskip("moordyn")
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def _moordyn_body_force(path, pose):

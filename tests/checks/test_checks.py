@@ -6,7 +6,6 @@ from __future__ import annotations
 import copy
 import json
 import math
-from pathlib import Path
 
 import pytest
 
@@ -14,8 +13,8 @@ import moorsolve
 from moorsolve.checks import criteria_table, criterion, run_checks
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
+from conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 DOCK = ROOT / "cases" / "floating_dock.yaml"
 SMALL = ROOT / "cases" / "check_failures.yaml"
 

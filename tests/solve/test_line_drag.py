@@ -6,7 +6,6 @@ discretisation against the exact elastic catenary (Merkin 2.3), and the 3-D beha
 """
 
 import math
-import pathlib
 
 import numpy as np
 import pytest
@@ -15,8 +14,9 @@ from moorsolve import CaseError, load_case, solve
 from moorsolve.physics.drag import current_speed, line_drag
 from moorsolve.solve.cache import get_problem
 from moorsolve.solve.lines import DiscreteLegKind
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 KGF = 9.80665
 
 

@@ -5,7 +5,6 @@ shape (CONTRACT.md, "The scene as a network"), and what MoorDyn refuses refused 
 line, the reason and the version guess."""
 
 import math
-import pathlib
 
 import numpy as np
 import pytest
@@ -16,9 +15,10 @@ from moorsolve.cli import main
 from moorsolve.io import convert_moordyn, read_import, read_moordyn
 from moorsolve.io.moordyn import MoorDynError
 from moorsolve.io.moordyn_parse import parse_moordyn_text
+from conftest import DATA, ROOT
 
-DATA = pathlib.Path(__file__).resolve().parent / "data" / "moordyn"
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+DATA = DATA / "moordyn"
+CASES = ROOT / "cases"
 G, RHO = 9.80665, 1025.0
 
 #: The case form each corpus file takes, and why (a fragment of the reason).

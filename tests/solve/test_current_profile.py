@@ -48,7 +48,7 @@ def test_reversing_current_against_the_line_ode():
         fx, _, fz = leg.fairlead_force            # the line's pull on the fairlead
         return np.array([-fx, -fz]), leg
     (coarse, _), (fine, leg) = fairlead_forces(40), fairlead_forces(80)
-    H, V = fine + (fine - coarse) / 3            # second order (tests/test_line_drag.py)
+    H, V = fine + (fine - coarse) / 3            # second order (tests/solve/test_line_drag.py)
     # The S: the upper line pushed downstream (+x), the lower part upstream (-x).
     x, z = leg.profile["x_m"], leg.profile["z_m"]
     assert np.max(x[z > -15]) > 0.05 and np.min(x[z < -35]) < -0.02

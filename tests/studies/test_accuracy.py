@@ -1,15 +1,15 @@
 """The accuracy ladder (`moorsolve accuracy`): it measures, it does not assert times."""
 
 import json
-from pathlib import Path
 
 import pytest
 
 import moorsolve
 from moorsolve.cli import main
 from moorsolve.studies.accuracy import accuracy_ladder
+from conftest import ROOT
 
-CASES = Path(__file__).parent.parent / "cases"
+CASES = ROOT / "cases"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 

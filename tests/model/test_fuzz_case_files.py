@@ -25,8 +25,8 @@ from hypothesis_budget import examples
 
 from moorsolve import Case, CaseError, load_case
 from moorsolve.cli import main
+from conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 SHIPPED = {p.stem: yaml.safe_load(p.read_text(encoding="utf-8"))
            for p in sorted((ROOT / "cases").glob("*.yaml"))}
 SMALL = ("buoy_vida", "ship_97m")      # quick to solve: the CLI runs solve on valid mutants

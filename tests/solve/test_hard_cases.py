@@ -6,15 +6,15 @@ loads beyond capacity.
 """
 
 import math
-import pathlib
 
 import numpy as np
 import pytest
 import yaml
 
 from moorsolve import ConvergenceError, load_case, solve
+from conftest import ROOT
 
-CASES = pathlib.Path(__file__).resolve().parent.parent / "cases"
+CASES = ROOT / "cases"
 CHAIN_W, CHAIN_EA, CHAIN_MBL = 1275.0, 5.6e8, 5.5e6
 
 

@@ -1,10 +1,9 @@
 """Fibre ropes end to end: case files with stretch laws, the shipped chain-polyester-chain
-case, sensitivities and optimisation through the law, the fibre-rope checks, the
-upper/lower-bound stiffness analysis and MoorDyn curve files in and out.
+case, sensitivities and optimisation through the law, the fibre-rope checks and the
+upper/lower-bound stiffness analysis (MoorDyn curve files: tests/io/test_moordyn_curves.py).
 
 The independent references are the ODE of ``reference_ode`` with scipy's PCHIP (see
-tests/test_stretch_laws.py), central differences of re-solved equilibria, and MoorDyn itself
-(the optional peer).
+tests/physics/test_stretch_laws.py) and central differences of re-solved equilibria.
 """
 
 from __future__ import annotations
@@ -12,14 +11,13 @@ from __future__ import annotations
 import copy
 import json
 import math
-import pathlib
 import re
 
 import numpy as np
 import pytest
 import yaml
-from reference_ode import integrate_leg
-from test_stretch_laws import table_reference
+from conftest import CASES
+from reference_ode import integrate_leg, table_reference
 
 import moorsolve
 from moorsolve.catalog import line_properties
@@ -27,9 +25,7 @@ from moorsolve.cli import main
 from moorsolve.errors import CaseError
 from moorsolve.solve.problem import structure_key
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-FPU = ROOT / "cases" / "fpu_polyester_table.yaml"
-MOORDYN = pathlib.Path(__file__).resolve().parent / "data" / "moordyn_curves"
+FPU = CASES / "fpu_polyester_table.yaml"
 
 
 def fpu_data():
@@ -203,7 +199,7 @@ def test_sweep_over_table_values_needs_no_rebuild(fpu):
 def test_a_linear_table_is_hookes_law_in_a_network():
     """The three-platform network (six-DOF bodies, bridles, shared lines): its shared lines
     given as a table whose rows lie on Hooke's line solve to the same tensions."""
-    data = yaml.safe_load((ROOT / "cases" / "three_platforms.yaml").read_text())
+    data = yaml.safe_load((CASES / "three_platforms.yaml").read_text())
     hooke = moorsolve.solve(moorsolve.load_case(data))
     lt = data["line_types"]["shared"]
     ea = float(lt.pop("ea"))
@@ -297,21 +293,6 @@ def test_sensitivity_names_what_it_cannot_map(fpu):
         moorsolve.sensitivity(buoy, ["x_m"], ["legs[R0].ea"])
     with pytest.raises(ValueError, match="no line uses"):
         moorsolve.sensitivity(result, ["x_m"], ["line_types[rope].stiffness_scale"])
-
-
-def test_optimisation_through_a_table_law_is_verified_and_kkt():
-    """The four-leg design study of tests/test_optimise.py with a table-law rope: the
-    optimum holds in independent solves and is a KKT point by their central differences."""
-    from test_optimise import check_kkt, four_leg_case, four_leg_study
-
-    from moorsolve.studies.optimise import optimise
-    case = four_leg_case({"weight_in_water": 1200.0, "mbl": 6e6, "stretch": {
-        "model": "table", "strain": [0.002, 0.004, 0.007, 0.01],
-        "tension": [2e5, 6e5, 1.5e6, 2.6e6]}})
-    study = four_leg_study(case)
-    opt = optimise(case, study)
-    assert opt.verified and opt.objective_optimum < opt.objective_start
-    check_kkt(case, study, opt, step=1e-3)
 
 
 # ---- lumped-node lines -----------------------------------------------------------------------
@@ -412,103 +393,3 @@ def test_bounds_command(capsys, tmp_path):
     path.write_text(yaml.safe_dump(plain))
     assert main(["bounds", str(path)]) == 2
     assert "stiffness_bounds" in capsys.readouterr().err
-
-
-# ---- MoorDyn curve files ---------------------------------------------------------------------
-
-
-CURVE_STRAIN = [0.0, 0.004, 0.009, 0.015, 0.022, 0.030]
-CURVE_TENSION = [0.0, 0.5e5, 1.4e5, 2.8e5, 4.9e5, 7.8e5]
-
-
-@pytest.mark.parametrize("name", ["taut_polyester_v2.dat", "taut_polyester_v1.dat"])
-def test_moordyn_ea_curve_file_becomes_a_table_law(name):
-    data = moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(MOORDYN / name))
-    poly = data["line_types"]["poly"]
-    assert "ea" not in poly
-    assert poly["stretch"] == {"model": "table", "strain": CURVE_STRAIN,
-                               "tension": CURVE_TENSION}
-    assert moorsolve.solve(moorsolve.load_case(data)).converged
-
-
-def test_moordyn_curve_errors_name_the_file_and_line(tmp_path):
-    text = (MOORDYN / "taut_polyester_v2.dat").read_text()
-    (tmp_path / "line.dat").write_text(text)
-    with pytest.raises(CaseError, match=r"line.dat:8.*polyester_curve.txt.*not found"):
-        moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(tmp_path / "line.dat"))
-    rows = "\n".join(f"{0.001 * i} {1e4 * i}" for i in range(31))
-    (tmp_path / "polyester_curve.txt").write_text(f"a\nb\nc\n{rows}")
-    with pytest.raises(CaseError, match="31 rows; MoorDyn reads at most 30"):
-        moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(tmp_path / "line.dat"))
-    (tmp_path / "polyester_curve.txt").write_text("a\nb\nc\n0 0\n0.01 abc")
-    with pytest.raises(CaseError, match=r"polyester_curve.txt:5"):
-        moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(tmp_path / "line.dat"))
-
-
-@pytest.mark.parametrize("version", [1, 2])
-def test_export_writes_the_curve_file_and_reads_back(tmp_path, version):
-    case = moorsolve.load_case(str(FPU))
-    out = tmp_path / "fpu.dat"
-    moorsolve.export_moordyn(case, out, version=version)
-    curve = tmp_path / "fpu_polyester160_ea.txt"
-    text = curve.read_text()
-    assert not text.endswith("\n")                 # MoorDyn-C rejects an empty last line
-    assert "fpu_polyester160_ea.txt" in out.read_text()
-    lines = text.split("\n")
-    assert len(lines) == 3 + 9
-    back = moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(out))
-    law = case.line_types["polyester160"].stretch
-    assert back["line_types"]["polyester160"]["stretch"] == {
-        "model": "table", "strain": list(law.strain), "tension": list(law.tension)}
-
-
-def test_network_export_writes_the_curve_too(tmp_path):
-    data = yaml.safe_load((ROOT / "cases" / "three_platforms.yaml").read_text())
-    lt = data["line_types"]["shared"]
-    ea = float(lt.pop("ea"))
-    lt["stretch"] = {"model": "table", "strain": [0.001, 0.002, 0.004],
-                     "tension": [ea * 0.001, ea * 0.002, ea * 0.005]}
-    moorsolve.export_moordyn(moorsolve.load_case(data), tmp_path / "three.dat")
-    assert (tmp_path / "three_shared_ea.txt").exists()
-    back = moorsolve.moordyn_to_case_data(moorsolve.read_moordyn(tmp_path / "three.dat"))
-    assert back["line_types"]["shared"]["stretch"]["tension"] == [
-        0.0, ea * 0.001, ea * 0.002, ea * 0.005]
-
-
-def test_export_samples_a_baranov_law_for_moordyn(tmp_path):
-    data = buoy_baranov()
-    data["line_types"]["hemp"]["diameter"] = 0.05
-    moorsolve.export_moordyn(moorsolve.load_case(data), tmp_path / "buoy.dat")
-    rows = [tuple(map(float, line.split())) for line in
-            (tmp_path / "buoy_hemp_ea.txt").read_text().split("\n")[3:]]
-    assert len(rows) == 30 and rows[0] == (0.0, 0.0)
-    n, mbl = 4e-4, 2e5
-    assert rows[-1][1] == pytest.approx(mbl, rel=1e-12)          # up to the MBL
-    assert all(t == pytest.approx((e / n) ** 2, rel=1e-12) for e, t in rows[1:])
-
-
-@pytest.mark.parametrize("quadratic, bound", [(0.0, 3e-3), (1.2e8, 1e-2)])
-def test_moordyn_reads_the_exported_curve(tmp_path, quadratic, bound):
-    """MoorDyn (the optional peer) loads the exported curve file and holds the exported
-    equilibrium with our mooring force. A linear curve: as close as a Hooke line (1.3e-5
-    measured). A stiffening curve: MoorDyn's dynamic relaxation leaves 0.1 m/s^2 of
-    unbalanced acceleration and 0.4 % of the force (measured), inside 1 %; reading the
-    columns swapped or in kN would be off by far more."""
-    pytest.importorskip("moordyn")
-    from moorsolve.studies.stiffness import mooring_force
-    data = fpu_data()
-    strain = np.linspace(0.0, 0.06, 30)
-    data["line_types"]["polyester160"]["stretch"] = {
-        "model": "table", "strain": strain[1:].tolist(),
-        "tension": (8 * 7.89e6 * strain[1:] + quadratic * strain[1:] ** 2).tolist()}
-    data["line_types"]["polyester160"].pop("stiffness_bounds")
-    case = moorsolve.load_case(data)
-    path = tmp_path / "fpu.dat"
-    result = moorsolve.export_moordyn(case, path, equilibrium=True)
-    text = re.sub(r"\n60(\s+)TmaxIC", r"\n600\1TmaxIC", path.read_text())
-    path.write_text(text)
-    pose = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
-    ours = np.array(mooring_force(case, pose)[0])[:2]
-    from test_moordyn_peer import _moordyn_body_force
-    theirs = _moordyn_body_force(path, pose)[:2]
-    assert np.max(np.abs(theirs - ours)) < bound * np.hypot(*ours)

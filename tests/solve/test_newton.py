@@ -1,7 +1,6 @@
 """The Newton fast path against the IPOPT reference, compiled and interpreted."""
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,9 +9,10 @@ import moorsolve
 from moorsolve.solve.cache import get_problem
 from moorsolve.solve.start import initial_point
 from moorsolve.solve.newton import CONVERGED, NewtonKernel
+from conftest import ROOT
 
-CASES = sorted(Path(__file__).parent.parent.joinpath("cases").glob("*.yaml"))
-DOCK = Path(__file__).parent.parent / "cases" / "floating_dock.yaml"
+CASES = sorted(ROOT.joinpath("cases").glob("*.yaml"))
+DOCK = ROOT / "cases" / "floating_dock.yaml"
 
 
 def _max_tension(result):
