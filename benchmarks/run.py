@@ -268,7 +268,7 @@ def time_kernel(scene: BenchScene, loads: list, warm: bool, *, tol: float = 1e-9
         x0 = x_prev if warm else x_rest
         t0 = time.perf_counter()
         out = kernel.raw(x0, p, tol)
-        ok, force, _, _ = problem.judge(out[3][0], out[3][1], out[3][2], tol)
+        ok, force, _, _ = problem.judge(*out[3], tol=tol)
         col.times_s.append(time.perf_counter() - t0)
         col.converged.append(ok)
         col.iterations.append(int(out[2][0]))

@@ -3,6 +3,9 @@
 STANDARD_GRAVITY = 9.80665          # [m/s^2], also defines the kilogram-force and tonne-force
 SEAWATER_DENSITY = 1025.0           # [kg/m^3]
 AIR_DENSITY = 1.225                 # [kg/m^3], ISA sea level
+FRICTION_SLIP = 1e-3                # [m] slip over which contact friction is mobilised
+                                    # (moorsolve.physics.contact), unless a wall or pile
+                                    # gives its own
 
 # Hu & Tang (2004, seed 001 section 3) write densities in the technical unit kgf s^2/m^4
 # and give results in kN; their empirical formulas keep these numbers inside them.

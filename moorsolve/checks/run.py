@@ -16,7 +16,10 @@ Per leg and condition:
   tension along each segment of a line type with a ``min_tension`` at least that (a rope
   that must not go slack: :mod:`moorsolve.checks.fibre`);
 
-and per condition the horizontal offset of the body origin against the offset limit.
+and per condition the horizontal offset of the body origin against the offset limit. At a
+berth (issue 15, :mod:`.berth`) a hawser's tension is checked against the working load
+limit of OCIMF MEG4 instead of the standard's factor, each fender's compression against its
+rated deflection and each pile guide's height against its pile's top.
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ from ..errors import ConvergenceError
 from ..model import AnchorType, Case, Checks
 from ..model.edit import without_line
 from ..solve import Result, solve
+from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
 from .fibre import LOWER_LIMIT_CHECKS, fibre_items
 
@@ -255,6 +259,9 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
                                reason=exc.reason, result=None, items=[], criterion=crit)
     items = []
     for leg, lr in zip(scene.legs, result.legs):
+        if is_hawser(leg):
+            items.append(_hawser(name, lr, leg))
+            continue
         items.append(_tension(name, lr, crit))
         if not leg.a.on_seabed:
             continue        # end A is not an anchor (a bridle leg, a shared line)
@@ -287,8 +294,50 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
                                    limit=limit, unit="m", utilisation=offset / limit,
                                    passed=offset <= limit,
                                    criterion=f"horizontal offset <= {limit:.2f} m"))
+    items += [_fender(name, f) for f in result.fenders if f["rated_deflection_m"]]
+    items += [_guide(name, g) for g in result.guides if g["pile_top_m"] is not None]
     return ConditionResult(name=name, kind=kind, removed=removed, solved=True, reason="",
                            result=result, items=items, criterion=crit)
+
+
+def _hawser(condition: str, lr, line) -> CheckItem:
+    """A ship's mooring line against MEG4's working load limit (:mod:`.berth`)."""
+    T = max(lr.fairlead_tension_N, lr.anchor_tension_N)
+    row = hawser_criterion(line.line_type)
+    text = f"OCIMF MEG4 WLL: T <= {row.limit:.0%} MBL ({row.material.replace('_', ' ')})"
+    if not lr.mbl_N:
+        return CheckItem(condition=condition, leg=lr.name, check="hawser tension", value=T,
+                         limit=math.nan, unit="N", utilisation=math.inf, passed=False,
+                         criterion="no MBL given for the hawser's line type: give mbl")
+    limit = row.limit * lr.mbl_N
+    return CheckItem(condition=condition, leg=lr.name, check="hawser tension", value=T,
+                     limit=limit, unit="N", utilisation=T / limit, passed=T <= limit,
+                     criterion=text)
+
+
+def _fender(condition: str, fender: dict) -> CheckItem:
+    """A fender's compression against its rated deflection."""
+    row = fender_criterion()
+    limit = row.limit * fender["rated_deflection_m"]
+    value = fender["compression_m"]
+    return CheckItem(condition=condition, leg=fender["name"], check="fender compression",
+                     value=value, limit=limit, unit="m", utilisation=value / limit,
+                     passed=value <= limit,
+                     criterion="compression <= rated deflection (PIANC fender guidelines)")
+
+
+def _guide(condition: str, guide: dict) -> CheckItem:
+    """A pile guide's collar must stay on its pile."""
+    row = guide_criterion()
+    limit = row.limit * guide["pile_top_m"]
+    value = guide["height_m"]
+    # Utilisation: the collar's height over the pile's length above the seabed.
+    bed = guide["seabed_z_m"]
+    return CheckItem(condition=condition, leg=guide["name"], check="guide on pile",
+                     value=value, limit=limit, unit="m",
+                     utilisation=(value - bed) / (limit - bed) if limit > bed else math.inf,
+                     passed=value <= limit,
+                     criterion=f"collar height <= pile {guide['pile']}'s top")
 
 
 def _tension(condition: str, lr, crit: Criterion) -> CheckItem:

@@ -16,12 +16,14 @@ from .lines import ANCHOR_KINDS, AnchorType, Clump, End, Leg, Line, LineDrag, Li
 from .loads import (BodyLoads, DragLoad, DriftCoefficient, HuTangCurrent, HuTangDrift,
                     HuTangWind)
 from .scene import DEGREES_OF_FREEDOM, STANDARDS, Case, Checks, SolverOptions
+from .contact import Contacts, Fender, Guide, Pile, ReactionLaw, Wall
 
 __all__ = ["Environment", "Flow", "Seabed", "Waves", "ANCHOR_KINDS", "AnchorType", "Clump",
            "End", "Leg", "Line", "LineDrag", "LineType", "Segment", "DOFS", "PLANAR_DOFS",
            "Body", "Hydrostatics", "HullMember", "Point", "BodyLoads", "DragLoad",
            "DriftCoefficient", "HuTangCurrent", "HuTangDrift", "HuTangWind",
-           "DEGREES_OF_FREEDOM", "STANDARDS", "Case", "Checks", "SolverOptions"]
+           "DEGREES_OF_FREEDOM", "STANDARDS", "Case", "Checks", "SolverOptions",
+           "Contacts", "Fender", "Guide", "Pile", "ReactionLaw", "Wall"]
 
 from .build import build_case  # noqa: E402  (after the dataclasses it builds)
 

@@ -28,6 +28,7 @@ Schema (SI units, ``[...]`` lists)::
                                                (speed signed along toward_deg), or
                                                [[z, speed >= 0, toward_deg], ...]
       waves: {hs: >= 0 [m], toward_deg | from_deg}   optional
+      water_level: [m]                         still water above the datum (tide); default 0
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
              weight_in_air >= weight_in_water [N/m or mass/m] (for a line end above
@@ -47,6 +48,9 @@ Schema (SI units, ``[...]`` lists)::
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
               current: {model: drag | hu_tang, ...},
               wave_drift: {model: hu_tang | coefficient, ...}}
+    bodies, points, lines, walls, piles, fenders, guides:
+                                               the network form instead of body + legs
+                                               (:mod:`.build_network`, :mod:`.build_contact`)
     legs:                                      required, non-empty
       - {name, anchor: [x, y] or [x, y, z], fairlead: [x, y, z],
          segments: [{type: NAME, length: > 0}, {clump: CLUMP}, {type: NAME, length}, ...],
@@ -79,6 +83,8 @@ from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
 from .build_network import build_network
+from .build_contact import build_contacts
+from .contact import Contacts
 from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS,
                      MAX_ITER_LIMIT, MAX_LINE_ELEMENTS,
                      MAX_SPEED, MIN_DEPTH, check_bounds, check_list,
@@ -144,7 +150,7 @@ def _waves(raw, path: str, compass: Compass) -> Waves:
 def _environment(raw, path: str) -> Environment:
     m = check_mapping(raw, path, required=("depth",),
                  optional=("water_density", "air_density", "gravity", "seabed", "wind",
-                           "current", "waves", "directions", "north_deg"))
+                           "current", "waves", "directions", "north_deg", "water_level"))
     defaults = Environment(depth=1.0)
     dpath = field_path(path, "depth")
     depth = quantity(m["depth"], dpath, "length", gt=0, le=MAX_DEPTH)
@@ -182,9 +188,15 @@ def _environment(raw, path: str) -> Environment:
                else _flow(m["current"], field_path(path, "current"), compass, profile=True))
     waves = (None if m.get("waves") is None
              else _waves(m["waves"], field_path(path, "waves"), compass))
+    level = optional_quantity(m, path, "water_level", "length", 0.0, ge=-MAX_TIDE,
+                              le=MAX_TIDE)
+    if level <= -depth:
+        raise CaseError(field_path(path, "water_level"),
+                        f"{format_si(level, 'length')} would leave no water over the seabed "
+                        f"(depth {format_si(depth, 'length')} at the datum)")
     return Environment(depth=depth, water_density=water_density, air_density=air_density,
                        gravity=gravity, seabed=seabed, wind=wind, current=current, waves=waves,
-                       compass=compass)
+                       compass=compass, water_level=level)
 
 
 def _compass(m: dict, path: str) -> Compass:
@@ -273,6 +285,10 @@ def _solver(raw, path: str) -> SolverOptions:
 
 _LEGS_FORM = ("body", "legs")
 _NETWORK_FORM = ("bodies", "points", "lines")
+#: Berth sections (network form only; :mod:`.build_contact`).
+_BERTH = ("walls", "piles", "fenders", "guides")
+#: Largest tide accepted [m]; a larger water level is a unit mistake.
+MAX_TIDE = 100.0
 
 
 def build_case(data, default_name: str = "case") -> Case:
@@ -291,12 +307,17 @@ def build_case(data, default_name: str = "case") -> Case:
     common = ("name", "solver", "checks", "moordyn")
     if network:
         m = check_mapping(data, "", required=("environment", "line_types", "lines"),
-                          optional=common + ("bodies", "points", "body", "legs"))
+                          optional=common + ("bodies", "points", "body", "legs") + _BERTH)
         for key in _LEGS_FORM:
             if key in m:
                 raise CaseError(key, f"{key!r} belongs to the body + legs form; this case uses "
                                      "the network form (bodies, points, lines): give one form")
     else:
+        if isinstance(data, Mapping):
+            for key in _BERTH:
+                if key in data:
+                    raise CaseError(key, f"{key!r} belongs to the network form (bodies, "
+                                         "points, lines): fenders name the body they are on")
         m = check_mapping(data, "", required=("environment", "line_types", "legs"),
                           optional=common + ("body",))
     name = default_name if "name" not in m else check_name(m["name"], "name", "case name")
@@ -305,8 +326,10 @@ def build_case(data, default_name: str = "case") -> Case:
     environment = _environment(m["environment"], "environment")
     line_types = _line_types(m["line_types"], "line_types", environment.gravity,
                              environment.water_density)
+    contacts = Contacts()
     if network:
         bodies, points, lines = build_network(m, environment, line_types)
+        contacts = build_contacts(m, bodies)
     else:
         body = None if m.get("body") is None else _body(m["body"], "body")
         lines = _legs(m["legs"], "legs", environment, line_types, body is not None)
@@ -317,4 +340,4 @@ def build_case(data, default_name: str = "case") -> Case:
                else validate_moordyn_block(m["moordyn"], "moordyn", line_types, lines))
     return Case(name=name, environment=environment, line_types=line_types, lines=lines,
                 bodies=bodies, points=points, solver=solver, checks=checks, moordyn=moordyn,
-                form="network" if network else "legs")
+                form="network" if network else "legs", contacts=contacts)

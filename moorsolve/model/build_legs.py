@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 
 from ..errors import CaseError
-from .fields import (FAIRLEAD_Z_MAX, check_list,
+from .fields import (check_choices, FAIRLEAD_Z_MAX, check_list,
                      check_mapping, check_name, check_point, field_path)
-from .units import format_si, show_value
+from .units import format_si
 from .bodies import PLANAR_DOFS, Body
 from .environment import Environment
 from .build_lines import _anchor_type, _segments
@@ -17,17 +17,7 @@ from .loads import BodyLoads
 
 
 def _free(raw, path: str) -> tuple:
-    items = check_list(raw, path, f"a list drawn from {', '.join(PLANAR_DOFS)}")
-    seen = set()
-    for i, item in enumerate(items):
-        if not isinstance(item, str) or item not in PLANAR_DOFS:
-            raise CaseError(field_path(path, i), f"unknown degree of freedom {show_value(item)}; "
-                                            f"allowed: {', '.join(PLANAR_DOFS)}")
-        if item in seen:
-            raise CaseError(field_path(path, i), f"{item!r} is listed twice")
-        seen.add(item)
-    # Canonical order, so that downstream code never depends on how the user listed them.
-    return tuple(dof for dof in PLANAR_DOFS if dof in seen)
+    return check_choices(raw, path, PLANAR_DOFS)
 
 
 def _body(raw, path: str) -> Body:

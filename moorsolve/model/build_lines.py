@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 from ..errors import CaseError
@@ -164,7 +165,9 @@ def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_
 # ---- legs -------------------------------------------------------------------------------
 
 
-def _segment(raw, path: str, line_types: dict) -> Segment:
+def _segment(raw, path: str, line_types: dict, pretension: bool = False) -> Segment:
+    if pretension and isinstance(raw, Mapping) and "pretension" in raw:
+        return _pretensioned_segment(raw, path, line_types)
     m = check_mapping(raw, path, required=("type", "length"))
     type_name = m["type"]
     if not isinstance(type_name, str) or type_name not in line_types:
@@ -174,6 +177,29 @@ def _segment(raw, path: str, line_types: dict) -> Segment:
     length = quantity(m["length"], lpath, "length", gt=0, le=MAX_LINE_LENGTH)
     check_bounds(m["length"], length, "length", lpath, ge=MIN_LINE_LENGTH)
     return Segment(line_type=line_types[type_name], length=length)
+
+
+def _pretensioned_segment(raw, path: str, line_types: dict) -> Segment:
+    """``{type, pretension}``: a weightless elastic segment (a hawser) given by its tension
+    at the case-file pose; its length is set once the line's ends are known."""
+    m = check_mapping(raw, path, required=("type", "pretension"))
+    type_name = m["type"]
+    if not isinstance(type_name, str) or type_name not in line_types:
+        raise CaseError(field_path(path, "type"), f"unknown line type {show_value(type_name)}; "
+                                                  f"known line types: {', '.join(line_types)}")
+    lt = line_types[type_name]
+    if lt.weight_in_water != 0 or not lt.elastic:
+        raise CaseError(field_path(path, "pretension"),
+                        f"a pretension sets the length of a weightless elastic line (a "
+                        f"hawser); line type {type_name!r} has weight_in_water "
+                        f"{format_si(lt.weight_in_water, 'force_per_length')} and ea "
+                        f"{'none' if lt.ea is None else format_si(lt.ea, 'force')}: give a "
+                        "length")
+    # Hooke: below EA (a strain under 1); a stretch law stretches finitely at any tension.
+    limits = {"lt": lt.ea} if lt.ea is not None else {}
+    tension = quantity(m["pretension"], field_path(path, "pretension"), "force", ge=0,
+                       **limits)
+    return Segment(line_type=lt, length=math.nan, pretension=tension)
 
 
 def _clump(raw, path: str, environment: Environment) -> Clump:
@@ -196,7 +222,8 @@ def _clump(raw, path: str, environment: Environment) -> Clump:
     return Clump(weight=weight, mass=mass, volume=volume)
 
 
-def _segments(raw, path: str, environment: Environment, line_types: dict):
+def _segments(raw, path: str, environment: Environment, line_types: dict,
+              pretension: bool = False):
     """Segments from anchor to fairlead, with optional ``{clump: ...}`` items between them."""
     items = check_list(raw, path, "a list of {type, length} segments from the anchor, with "
                                  "optional {clump: {...}} items between them")
@@ -214,7 +241,7 @@ def _segments(raw, path: str, environment: Environment, line_types: dict):
             continue
         if segments and len(clumps) < len(segments):
             clumps.append(None)
-        segments.append(_segment(item, ipath, line_types))
+        segments.append(_segment(item, ipath, line_types, pretension))
     if len(clumps) == len(segments):
         raise CaseError(field_path(path, len(items) - 1),
                         "a clump must sit between two segments; this one ends the leg")

@@ -24,8 +24,12 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
       - name: str
         from: END                             end A
         to: END                               end B
-        segments: [...]                       as in a leg, from end A
+        segments: [...]                       as in a leg, from end A; a one-segment line of
+                                              a weightless elastic type (a hawser) may give
+                                              {type, pretension: N} instead of a length: the
+                                              tension at the case-file pose sets the length
         anchor_type: ANCHOR                   optional, for an end A on the seabed
+    walls, piles, fenders, guides:            the berth (:mod:`.build_contact`)
     END: a point name | [x, y] (on the seabed) | [x, y, z] fixed | {body: NAME, at: [x, y, z]}
 
 Beyond the schema: names are unique; every end names a known body or point; a free point or
@@ -36,6 +40,7 @@ inextensible line between fixed ends is long enough to reach.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 
@@ -47,8 +52,10 @@ from .bodies import DOFS, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, Hydrost
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
 from .environment import Environment
-from .fields import (FAIRLEAD_Z_MAX, MAX_AREA, check_list, check_mapping, check_name,
-                     check_point, field_path, nullable_quantity, optional_quantity, quantity)
+from .fields import (FAIRLEAD_Z_MAX, check_choices, MAX_AREA, MAX_LINE_LENGTH, MIN_LINE_LENGTH,
+                     check_list,
+                     check_mapping, check_name, check_point, field_path, nullable_quantity,
+                     optional_quantity, quantity)
 from .lines import End, Line
 from .loads import BodyLoads
 from .units import format_si, show_value
@@ -83,16 +90,7 @@ def _matrix6(raw, path: str) -> tuple:
 
 
 def _free_dofs(raw, path: str) -> tuple:
-    items = check_list(raw, path, f"a list drawn from {', '.join(DOFS)}")
-    seen = set()
-    for i, item in enumerate(items):
-        if not isinstance(item, str) or item not in DOFS:
-            raise CaseError(field_path(path, i), f"unknown degree of freedom {show_value(item)}; "
-                                                 f"allowed: {', '.join(DOFS)}")
-        if item in seen:
-            raise CaseError(field_path(path, i), f"{item!r} is listed twice")
-        seen.add(item)
-    return tuple(d for d in DOFS if d in seen)
+    return check_choices(raw, path, DOFS)
 
 
 def _hydrostatics(raw, path: str) -> Hydrostatics:
@@ -280,7 +278,9 @@ def _line(raw, path: str, environment: Environment, line_types: dict, bodies: di
     a = _end(m["from"], field_path(path, "from"), environment, bodies, points)
     b = _end(m["to"], field_path(path, "to"), environment, bodies, points)
     spath = field_path(path, "segments")
-    segments, clumps = _segments(m["segments"], spath, environment, line_types)
+    segments, clumps = _segments(m["segments"], spath, environment, line_types,
+                                 pretension=True)
+    segments = _pretensioned_length(segments, spath, a, b, bodies)
     anchor_type = (None if m.get("anchor_type") is None
                    else _anchor_type(m["anchor_type"], field_path(path, "anchor_type")))
     if a.fixed and b.fixed and not any(seg.line_type.elastic for seg in segments):
@@ -295,6 +295,30 @@ def _line(raw, path: str, environment: Environment, line_types: dict, bodies: di
     return Line(name=name, a=a, b=b, segments=segments,
                 clumps=clumps if any(c is not None for c in clumps) else (),
                 anchor_type=anchor_type)
+
+
+def _pretensioned_length(segments: tuple, path: str, a: End, b: End, bodies: dict) -> tuple:
+    """Segments with the length a pretension gives at the case-file pose:
+    ``L = D / (1 + T0 / EA)``, ``D`` the distance between the line's ends there."""
+    if not any(seg.pretension is not None for seg in segments):
+        return segments
+    if len(segments) != 1:
+        raise CaseError(field_path(path, 0), "a pretension gives the length of a one-segment "
+                                             "line; give the segments of this line lengths")
+    seg = segments[0]
+    distance = float(np.linalg.norm(end_position(a, bodies) - end_position(b, bodies)))
+    if not distance > 0:
+        raise CaseError(field_path(field_path(path, 0), "pretension"),
+                        "the line's ends coincide at the case-file pose; a pretension cannot "
+                        "give its length")
+    length = distance / (1 + seg.line_type.strain_at(seg.pretension))
+    if not MIN_LINE_LENGTH <= length <= MAX_LINE_LENGTH:
+        raise CaseError(field_path(field_path(path, 0), "pretension"),
+                        f"the line's ends are {format_si(distance, 'length')} apart at the "
+                        f"case-file pose: its length would be {format_si(length, 'length')}, "
+                        f"outside {format_si(MIN_LINE_LENGTH, 'length')} to "
+                        f"{format_si(MAX_LINE_LENGTH, 'length')}")
+    return (dataclasses.replace(seg, length=length),)
 
 
 def _unique(items, path: str, what: str) -> dict:

@@ -84,6 +84,14 @@ class Seabed:
 
 @dataclass(frozen=True)
 class Environment:
+    """Water, seabed and flows.
+
+    ``water_level`` is the still-water level above the case's datum (a tide) [m]: the
+    seabed (at ``-depth`` on the datum), fixed points, walls and piles are given on the datum,
+    and floating bodies' hydrostatics act about this level. 0 (the default) puts the still
+    water at z = 0.
+    """
+
     depth: float
     water_density: float = SEAWATER_DENSITY
     air_density: float = AIR_DENSITY
@@ -94,6 +102,7 @@ class Environment:
     waves: Optional[Waves] = None
     #: How the case file measures directions (``toward_deg`` here is always internal).
     compass: Compass = field(default_factory=Compass)
+    water_level: float = 0.0
 
     def seabed_z(self, x: float, y: float) -> float:
         """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed)."""

@@ -158,3 +158,18 @@ def check_centre(m: dict, path: str) -> tuple:
     if "centre" not in m:
         return (0.0, 0.0)
     return check_point(m["centre"], field_path(path, "centre"), (2, 3))
+
+
+def check_choices(raw, path: str, allowed: tuple, what: str = "degree of freedom") -> tuple:
+    """A list of distinct names drawn from ``allowed``, returned in ``allowed``'s order (so
+    that nothing downstream depends on how the user listed them)."""
+    items = check_list(raw, path, f"a list drawn from {', '.join(allowed)}")
+    seen = set()
+    for i, item in enumerate(items):
+        if not isinstance(item, str) or item not in allowed:
+            raise CaseError(field_path(path, i), f"unknown {what} {show_value(item)}; "
+                                                 f"allowed: {', '.join(allowed)}")
+        if item in seen:
+            raise CaseError(field_path(path, i), f"{item!r} is listed twice")
+        seen.add(item)
+    return tuple(name for name in allowed if name in seen)

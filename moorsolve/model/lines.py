@@ -88,13 +88,26 @@ class LineType:
     def elastic(self) -> bool:
         return self.ea is not None or self.stretch is not None
 
+    def strain_at(self, T: float) -> float:
+        """The strain at tension ``T`` [N]: ``T/EA``, the stretch law's, or 0 when
+        inextensible."""
+        if self.stretch is not None:
+            return self.stretch.strain_at(T)
+        return T / self.ea if self.ea is not None else 0.0
+
 
 @dataclass(frozen=True)
 class Segment:
-    """A length of one line type [m, unstretched]."""
+    """A length of one line type [m, unstretched].
+
+    ``pretension`` [N]: the segment was given by the tension it carries at the case-file
+    pose instead of a length (a hawser); ``length`` is then the unstretched length that
+    gives it.
+    """
 
     line_type: LineType
     length: float
+    pretension: Optional[float] = None
 
 
 ANCHOR_KINDS = ("drag", "deadweight", "pile")

@@ -9,6 +9,7 @@ from typing import Optional
 from .environment import Environment
 from .lines import AnchorType
 from .bodies import DOFS, Body, Point
+from .contact import Contacts
 
 #: Degrees of freedom of a body, in the order of every 6-vector (see :mod:`.bodies`).
 DEGREES_OF_FREEDOM = DOFS
@@ -80,6 +81,8 @@ class Case:
     solver: SolverOptions = field(default_factory=SolverOptions)
     checks: Optional[Checks] = None
     form: str = "legs"
+    #: Walls, piles, fenders and pile guides (network form; :mod:`.contact`).
+    contacts: Contacts = field(default_factory=Contacts)
     #: What a MoorDyn input file held that moorsolve does not use (the case file's ``moordyn``
     #: block, see ``moorsolve.model.moordyn_block``), kept for export; the solver ignores it.
     moordyn: Optional[Mapping] = field(default=None, compare=False, repr=False)

@@ -25,7 +25,6 @@ This module is data and validation only (no CasADi): the physics is in
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Optional, Union
@@ -76,15 +75,12 @@ class StretchLaw:
         return tuple(self.strain) + tuple(self.tension)
 
     def strain_at(self, T: float) -> float:
-        """Strain at tension ``T`` [N] by Baranov's law, or linearly between table rows
-        (a rough figure for messages and start points; the solver interpolates by PCHIP)."""
-        if self.model == "baranov":
-            return self.n * math.sqrt(max(T, 0.0))
-        ts, es = self.tension, self.strain
-        if T >= ts[-1]:
-            return es[-1] + (T - ts[-1]) * (es[-1] - es[-2]) / (ts[-1] - ts[-2])
-        k = max(i for i in range(len(ts)) if ts[i] <= T) if T > 0 else 0
-        return es[k] + (T - ts[k]) * (es[k + 1] - es[k]) / (ts[k + 1] - ts[k])
+        """Strain at tension ``T`` [N] as the solver has it: Baranov's law, or the table's
+        monotone cubic (:mod:`moorsolve.physics.stretch`, evaluated on floats)."""
+        from ..physics.stretch import BARANOV, TABLE, NumericLaw, StretchModel
+        model = StretchModel(BARANOV) if self.model == "baranov" else StretchModel(TABLE,
+                                                                                  self.rows)
+        return float(NumericLaw(model, self.parameters()).strain(max(float(T), 0.0)))
 
     def secant_ea(self, T: Optional[float] = None) -> float:
         """``T / strain(T)`` [N]: the Hooke stiffness that stretches as much at ``T``

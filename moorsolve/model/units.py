@@ -44,6 +44,7 @@ KINDS = {
     "acceleration": ("m/s**2", "m/s^2", "an acceleration"),
     "time": ("s", "s", "a time"),
     "moment_of_inertia": ("kg*m**2", "kg m^2", "a moment of inertia"),
+    "bending_stiffness": ("N*m**2", "N m^2", "a bending stiffness E I (force x length^2)"),
     "angle": ("degree", "deg", "an angle"),
     "dimensionless": ("", "", "a plain number"),
 }
@@ -63,6 +64,7 @@ _EXAMPLES = {
     "acceleration": "'9.81 m/s^2'",
     "time": "'5 s'",
     "moment_of_inertia": "'4.2e9 kg*m^2'",
+    "bending_stiffness": "'6.8e8 N*m^2'",
     "angle": "'30 deg'",
     "dimensionless": "'0.5'",
 }

@@ -59,6 +59,7 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, ground_stretch, law_inputs, law_tag, shared
+from .contact import fischer_burmeister
 from .stretch import StretchModel
 
 #: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
@@ -218,7 +219,7 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     H = ca.fmax(u, 0)
     bound = bind(kind.law, law)
     if kind.neutral:
-        return _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound)
+        return _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound=bound)
 
     Hg = ca.fmax(H, _H_FLOOR)
     VA = V - w * L
@@ -279,22 +280,33 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     )
 
 
-def _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound=None):
-    """A weightless line: straight at tension T = max(u, 0) when taut, loose otherwise.
+def _neutral_equations(kind, X, Z, u, V, L, ea_inv, stiffness=1.0, smoothing=0.0,
+                       bound=None):
+    """A weightless line (a hawser): straight at tension ``T = u`` when taut, loose otherwise.
 
-    The chord must equal the stretched length while taut; ``-u`` [N] measures, at one metre
-    per newton, how much longer than the chord a loose line is.
+    The tension and the slack are complementary (:mod:`moorsolve.physics.contact`)::
+
+        T >= 0,   b = L (1 + T/EA) - D >= 0,   T b = 0
+
+    (``D`` the chord), imposed by the Fischer-Burmeister residual ``rX = phi(T/k, b)`` [m]
+    with ``k = stiffness`` [N/m]. The tension is the unknown, not a signed variable whose
+    negative half is the slack: a body held only by slack hawsers then still feels them, so
+    a load draws them taut (the signed form left the body's balance independent of every
+    unknown while slack, and the solvers stopped there). ``rZ = (V D - T Z) / k`` [m] makes
+    the end force lie along the chord. ``smoothing`` is the Jacobian smoothing ``eps`` [m]
+    of the solvers (0: exact).
     """
-    T = ca.fmax(u, 0)
+    T = u
     D = ca.sqrt(X**2 + Z**2)
     if bound is not None:
-        stretched = L * (1 + bound.strain(T))
+        stretched = L * (1 + bound.strain(ca.fmax(T, 0)))
     else:
         stretched = L * (1 + T * ea_inv) if kind.elastic else L
-    loose = ca.fmax(-u, 0)
+    opening = stretched - D
     H = T * X / ca.fmax(D, _H_FLOOR)
-    return dict(rX=stretched - loose - D, rZ=V * D - T * Z, H=H, VF=V, HA=H, VA=V,
-                grounded=0 * T, suspended_x=X)
+    rX = fischer_burmeister(T / stiffness, opening, smoothing)
+    return dict(rX=rX, rZ=(V * D - T * Z) / stiffness, H=H, VF=V, HA=H, VA=V, grounded=0 * T,
+                suspended_x=X)
 
 
 LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
@@ -320,6 +332,25 @@ def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0, law=None) 
     extra = () if kind.law is None else (list(law),)
     vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu, *extra)
     return {k: float(v) for k, v in zip(LEG_OUTPUTS, vals)}
+
+
+WEIGHTLESS_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv", "k", "eps")
+
+
+@lru_cache(maxsize=None)
+def weightless_line_function(elastic: bool,
+                             model: Optional[StretchModel] = None) -> ca.Function:
+    """The weightless line block as a ``casadi.Function``: inputs :data:`WEIGHTLESS_INPUTS`
+    (``k`` the contact stiffness scale [N/m], ``eps`` the Jacobian smoothing [m]) and, for a
+    stretch law ``model`` other than Hooke's, ``law``; outputs :data:`LEG_OUTPUTS`; see
+    :func:`_neutral_equations`."""
+    model = model if elastic else None
+    names, args, law = law_inputs(model, WEIGHTLESS_INPUTS)
+    X, Z, u, V, L, ea_inv, k, eps = args[:len(WEIGHTLESS_INPUTS)]
+    out = _neutral_equations(LegKind(elastic, contact=False, neutral=True), X, Z, u, V, L,
+                             ea_inv, k, eps, bound=bind(model, law))
+    return ca.Function(f"weightless_{law_tag(elastic, model)}", args,
+                       shared([out[n] for n in LEG_OUTPUTS], law), names, list(LEG_OUTPUTS))
 
 
 # ---- a line end above the water -------------------------------------------------------

@@ -54,9 +54,12 @@ def initial_state(kind: LegKind, X: float, Z: float, L: float, w: float,
         return _lifted_start(LegKind(elastic=kind.elastic, contact=False), X, Z, L, w, ea, gap)
     D = float(np.hypot(X, Z))
     if kind.neutral:
+        # The tension of a straight line: stretched when the chord exceeds the length,
+        # otherwise slack (zero; an inextensible line just reaching starts at D - L).
         if D >= L and ea:
-            return ea * (D / L - 1), 0.0
-        return -(L - D), 0.0
+            T = ea * (D / L - 1)
+            return T, T * Z / max(D, 1e-12)
+        return max(D - L, 0.0), 0.0
     aw = abs(w)
     if D >= L * (1 - 1e-9):
         # Taut: straight stretched line carrying half its weight at each end.

@@ -9,10 +9,12 @@ calls ``plt.show()``.
 - :mod:`.plan`, :mod:`.views`: plan, elevation, 3-D view, line profiles, the equilibrium
   figure (colours and styles shared through :mod:`.style`).
 - :mod:`.directions`: the direction conventions of a case file, drawn.
+- :mod:`.berth`: quay walls, piles, fenders and pile guides over the plan (issue 15).
 - :mod:`.studies`: check utilisation, accuracy ladder, envelopes, polar fields, design
   optimisation, restoring curves.
 """
 
+from .berth import plot_berth
 from .directions import plot_directions
 from .scene import Scene, scene_of
 from .studies import (figure_png, plot_accuracy, plot_envelope, plot_optimisation,
@@ -23,4 +25,4 @@ from .views import (plot_3d, plot_elevation, plot_equilibrium, plot_plan, plot_p
 __all__ = ["Scene", "scene_of", "plot_plan", "plot_elevation", "plot_3d", "plot_profiles",
            "plot_equilibrium", "view_direction", "plot_utilisation", "utilisation_figure",
            "figure_png", "plot_accuracy", "plot_envelope", "plot_polar_field",
-           "plot_optimisation", "plot_restoring", "plot_directions"]
+           "plot_optimisation", "plot_restoring", "plot_directions", "plot_berth"]

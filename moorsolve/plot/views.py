@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from .berth import plot_berth
 from .plan import plot_plan
 from .scene import Scene, scene_of
 from .style import POINT_STYLE, SEABED, WATER, as_scene, line_colours, line_label, new_axes, nice
@@ -264,6 +265,8 @@ def plot_equilibrium(result, depth=None, *, layout: str = "landscape", removed_f
     fig, axes = plt.subplot_mosaic(mosaic, figsize=size, layout="constrained",
                                    per_subplot_kw={"3d": {"projection": "3d"}}, **ratios)
     plot_plan(scene, axes["plan"], legend="figure")
+    if not isinstance(result, Scene) and (result.fenders or result.guides):
+        plot_berth(result, axes["plan"])       # walls, piles, fenders, guides (issue 15)
     plot_elevation(scene, axes["elev"])
     plot_3d(scene, axes["3d"])
     fig.suptitle(scene.title)

@@ -6,6 +6,7 @@ import json
 import math
 
 from ..checks import CheckReport
+from .berth import berth_check_lines
 from .text import _finite
 
 __all__ = ["check_json", "format_check_table", "summary_rows", "kN"]
@@ -64,6 +65,7 @@ def format_check_table(report: CheckReport) -> str:
             f"{row['mbl_over_T']:7.2f}{row['required']:6.2f}{row['tension_util']:6.2f}"
             f"{mark(uplift):>8}{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
             f"  {'PASS' if row['passed'] else 'FAIL'}")
+    lines += berth_check_lines(report)       # hawsers, fenders, guides (issue 15)
     lines.append("")
     failures = report.failures
     lines.append(f"result       {'PASS' if report.passed else 'FAIL'}: "

@@ -6,6 +6,7 @@ import json
 import math
 
 from ..solve.result import Result
+from .berth import berth_lines
 
 
 def to_json(result: Result, profiles: bool = True) -> str:
@@ -72,6 +73,7 @@ def format_table(result: Result) -> str:
             f"{r['name']:<8}{r['T_fair'] / 1e3:11.2f}{r['H'] / 1e3:10.2f}{r['V'] / 1e3:10.2f}"
             f"{r['T_anchor'] / 1e3:11.2f}{r['V_anchor'] / 1e3:11.2f}"
             f"{r['grounded']:12.2f}{util:>7}  {r['state']}")
+    lines += berth_lines(result)
     for note in result.notes:
         lines.append(f"note: {note}")
     over = [r["name"] for r in leg_rows(result.legs) if (r["utilisation"] or 0) > 1]

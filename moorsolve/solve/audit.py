@@ -25,9 +25,9 @@ Per line:
 - a joint the seabed or the surface pushes is on it.
 
 Per free body, in every free degree of freedom of six: the reported end forces at their
-reported positions, the reported loads, the weight, the hydrostatics (recomputed here: the
-linear model, and hull members by quadrature rather than the solver's closed form) and the
-springs balance.
+reported positions, the reported forces of its fenders and pile guides at their contact
+points, the reported loads, the weight, the hydrostatics (recomputed here: the linear model,
+and hull members by quadrature rather than the solver's closed form) and the springs balance.
 
 Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
 engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
@@ -356,7 +356,8 @@ def _audit_body(result, case) -> list[str]:
     out = []
     env = case.environment
     t_max = max([1.0] + [max(leg.fairlead_tension_N, leg.anchor_tension_N)
-                         for leg in result.legs])
+                         for leg in result.legs]
+                + [c["reaction_N"] for c in result.fenders + result.guides])
     for bi, body in enumerate(case.bodies):
         if not body.free or bi >= len(result.bodies):
             continue
@@ -376,6 +377,15 @@ def _audit_body(result, case) -> list[str]:
                 force += f
                 moment += np.cross(arm, f)
                 radius = max(radius, float(np.hypot(arm[0], arm[1])))
+        # Fenders and pile guides' pads (reaction and friction) at their contact points.
+        contacts = [c for c in result.fenders if c["body"] == body.name]
+        contacts += [pad for g in result.guides if g["body"] == body.name for pad in g["pads"]]
+        for contact in contacts:
+            f = np.asarray(contact["force_N"], float)
+            arm = np.asarray(contact["contact_point_m"], float) - origin
+            force += f
+            moment += np.cross(arm, f)
+            radius = max(radius, float(np.hypot(arm[0], arm[1])))
         for name, load in result.loads.items():
             if len(case.bodies) > 1 and not name.startswith(body.name + "."):
                 continue
@@ -385,7 +395,9 @@ def _audit_body(result, case) -> list[str]:
             force += f[:3]
             moment += f[3:]
             scale = max(scale, float(np.linalg.norm(f[:3])))
-        for f, m in _hydrostatic_wrenches(body, origin, R, env):
+        # Hydrostatics act about the still-water level (above the datum by a tide).
+        afloat = origin - np.array([0.0, 0.0, env.water_level])
+        for f, m in _hydrostatic_wrenches(body, afloat, R, env):
             force += f
             moment += m
             scale = max(scale, float(np.linalg.norm(f)))
@@ -514,9 +526,12 @@ def result_warnings(result, case) -> list[dict]:
             out.append(dict(code="floating", leg=leg.name, message=(
                 f"leg {leg.name}: {leg.floating_length_m:.2f} m of line floats on the surface "
                 f"(from {leg.touchup_from_anchor_m:.2f} m from the anchor)")))
-        for end, z in (("fairlead", leg.fairlead[2]), ("anchor", leg.anchor[2])):
+        level = case.environment.water_level
+        for end, z in (("fairlead", leg.fairlead[2] - level), ("anchor", leg.anchor[2] - level)):
+            lt = leg_case.segments[-1 if end == "fairlead" else 0].line_type
+            if lt.weight_in_water == 0 and lt.weight_in_air is None:
+                continue        # a hawser: weightless by definition, in air as in water
             if z > 0:
-                lt = leg_case.segments[-1 if end == "fairlead" else 0].line_type
                 how = (f"with its weight in air, {lt.weight_in_air:.4g} N/m"
                        if lt.weight_in_air is not None and not leg_case.multi_segment
                        and not _is_lumped(case, leg_case) else

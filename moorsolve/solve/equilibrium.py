@@ -26,13 +26,14 @@ import logging
 import math
 import time
 
+import casadi as ca
 import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
 from .cache import get_problem
 from .audit import audit, audit_findings, result_warnings
-from .newton import CONVERGED, STATUS_TEXT
+from .newton import CONVERGED, FLAT, STATUS_TEXT, STEP_LIMIT
 from .outcome import build_result, hull_out_of_range
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
@@ -50,6 +51,23 @@ _FAILED_STATUSES = ("Infeasible_Problem_Detected", "Restoration_Failed",
                     "Not_Enough_Degrees_Of_Freedom", "Invalid_Problem_Definition",
                     "Invalid_Option", "Unrecoverable_Exception", "NonIpopt_Exception_Thrown",
                     "Insufficient_Memory", "Internal_Error")
+
+
+def run_ipopt(problem, solver, x0, p, lb, ub, stats) -> np.ndarray:
+    """IPOPT from ``x0``; where the scene has complementarities, once per smoothing of
+    :meth:`EquilibriumProblem.ipopt_smoothings`, each from the last (a continuation toward
+    the exact problem, which the polish then solves)."""
+    x = np.asarray(x0, dtype=float)
+    for eps in problem.ipopt_smoothings():
+        sol = solver(x0=x, p=problem.nlp_parameters(p, x, eps), lbx=lb, ubx=ub, lbg=0,
+                     ubg=0)
+        st = solver.stats()
+        stats["iterations"] = stats.get("iterations", 0) + int(st.get("iter_count", 0))
+        stats["status"] = st.get("return_status", "unknown")
+        x_new = np.asarray(sol["x"]).ravel()
+        if np.all(np.isfinite(x_new)):
+            x = x_new
+    return x
 
 
 def rest_point(problem, case: Case, tol: float) -> np.ndarray:
@@ -74,9 +92,8 @@ def rest_point(problem, case: Case, tol: float) -> np.ndarray:
         lb, ub = problem.bounds()
         opts = case.solver
         solver = problem.ipopt(min(max(tol, 1e-12), 1e-4), opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=p_rest, lbx=lb, ubx=ub, lbg=0, ubg=0)
-        x = polish(problem, np.asarray(sol["x"]).ravel(), p_rest, lb, ub,
-                   {"iterations": 0}, tol)
+        x = run_ipopt(problem, solver, x0, p_rest, lb, ub, {"iterations": 0})
+        x = polish(problem, x, p_rest, lb, ub, {"iterations": 0}, tol)
         x = x if problem.certify(x, p_rest, tol)[0] else x0
         problem.start_cache[key] = x
     return x.copy()
@@ -142,6 +159,15 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             used = "newton" if x is not None else "ipopt"
         if x is None:
             x = _ipopt_strategy(problem, case, p_full, tol, start, stats, t0)
+            if problem.smoothed and kernel is None and not problem.certify(x, p_full, tol)[0]:
+                # Contacts and hawsers: where IPOPT (a smooth NLP solver) does not certify,
+                # the semismooth Newton path built for them gets its turn.
+                x_newton, extra = _newton_strategy(problem, case, problem.newton(), p_full,
+                                                   tol, start, stats)
+                if x_newton is not None:
+                    x, used = x_newton, "newton"
+                    notes.append("IPOPT did not certify this point; the Newton path did "
+                                 "(semismooth Newton on the contacts' complementarities)")
         certified, force_res, moment_res, relative = problem.certify(x, p_full, tol)
         failed_status = stats["status"] in _FAILED_STATUSES
         if certified and failed_status:
@@ -158,7 +184,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                                          stats.get("polish_steps", 0))
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
-                           iterations=stats["iterations"], solve_time_s=elapsed)
+                           iterations=stats["iterations"], solve_time_s=elapsed,
+                           **problem.contact_certificate(x, p_full))
         result = build_result(problem, case, x, p_full, cert, certified, used, notes,
                               assessment)
     if not certified:
@@ -247,12 +274,8 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         # Each IPOPT run is capped at the whole budget; the deadline check above stops
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
-        sol = solver(x0=x0, p=p, lbx=lb, ubx=ub, lbg=0, ubg=0)
-        st = solver.stats()
-        stats["iterations"] += int(st.get("iter_count", 0))
-        stats["status"] = st.get("return_status", "unknown")
+        x = run_ipopt(problem, solver, x0, p, lb, ub, stats)
         stats["polish_steps"] = 0
-        x = np.asarray(sol["x"]).ravel()
         x = polish(problem, x, p, lb, ub, stats, tol)
         return x, problem.certify(x, p, tol)[0]
 
@@ -344,7 +367,9 @@ def _stable_point(problem, case, x, p, tol, stats):
 
 def polish(problem, x, p, lb, ub, stats, tol):
     """Newton steps on the square residual system until the point certifies at ``tol``,
-    kept only while they reduce the residual."""
+    kept only while they reduce the residual (with complementarities, as the compiled
+    kernel: a step along the exact direction that does not grow it where the smoothed one
+    finds no descent; :mod:`.newton`)."""
     if not np.all(np.isfinite(x)):
         return x
     g = np.asarray(problem.residual(x, p)).ravel()
@@ -355,33 +380,45 @@ def polish(problem, x, p, lb, ub, stats, tol):
         # the tension's error per step while the residual is already below 1e-15.
         if norm == 0.0 or problem.certify(x, p, tol)[0]:
             break
-        J = np.asarray(problem.jacobian(x, p))
+        J = problem.step_jacobian(x, p, g)
         if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
             break           # absurd input (a 1e30 coefficient): nothing to polish
-        try:
-            step = np.linalg.solve(J, g)
-        except np.linalg.LinAlgError:
-            try:
-                step, *_ = np.linalg.lstsq(J, g, rcond=None)
-            except np.linalg.LinAlgError:
-                break
-        improved = False
-        alpha = 1.0
-        for _ in range(6):
-            x_new = np.clip(x - alpha * step, lb, ub)
-            g_new = np.asarray(problem.residual(x_new, p)).ravel()
-            n_new = np.max(np.abs(g_new))
-            if np.isfinite(n_new) and n_new < norm:
-                x, g, norm, improved = x_new, g_new, n_new, True
-                break
-            alpha *= 0.5
+        found = _search(problem, x, p, g, norm, lb, ub, J, flat=False, tries=6)
+        if found is None and problem.smoothed:
+            spring = max(problem.REGULARISATION, float(np.max(np.abs(g))))
+            J = np.asarray(problem.jacobian(x, p)) - np.asarray(
+                ca.densify(problem.regularisation(spring)))
+            found = _search(problem, x, p, g, norm, lb, ub, J, flat=True, tries=24)
         stats["iterations"] += 1
         stats["polish_steps"] = stats.get("polish_steps", 0) + 1
-        if not improved:
+        if found is None:
             break
+        x, g, norm = found
     return x
 
 
+def _search(problem, x, p, g, norm, lb, ub, J, *, flat: bool, tries: int):
+    """Backtracking along the Newton step of ``J``: ``(x, g, |g|)`` where the residual
+    fell (or, with ``flat``, did not grow), else None."""
+    try:
+        step = np.linalg.solve(J, g)
+    except np.linalg.LinAlgError:
+        try:
+            step, *_ = np.linalg.lstsq(J, g, rcond=None)
+        except np.linalg.LinAlgError:
+            return None
+    if flat:
+        step = step * min(1.0, STEP_LIMIT / max(float(np.max(np.abs(step))), 1e-300))
+    alpha = 1.0
+    for _ in range(tries):
+        x_new = np.clip(x - alpha * step, lb, ub)
+        g_new = np.asarray(problem.residual(x_new, p)).ravel()
+        n_new = np.max(np.abs(g_new))
+        if np.isfinite(n_new) and (n_new < norm or (flat and n_new <= (1 + FLAT) * norm
+                                                    and np.any(x_new != x))):
+            return x_new, g_new, n_new
+        alpha *= 0.5
+    return None
 def _unbalanced_force(problem, x, p) -> float:
     """The largest unbalanced force [N] on a free translation of a body or a free point."""
     unbalanced = np.asarray(problem.report(x, p)[1], dtype=float).ravel()

@@ -16,7 +16,12 @@ place that knows the order. The vector is, in blocks:
 5. ``BODY_PARAMS`` for every body, then its extra 6x6 springs (36 values, when it has them)
    and ``MEMBER_PARAMS`` per exact hull member.
 6. ``POINT_PARAMS`` for every free point.
-7. The stretch-law parameters of every segment whose line type has a law other than
+7. The berth (:mod:`moorsolve.model.contact`): every wall's point, normal, friction and
+   friction slip, every pile's axis, radius, friction, friction slip and bending stiffness,
+   every fender's face and reaction law (its
+   stiffness, or the table's deflections then reactions), every guide's collar centre and
+   clearance.
+8. The stretch-law parameters of every segment whose line type has a law other than
    Hooke's (:mod:`.stretch_params`), lines and segments in case order.
 
 :class:`ParameterLayout` names every entry (``"line[L3].length"``, ``"body[hull].pose"``) for
@@ -34,7 +39,8 @@ from ..model import Case
 from .stretch_params import law_slot, stretch_parameters
 
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
-              "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor")
+              "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor",
+              "water_level")
 LINE_PARAMS = ("anchor_x", "anchor_y", "anchor_z", "fair_x", "fair_y", "fair_z",
                "length", "weight", "ea_inv", "friction", "weight_air")
 #: The ``legs:`` form's name for :data:`LINE_PARAMS`.
@@ -65,7 +71,7 @@ def environment_parameters(case: Case, load_factor: float = 1.0) -> np.ndarray:
         wind.speed if wind else 0.0, math.radians(wind.toward_deg) if wind else 0.0,
         current.speed if current else 0.0, math.radians(current.toward_deg) if current else 0.0,
         waves.hs if waves else 0.0, math.radians(waves.toward_deg) if waves else 0.0,
-        force[0], force[1], force[2], load_factor], dtype=float)
+        force[0], force[1], force[2], load_factor, env.water_level], dtype=float)
 
 
 def line_parameters(case: Case) -> np.ndarray:
@@ -143,6 +149,32 @@ def point_parameters(case: Case) -> np.ndarray:
     return np.asarray(values, dtype=float)
 
 
+def law_values(law) -> list:
+    """A fender's reaction-law parameters: none (rigid), the stiffness, or the table's
+    deflections then reactions."""
+    if law.kind == "rigid":
+        return []
+    if law.kind == "linear":
+        return [law.stiffness]
+    return list(law.deflections) + list(law.reactions)
+
+
+def contact_parameters(case: Case) -> np.ndarray:
+    """Block 7: walls, piles, fenders and guides."""
+    c = case.contacts
+    values = []
+    for wall in c.walls:
+        values += [*wall.point, *wall.normal, wall.friction, wall.friction_slip]
+    for pile in c.piles:
+        values += [*pile.position, pile.radius, pile.friction, pile.friction_slip,
+                   pile.bending_stiffness or 0.0]
+    for fender in c.fenders:
+        values += [*fender.at, *law_values(fender.law)]
+    for guide in c.guides:
+        values += [*guide.at, guide.clearance]
+    return np.asarray(values, dtype=float)
+
+
 def parameter_vector(case: Case, load_factor: float = 1.0, kinds=None) -> np.ndarray:
     """The full parameter vector ``p`` of ``case``'s problem."""
     if kinds is None:
@@ -150,7 +182,8 @@ def parameter_vector(case: Case, load_factor: float = 1.0, kinds=None) -> np.nda
         kinds = line_kinds(case)
     return np.concatenate([environment_parameters(case, load_factor), line_parameters(case),
                            segment_parameters(case, kinds), body_parameters(case),
-                           point_parameters(case), stretch_parameters(case)])
+                           point_parameters(case), contact_parameters(case),
+                           stretch_parameters(case)])
 
 
 @dataclass(frozen=True)
@@ -160,7 +193,8 @@ class ParameterLayout:
     ``names`` maps ``"env.wind_speed"``, ``"line[L3].anchor_x"``, ``"seabed.depth"``,
     ``"line[L3].segment[1].length"``, ``"line[L3].clump[0]"``, ``"body[hull].pose"`` (6),
     ``"body[hull].force"`` (6), ``"body[hull].mass"``, ``"body[hull].stiffness"`` (36),
-    ``"point[B1].mass"`` ... to ``slice`` objects into ``p``.
+    ``"point[B1].mass"``, ``"wall[quay].normal"`` (3), ``"fender[F1].law"`` ... to ``slice``
+    objects into ``p``.
     """
 
     names: dict
@@ -241,6 +275,25 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
         add(f"point[{point.name}].position", 3)
         add(f"point[{point.name}].mass")
         add(f"point[{point.name}].volume")
+    c = case.contacts
+    for wall in c.walls:
+        add(f"wall[{wall.name}].point", 3)
+        add(f"wall[{wall.name}].normal", 3)
+        add(f"wall[{wall.name}].friction")
+        add(f"wall[{wall.name}].friction_slip")
+    for pile in c.piles:
+        add(f"pile[{pile.name}].position", 2)
+        add(f"pile[{pile.name}].radius")
+        add(f"pile[{pile.name}].friction")
+        add(f"pile[{pile.name}].friction_slip")
+        add(f"pile[{pile.name}].bending_stiffness")
+    for fender in c.fenders:
+        add(f"fender[{fender.name}].at", 3)
+        if fender.law.kind != "rigid":
+            add(f"fender[{fender.name}].law", len(law_values(fender.law)))
+    for guide in c.guides:
+        add(f"guide[{guide.name}].at", 3)
+        add(f"guide[{guide.name}].clearance")
     for line in case.lines:
         for k, seg in enumerate(line.segments):
             if seg.line_type.stretch is not None:

@@ -61,7 +61,8 @@ from ..model import Case, Line
 from ..model.build_network import end_position
 from ..physics.catenary import (LegKind, air_part, descent_force, leg_function,
                                 lifted_segment_function, straight_segment_function,
-                                surface_leg_function, surface_segment_function)
+                                surface_leg_function, surface_segment_function,
+                                weightless_line_function)
 from ..physics.sloped import sloped_leg_function
 from ..physics.stretch import Law, StretchModel
 from .stretch_params import law_model
@@ -426,6 +427,11 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
         h = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
         out = lifted_segment_function(block.elastic, False, model=block.law).call(
             dict(args, h=h))
+    elif block.neutral:
+        law = {} if block.law is None else {"law": args["law"]}
+        out = weightless_line_function(block.elastic, block.law).call(dict(
+            X=X, Z=Z, u=u, V=V, L=P["length"], ea_inv=P["ea_inv"],
+            k=problem.contact_stiffness, eps=problem.smoothing_symbol, **law))
     elif block.surface:
         # Depth below the surface of the end the block starts from.
         start_z = upper[2] if block.from_fairlead else lower[2]

@@ -16,7 +16,9 @@ Iteration, on the scaled unknowns of :class:`~.problem.EquilibriumProblem`:
    :data:`STEP_LIMIT` (one depth in position, one typical tension, one radian).
 3. Backtrack ``x - a d``, ``a = 1, 1/2, ...``, projected onto the bounds (hanging lines
    keep ``u >= 0`` so ``H >= 0``), until the squared residual norm
-   drops by the Armijo factor ``1 - 2e-4 a``. No acceptable step: the method has stalled.
+   drops by the Armijo factor ``1 - 2e-4 a`` (with complementarities: or does not grow,
+   which is progress while a body crosses free space toward a support). No acceptable
+   step: the method has stalled.
 
 The exact certificate of the final point (:meth:`EquilibriumProblem.certify`) is part of
 the outputs, and so are the body position and the leg tensions a sweep records.
@@ -34,7 +36,11 @@ STEP_LIMIT = 1.0
 #: Unrolled iterations; a point still unconverged after them reports status 2.
 MAX_ITERATIONS = 40
 _BACKTRACKS = 12
+_FREE_BACKTRACKS = 24
 _ARMIJO = 1e-4
+#: A step that leaves the squared residual within this fraction of where it was counts as
+#: not growing it (round-off in a body's balance as it crosses free space).
+FLAT = 1e-10
 
 #: Status codes of the kernel.
 CONVERGED, STALLED, MAX_ITER = 0, 1, 2
@@ -53,13 +59,16 @@ def newton_step_function(problem) -> ca.Function:
     search, so the caller falls back to IPOPT) uses CasADi's sparse QR.
     """
     n, n_q, n_legs = problem.n_x, problem.n_q, problem.n_legs
-    sp = problem.jacobian.sparsity_out(0)
+    sp = problem.step_sparsity()
     g = ca.SX.sym("g", n)
     J = ca.SX.sym("J", sp)
     rows, cols = sp.get_triplet()
     # Multi-segment legs (issue 4) have more unknowns per leg: no arrow structure then.
-    arrow = problem.n_x == n_q + 2 * n_legs and n_q <= _ARROW_NODES and all(
-        c < n_q or r >= 2 * n_legs or (c - n_q) // 2 == r // 2 for r, c in zip(rows, cols))
+    # Complementarities (hawsers, contacts) take the regularised sparse QR step.
+    arrow = (not problem.smoothed and problem.n_x == n_q + 2 * n_legs
+             and n_q <= _ARROW_NODES and all(c < n_q or r >= 2 * n_legs
+                                             or (c - n_q) // 2 == r // 2
+                                             for r, c in zip(rows, cols)))
     if not arrow:
         Jm, gm = ca.MX.sym("J", sp), ca.MX.sym("g", n)
         return ca.Function("newton_qr", [gm, Jm], [ca.solve(Jm, gm, "qr")])
@@ -89,9 +98,11 @@ def newton_step_function(problem) -> ca.Function:
 
 
 def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Function:
-    """``newton(x0, p, tol) -> (x, status, iterations, certificate, body, t_fair, t_anchor)``.
+    """``newton(x0, p, tol) -> (x, status, iterations, certificate, body, t_fair, t_anchor,
+    reactions)``.
 
-    ``certificate`` is ``[force_N, moment_Nm, t_max_N]``; ``body`` is ``[x_m, y_m, yaw]``.
+    ``certificate`` is ``[force_N, moment_Nm, t_max_N, penetration_m, complementarity_N]``;
+    ``body`` is ``[x_m, y_m, yaw]``.
     """
     n, n_q, n_legs = problem.n_x, problem.n_q, problem.n_legs
     fs = problem.force_scale
@@ -100,11 +111,19 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     p = ca.MX.sym("p", problem.n_p)
     tol = ca.MX.sym("tol")
     g_sym = ca.MX.sym("g", n)
-    J_sym = ca.MX.sym("J", problem.jacobian.sparsity_out(0))
+    J_sym = ca.MX.sym("J", problem.step_sparsity())
 
     # -- the certificate estimate from g and J -----------------------------------------
-    g, J = problem.residual_jacobian(x, p)
-    if problem.n_x == n_q + 2 * n_legs:
+    if problem.smoothed:
+        # Jacobian smoothing: the exact residual, the Jacobian of the smoothed
+        # complementarities with eps tied to it (EquilibriumProblem.step_jacobian).
+        g = problem.residual(x, p)
+        eps = problem.SMOOTHING * problem.length_scale * ca.fmin(1, ca.mmax(ca.fabs(g)))
+        J = ca.project(problem.smoothed_jacobian(x, p, eps) - problem.regularisation(),
+                       problem.step_sparsity())
+    else:
+        g, J = problem.residual_jacobian(x, p)
+    if problem.n_x == n_q + 2 * n_legs and not problem.smoothed:
         forces, moment = [], ca.MX(0)
         for i in range(n_legs):
             r, c = 2 * i, n_q + 2 * i
@@ -125,9 +144,12 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
         t_est = ca.fmax(ca.mmax(ca.vertcat(*fair_t)), fs * 1e-12) if fair_t else ca.MX(fs)
         force = ca.mmax(ca.vertcat(*forces)) if forces else ca.MX(0)
     else:
-        # Multi-segment legs: the exact certificate (its per-leg layout differs).
-        force, moment, t_max = problem.certificate(x, p)
+        # Multi-segment legs, contacts: the exact certificate (its layout differs).
+        force, moment, t_max, penetration, complementarity = problem.certificate(x, p)
         t_est = ca.fmax(t_max, fs * 1e-12)
+        force = ca.fmax(force, complementarity)
+        # A penetration beyond tol x the length scale counts as an unbalanced force.
+        force = ca.if_else(penetration <= tol * problem.length_scale, force, ca.inf)
     converged = ca.logic_and(force <= tol * t_est,
                              moment <= tol * t_est * problem.moment_scale / fs)
     # NaN compares false, so a NaN state is never "converged".
@@ -137,29 +159,53 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     d_sym = ca.MX.sym("d", n)
     m0 = ca.MX.sym("m0")
 
-    def trial(j: int) -> ca.Function:
+    def trial(j: int, flat: bool, tag: str, tries: int = _BACKTRACKS) -> ca.Function:
         a = 0.5 ** j
         xa = ca.fmin(ca.fmax(x - a * d_sym, lb), ub)
         ma = ca.sumsqr(problem.residual(xa, p))
         accept = ma <= (1 - 2 * _ARMIJO * a) * m0
+        if flat:
+            accept = ca.logic_or(accept, ma <= (1 + FLAT) * m0)
         xa_sym = ca.MX.sym("xa", n)
-        take = ca.Function(f"newton_take{j}", [x, d_sym, p, m0, xa_sym], [xa_sym, 0])
-        if j + 1 < _BACKTRACKS:
-            nxt = trial(j + 1)
-            more = ca.Function(f"newton_more{j}", [x, d_sym, p, m0, xa_sym],
+        take = ca.Function(f"newton_take{tag}{j}", [x, d_sym, p, m0, xa_sym], [xa_sym, 0])
+        if j + 1 < tries:
+            nxt = trial(j + 1, flat, tag, tries)
+            more = ca.Function(f"newton_more{tag}{j}", [x, d_sym, p, m0, xa_sym],
                                nxt(x, d_sym, p, m0))
         else:
-            more = ca.Function(f"newton_stall{j}", [x, d_sym, p, m0, xa_sym], [x, 1])
-        branch = ca.Function.if_else(f"newton_ls{j}", take, more)
-        return ca.Function(f"newton_trial{j}", [x, d_sym, p, m0],
+            more = ca.Function(f"newton_stall{tag}{j}", [x, d_sym, p, m0, xa_sym], [x, 1])
+        branch = ca.Function.if_else(f"newton_ls{tag}{j}", take, more)
+        return ca.Function(f"newton_trial{tag}{j}", [x, d_sym, p, m0],
                            branch(accept, x, d_sym, p, m0, xa))
 
-    search = trial(0)
+    search = trial(0, False, "")
 
     # -- one iteration: converged -> done, else step ------------------------------------
-    step = newton_step_function(problem)(g_sym, J_sym)
+    step_fn = newton_step_function(problem)
+    step = step_fn(g_sym, J_sym)
     step = step * ca.fmin(1, STEP_LIMIT / ca.mmax(ca.fabs(step)))
     x_new, stalled = search(x, step, p, ca.sumsqr(g_sym))
+    if problem.smoothed:
+        # No descent along the smoothed Newton step: a body crossing free space toward a
+        # support it does not yet touch (a collar within its clearance, a slack hawser)
+        # leaves the residual unchanged, and the smoothing may hold it back. Step along the
+        # exact Newton direction instead, with a spring on the node unknowns as strong as
+        # the residual is large (a pseudo-time step): it moves what nothing holds with its
+        # unbalanced force, and a step that does not grow the residual is accepted.
+        spring = ca.fmax(problem.REGULARISATION, ca.mmax(ca.fabs(g_sym)))
+        J_exact = ca.project(problem.jacobian(x, p) - spring * problem.regularisation(1.0),
+                             problem.step_sparsity())
+        free_step = step_fn(g_sym, J_exact)
+        free_step = free_step * ca.fmin(1, STEP_LIMIT / ca.mmax(ca.fabs(free_step)))
+        # Down to a few micrometres: the next support may be that close.
+        x_free, stalled_free = trial(0, True, "free", _FREE_BACKTRACKS)(
+            x, free_step, p, ca.sumsqr(g_sym))
+        xn_sym, st_sym = ca.MX.sym("xn", n), ca.MX.sym("st")
+        free = ca.Function("newton_free", [x, p, g_sym, xn_sym, st_sym],
+                           [x_free, stalled_free])
+        keep = ca.Function("newton_keep", [x, p, g_sym, xn_sym, st_sym], [xn_sym, st_sym])
+        x_new, stalled = ca.Function.if_else("newton_fallback", free, keep)(
+            stalled, x, p, g_sym, x_new, stalled)
     it = ca.MX.sym("it")
     do_step = ca.Function("newton_step", [x, p, g_sym, J_sym, it],
                           [x_new, 0, stalled, it + 1 - stalled])
@@ -181,12 +227,12 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
         xk, done, stall, count = guard(active, xk, p, tol, done, stall, count)
     status = ca.if_else(done, CONVERGED, ca.if_else(stall, STALLED, MAX_ITER))
     cert = ca.vertcat(*problem.certificate(xk, p))
-    body, t_fair, t_anchor = problem.summary(xk, p)
+    body, t_fair, t_anchor, reactions = problem.summary(xk, p)
     return ca.Function("moorsolve_newton", [x, p, tol],
-                       [xk, status, count, cert, body, t_fair, t_anchor],
+                       [xk, status, count, cert, body, t_fair, t_anchor, reactions],
                        ["x0", "p", "tol"],
                        ["x", "status", "iterations", "certificate", "body",
-                        "fairlead_tension", "anchor_tension"])
+                        "fairlead_tension", "anchor_tension", "reactions"])
 
 
 class NewtonKernel:

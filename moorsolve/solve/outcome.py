@@ -19,6 +19,7 @@ from ..physics.catenary import LegKind, air_part
 from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.wall_tension import wall_tension
+from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
 from .problem import LINE_COLUMNS, ROTATIONS
@@ -50,7 +51,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                     for r in seg_table if int(r[0]) == i]
             legs.append(_multi_result(case, line, kind, row, rows, u))
         else:
-            legs.append(_single_result(case, line, kind, row, u))
+            legs.append(_single_result(case, line, kind, row, u, problem.contact_stiffness))
     legs = [dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
             for line, lr in zip(case.lines, legs)]
     poses = np.asarray(poses, dtype=float).ravel()
@@ -93,10 +94,15 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     clumps = [c.weight for line in case.lines for c in line.joint_clumps if c is not None]
     effects += (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
         ["buoy"] if any(w < 0 for w in clumps) else [])
+    fenders, guides = contact_results(problem, case, x, p, poses)
+    notes += [f"guide {g['name']}: the collar is {g['height_m'] - g['pile_top_m']:.2f} m "
+              f"above the top of pile {g['pile']} (it would come off the pile)"
+              for g in guides if not g["on_pile"]]
     return Result(converged=certified, solver=solver, certificate=cert, effects=effects,
                   body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
-                  points=tuple(points), stability=stability, form=case.form)
+                  points=tuple(points), stability=stability, form=case.form,
+                  fenders=fenders, guides=guides, hawsers=hawser_results(case, legs))
 
 
 def hull_out_of_range(problem, x, p) -> list:
@@ -169,16 +175,34 @@ def _orient(profile: dict, lower, upper, flipped: bool, length: float) -> dict:
 def _add_wall_tension(profile: dict, line, env) -> None:
     lt = line.line_type
     if lt.sealed and lt.diameter:
-        depth_below = np.maximum(-profile["z_m"], 0.0)
+        depth_below = np.maximum(env.water_level - profile["z_m"], 0.0)
         tw = wall_tension(profile["tension_N"], depth_below, lt.diameter, env.water_density,
                           env.gravity)
         profile["wall_tension_N"] = tw
         profile["compression"] = bool(np.any(tw < 0))
 
 
-def _single_result(case, line, kind, row, u) -> LegResult:
+def _weightless_slack(line, row, u, stiffness) -> bool:
+    """Whether a weightless line is slack: its opening (stretched length minus chord)
+    exceeds its tension as a length at the contact stiffness (the side of its
+    complementarity that holds, :mod:`moorsolve.physics.contact`)."""
+    lt = line.line_type
+    law = numeric_law(lt)
+    if law is not None:
+        stretched = line.length * (1 + float(law.strain(max(u, 0.0))))
+    else:
+        stretched = line.length * (1 + u / lt.ea) if lt.ea else line.length
+    return stretched - math.hypot(row["X"], row["Z"]) > u / stiffness
+
+
+def _single_result(case, line, kind, row, u, stiffness) -> LegResult:
     env = case.environment
     lt = line.line_type
+    if kind.neutral and _weightless_slack(line, row, u, stiffness):
+        # Slack: it carries nothing (the solution's tension is below 1e-15 N).
+        row = dict(row, **{k: 0.0 for k in ("H", "VF", "HA", "VA", "FAx", "FAy", "FAz",
+                                            "FBx", "FBy", "FBz", "fx", "fy")})
+        u = -1.0
     a, b, fa, fb = _ends(row)
     lower, upper = (b, a) if kind.flipped else (a, b)
     H, VF, HA, VA = row["H"], row["VF"], row["HA"], row["VA"]
@@ -224,7 +248,8 @@ def _single_result(case, line, kind, row, u) -> LegResult:
     anchored = kind.block.contact
     td = max(X - susp_x, 0.0) if (anchored and grounded > 0) else 0.0
     lower_pull = fb if kind.flipped else fa
-    uplift = lower_pull[2] > 0 and not (kind.contact and grounded > 0)
+    # A weightless line (a hawser) has no anchor to lift.
+    uplift = lower_pull[2] > 0 and not (kind.contact and grounded > 0) and not kind.neutral
     if kind.sloped:
         # On a slope the anchor is pulled along it: the upward part is reported (0 when
         # it pulls down-slope), the tension is the whole pull.

@@ -40,6 +40,7 @@ from .concurrency import SYMBOLIC_LOCK
 from .discrete import discrete_leg
 from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
+from .contact import add_contacts, contact_points, element_reactions
 from .stretch_params import line_laws
 from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
                     seabed_height, single_block)
@@ -102,6 +103,16 @@ class EquilibriumProblem:
         self.force_scale = force_scale
         self.length_scale = length_scale
         self.moment_scale = force_scale * max(length_scale, _body_radius(case))
+        #: The stiffness [N/m] at which complementarities weigh a force against a length
+        #: (hawsers, contacts; :mod:`moorsolve.physics.contact`), and the symbol of their
+        #: Jacobian smoothing [m] (:meth:`step_jacobian`).
+        self.contact_stiffness = force_scale / length_scale
+        self.smoothing_symbol = ca.SX.sym("eps")
+        #: The smoothing of compliant fenders' contact switch, in the step Jacobian only
+        #: (in IPOPT's residual it would push touching fenders apart by their stiffness times
+        #: the smoothing). It anticipates a closing contact's reaction, and the friction
+        #: that reaction will carry.
+        self.hinge_symbol = ca.SX.sym("eps_hinge")
         self.nodes, scale = [], []
         for bi, body in enumerate(case.bodies):
             for dof in DOFS:
@@ -120,6 +131,13 @@ class EquilibriumProblem:
             self.line_offsets.append(len(scale))
             scale += kind.scales(force_scale, length_scale)
         self.leg_offsets = self.line_offsets
+        #: Every contact (fenders, guide pads; :mod:`.contact`), its unknowns after the
+        #: lines'.
+        self.contacts = contact_points(case)
+        self.contact_offsets = []
+        for point in self.contacts:
+            self.contact_offsets.append(len(scale))
+            scale += [force_scale] * point.n_unknowns
         self.n_x = len(scale)
         self.x_scale = np.array(scale, dtype=float)
         self.n_p = self.layout.size
@@ -293,6 +311,15 @@ class EquilibriumProblem:
                 pos_b[0], pos_b[1], fb[0], fb[1], J,
                 pos_a, pos_b[2], fa, fb, row.get("floating", 0 * row["H"])))
 
+        # -- contacts ---------------------------------------------------------------------
+        def apply_body(bi, where, force):
+            r = ca.vertcat(*poses[bi][:3])
+            body_force[bi] = body_force[bi] + force
+            body_moment[bi] = body_moment[bi] + cross(where - r, force)
+
+        contact_res, contact_rows, contact_terms = add_contacts(
+            self, x, par, poses, rotations, body_index, apply_body)
+
         # -- body loads -------------------------------------------------------------------
         load_vectors, self.load_names = [], []
         rho, g = env.water_density, env.gravity
@@ -310,9 +337,11 @@ class EquilibriumProblem:
                                 gravity=g)
                 F, M = F + wf, M + wm
                 body_scale.append(par(name + ".mass") * g)
+            # Hydrostatics act about the still-water level: the origin's height above it.
+            r_water = r - ca.vertcat(0, 0, E["water_level"])
             if body.hydrostatics is not None:
                 bf, bm = linear_buoyancy(
-                    r, R, displaced_volume=par(name + ".displaced_volume"),
+                    r_water, R, displaced_volume=par(name + ".displaced_volume"),
                     metacentre=ca.vertsplit(par(name + ".metacentre")),
                     waterplane_area=par(name + ".waterplane_area"),
                     water_density=rho, gravity=g)
@@ -320,7 +349,7 @@ class EquilibriumProblem:
                 body_scale.append(rho * g * par(name + ".displaced_volume"))
             for j, member in enumerate(body.hull):
                 mp = dict(zip(MEMBER_PARAMS, ca.vertsplit(par(f"{name}.hull[{j}]"))))
-                out = member_buoyancy(r, R, shape=member.shape, bottom=mp["bottom"],
+                out = member_buoyancy(r_water, R, shape=member.shape, bottom=mp["bottom"],
                                       top=mp["top"], radius=mp["radius"],
                                       length=mp["length"], width=mp["width"],
                                       centre=(mp["centre_x"], mp["centre_y"]),
@@ -379,12 +408,30 @@ class EquilibriumProblem:
             else:
                 node_res.append(value / self.force_scale)
                 node_force.append(ca.fabs(value))
-        g_all = ca.vertcat(*line_res, *node_res)
+        g_both = ca.vertcat(*line_res, *contact_res, *node_res)
+        eps, hinge = self.smoothing_symbol, self.hinge_symbol
+        #: Whether the scene has one-sided elements (hawsers, contacts): then the Newton
+        #: steps smooth them in the Jacobian, carry a weak spring on the node unknowns and
+        #: accept steps that do not grow the residual.
+        self.smoothed = bool(ca.depends_on(g_both, ca.vertcat(eps, hinge)))
+        # g_smooth: the complementarities smoothed (IPOPT's residual); g_step: the compliant
+        # fenders' switches too (the step Jacobian's); g_all: exact.
+        g_smooth = ca.substitute(g_both, hinge, 0)
+        g_step = ca.substitute(g_both, hinge, eps)
+        g_all = ca.substitute(g_smooth, eps, 0)
         self.residual = ca.Function("residual", [xs, p], [g_all])
         self.jacobian = ca.Function("jacobian", [xs, p], [ca.jacobian(g_all, xs)])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p],
                                              [g_all, ca.jacobian(g_all, xs)])
+        self.smoothed_jacobian = ca.Function("smoothed_jacobian", [xs, p, eps],
+                                             [ca.jacobian(g_step, xs)])
+
+        def exact(expr):
+            """``expr`` with the complementarities exact (no smoothing)."""
+            if not self.smoothed:
+                return expr
+            return ca.substitute(ca.substitute(expr, hinge, 0), eps, 0)
 
         unbalanced = ca.vertcat(*generalized, *point_forces) if (generalized or point_forces) \
             else ca.SX(0, 1)
@@ -393,14 +440,16 @@ class EquilibriumProblem:
         load_vec = ca.vertcat(*load_vectors) if load_vectors else ca.SX(0, 1)
         wrench_vec = ca.vertcat(*wrenches) if wrenches else ca.SX(0, 1)
         range_vec = ca.vertcat(*hull_range) if hull_range else ca.SX(0, 1)
+        table = ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS))
         self.report = ca.Function(
-            "report", [xs, p],
-            [ca.horzcat(*line_rows).T if line_rows else ca.SX(0, len(LINE_COLUMNS)),
-             unbalanced, load_vec, pose_vec, point_vec, wrench_vec, range_vec])
+            "report", [xs, p], [exact(v) for v in (table, unbalanced, load_vec, pose_vec,
+                                                   point_vec, wrench_vec, range_vec)])
         self.segment_report = ca.Function(
             "segment_report", [xs, p], [ca.horzcat(*seg_rows).T if seg_rows else ca.DM()])
         self.node_report = ca.Function(
             "node_report", [xs, p], [ca.horzcat(*node_rows).T if node_rows else ca.DM()])
+        contact_table = exact(ca.horzcat(*contact_rows).T) if contact_rows else ca.DM()
+        self.contact_report = ca.Function("contact_report", [xs, p], [contact_table])
 
         # -- certificate ----------------------------------------------------------------------
         forces = node_force + closing
@@ -415,14 +464,29 @@ class EquilibriumProblem:
         carried = [ca.fabs(v) for v in body_scale] + [ca.norm_2(v[:3]) for v in load_vectors]
         if carried:
             t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*carried)))
-        self.certificate = ca.Function("certificate", [xs, p], [force, moment, t_max],
-                                       ["x", "p"], ["force", "moment", "t_max"])
+        penetration, complementarity = ca.SX(0), ca.SX(0)
+        if contact_terms:
+            t_max = ca.fmax(t_max, ca.mmax(ca.vertcat(*[t["reaction"] for t in contact_terms])))
+            rigid = [t for t in contact_terms if "penetration" in t]
+            if rigid:
+                penetration = ca.mmax(ca.vertcat(*[t["penetration"] for t in rigid]))
+                complementarity = ca.mmax(ca.vertcat(*[t["complementarity"] for t in rigid]))
+        if self.smoothed:
+            # Nothing loaded at all (a pontoon in calm water): judge against a millionth of
+            # the force scale, not against round-off.
+            t_max = ca.fmax(t_max, 1e-6 * self.force_scale)
+        self.certificate = ca.Function(
+            "certificate", [xs, p],
+            [exact(v) for v in (force, moment, t_max, penetration, complementarity)],
+            ["x", "p"], ["force", "moment", "t_max", "penetration", "complementarity"])
         T = ca.horzcat(*tensions).T if tensions else ca.SX(0, 2)
         first = self._first_body_summary(poses, p)
+        reactions = element_reactions(self, contact_rows)
+        reactions = exact(ca.vertcat(*reactions)) if reactions else ca.SX(0, 1)
         self.summary = ca.Function(
-            "summary", [xs, p], [first, T[:, 0], T[:, 1]],
-            ["x", "p"], ["body", "fairlead_tension", "anchor_tension"])
-        self._xs, self._p, self._g = xs, p, g_all
+            "summary", [xs, p], [first, T[:, 0], T[:, 1], reactions],
+            ["x", "p"], ["body", "fairlead_tension", "anchor_tension", "reactions"])
+        self._xs, self._p, self._g, self._g_smooth = xs, p, g_all, g_smooth
 
     def _first_body_summary(self, poses, p):
         """``[x, y, yaw]`` of the first body (displacement from its case pose), then, in a
@@ -460,26 +524,80 @@ class EquilibriumProblem:
         return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
                     headings=headings, factor=E["load_factor"])
 
+    #: Jacobian smoothing relative to the residual: ``eps = SMOOTHING * L * min(1, |g|)``
+    #: [m], with ``L`` the length scale and ``|g|`` the largest scaled residual.
+    SMOOTHING = 0.01
+
+    def smoothing(self, g) -> float:
+        """The Jacobian smoothing ``eps`` [m] for a (scaled) residual vector ``g``."""
+        size = float(np.max(np.abs(g))) if np.size(g) else 0.0
+        if not np.isfinite(size):
+            size = 1.0
+        return self.SMOOTHING * self.length_scale * min(1.0, size)
+
+    #: A weak spring on every node unknown in the step Jacobian (scaled units), where
+    #: the scene has complementarities: a body that nothing holds in some direction at
+    #: the current point (slack hawsers, open contacts, a hawser's sideways stiffness
+    #: T/D at zero tension) moves with its unbalanced force instead of making the step
+    #: singular; elsewhere it changes the step by parts in 1e9.
+    REGULARISATION = 1e-9
+
+    def regularisation(self, value: float | None = None) -> ca.DM:
+        """The sparse matrix subtracted from the step Jacobian (``value``, default
+        :data:`REGULARISATION`, on the balance row of every node unknown); empty without
+        complementarities."""
+        n_lines = self.n_x - self.n_q
+        rows = [n_lines + j for j in range(self.n_q)] if self.smoothed else []
+        sp = ca.Sparsity.triplet(self.n_x, self.n_x, rows, list(range(len(rows))))
+        return ca.DM(sp, self.REGULARISATION if value is None else value)
+
+    def step_sparsity(self) -> ca.Sparsity:
+        """The sparsity of the step Jacobian (the Jacobian's and the regularisation's)."""
+        sp = self.jacobian.sparsity_out(0)
+        if self.smoothed:
+            sp = sp + self.smoothed_jacobian.sparsity_out(0) + self.regularisation().sparsity()
+        return sp
+
+    def step_jacobian(self, x, p, g) -> np.ndarray:
+        """The Jacobian a Newton step uses at ``x`` with residual ``g``: the exact one, or,
+        where the scene has complementarities, that of their smoothed form with ``eps``
+        tied to ``|g|`` (Jacobian smoothing; :mod:`moorsolve.physics.contact`) less the
+        weak spring of :meth:`regularisation`."""
+        if not self.smoothed:
+            return np.asarray(self.jacobian(x, p))
+        J = self.smoothed_jacobian(x, p, self.smoothing(g)) - self.regularisation()
+        return np.asarray(ca.densify(J))
+
     # -- certificate ------------------------------------------------------------------
     def certify(self, x, p, tol: float) -> tuple:
         """``(certified, force_N, moment_Nm, relative)`` of the scaled point ``x``."""
         if not np.all(np.isfinite(x)):
             return False, math.inf, math.inf, math.inf
-        force, moment, t_max = (float(v) for v in self.certificate(x, p))
-        return self.judge(force, moment, t_max, tol)
+        return self.judge(*(float(v) for v in self.certificate(x, p)), tol=tol)
 
-    def judge(self, force: float, moment: float, t_max: float, tol: float):
-        """``(certified, force, moment, relative)`` from the certificate's three numbers.
+    def contact_certificate(self, x, p) -> dict:
+        """``penetration_m`` and ``complementarity_N`` of the certificate at ``x`` (None
+        each in a scene without contacts)."""
+        if not self.contacts:
+            return dict(penetration_m=None, complementarity_N=None)
+        values = [float(v) for v in self.certificate(x, p)]
+        return dict(penetration_m=values[3], complementarity_N=values[4])
 
-        The force must be within ``tol`` of the largest force in the balance (the largest
-        line tension, or a body's weight, buoyancy or applied load where larger), and the
-        moment within ``tol`` of that force times the scene's moment arm.
+    def judge(self, force: float, moment: float, t_max: float, penetration: float = 0.0,
+              complementarity: float = 0.0, *, tol: float):
+        """``(certified, force, moment, relative)`` from the certificate's numbers.
+
+        The force (and a contact's complementarity residual, a reaction across an open gap)
+        must be within ``tol`` of the largest force in the balance (the largest line
+        tension or contact reaction, or a body's weight, buoyancy or applied load where
+        larger), the moment within ``tol`` of that force times the scene's moment arm, and
+        the largest penetration of a contact within ``tol`` of the length scale.
         """
         scale = t_max if t_max > 0 else self.force_scale
-        relative = force / scale
+        relative = max(force, complementarity) / scale
         moment_ok = moment <= tol * scale * self.moment_scale / self.force_scale
         ok = bool(np.isfinite(relative) and np.isfinite(moment) and relative <= tol
-                  and moment_ok)
+                  and moment_ok and penetration <= tol * self.length_scale)
         return ok, force, moment, relative
 
     # -- solvers --------------------------------------------------------------------
@@ -493,6 +611,16 @@ class EquilibriumProblem:
         with self._lock:
             if key not in self._nlp_solvers:
                 nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
+                if self.smoothed:
+                    # IPOPT solves the smoothed complementarities (a smoothing parameter
+                    # appended to p, nlp_parameters); the polish makes them exact. Among
+                    # the equilibria it takes the one nearest its start (also appended),
+                    # which keeps it from wandering through open contacts and slack
+                    # hawsers, and pins a degree of freedom nothing holds.
+                    start = ca.SX.sym("start", self.n_x)
+                    nlp["p"] = ca.vertcat(self._p, self.smoothing_symbol, start)
+                    nlp["g"] = self._g_smooth
+                    nlp["f"] = self.IPOPT_PROXIMITY * ca.sumsqr(self._xs - start)
                 opts = {
                     "print_time": False,
                     "error_on_fail": False,
@@ -510,6 +638,27 @@ class EquilibriumProblem:
                 with SYMBOLIC_LOCK:
                     self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
             return self._nlp_solvers[key]
+
+    #: The smoothings IPOPT solves with in turn, relative to the length scale (the polish
+    #: that follows makes the complementarities exact).
+    IPOPT_SMOOTHING = (1e-3, 1e-5)
+
+    #: Weight of the distance from the start in IPOPT's objective (scaled unknowns).
+    IPOPT_PROXIMITY = 1e-6
+
+    def ipopt_smoothings(self) -> tuple:
+        """The smoothings [m] IPOPT solves with in turn (one run, unsmoothed-free, without
+        complementarities)."""
+        if not self.smoothed:
+            return (None,)
+        return tuple(s * self.length_scale for s in self.IPOPT_SMOOTHING)
+
+    def nlp_parameters(self, p, start, smoothing=None) -> np.ndarray:
+        """The parameters of the IPOPT problem for the problem's parameters ``p``, the
+        (scaled) start ``start`` and a smoothing [m]."""
+        if not self.smoothed:
+            return p
+        return np.concatenate([p, [smoothing], start])
 
     def newton(self):
         """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
@@ -538,7 +687,16 @@ class EquilibriumProblem:
         # No bound on a line's u: every block continues its spans monotonically for u < 0
         # (loose line on a boundary, or, for a line with nothing to lie on, no root there),
         # so H = max(u, 0) = 0 is an interior root, not a bound IPOPT must reach (a folded
-        # line hit IPOPT's iteration limit at that bound, issue 20).
+        # line hit IPOPT's iteration limit at that bound, issue 20). A hawser's u is its
+        # tension and a rigid contact's unknown its reaction (Fischer-Burmeister
+        # complementarities): neither pulls, and the bound keeps a Newton step from making
+        # them pull where the smoothed Jacobian would.
+        for i, kind in enumerate(self.kinds):
+            if kind.single and kind.neutral:
+                lb[self.line_offsets[i]] = 0.0
+        for point, io in zip(self.contacts, self.contact_offsets):
+            if point.n_unknowns:
+                lb[io] = 0.0
         return lb, ub
 
     def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:
@@ -556,9 +714,11 @@ def structure_key(case: Case) -> tuple:
     ends = tuple((line.a.kind, line.a.on_seabed, line.a.point, line.a.body,
                   line.b.kind, line.b.on_seabed, line.b.point, line.b.body)
                  for line in case.lines)
+    berth = (tuple(w.name for w in case.contacts.walls),
+             tuple(p.name for p in case.contacts.piles), tuple(contact_points(case)))
     return (
         tuple(line_kinds(case)), ends, bodies, tuple(p.name for p in case.free_points),
-        case.form,
+        case.form, berth,
         case.environment.wind is not None, case.environment.current is not None,
         case.environment.waves is not None,
         case.environment.air_density, case.environment.water_density,

@@ -31,6 +31,12 @@ class Certificate:
         IPOPT iterations over all stages (rest state, load steps), plus Newton polish steps.
     solve_time_s : float
         Wall time of the solve, building excluded [s].
+    penetration_m : float or None
+        Largest penetration of a contact beyond what its reaction compresses it [m] (None
+        in a scene without contacts).
+    complementarity_N : float or None
+        Largest complementarity residual of a contact: a reaction acting across an open gap,
+        or a pulling one [N] (None without contacts).
     """
 
     force_N: float
@@ -40,6 +46,8 @@ class Certificate:
     status: str
     iterations: int
     solve_time_s: float
+    penetration_m: Optional[float] = None
+    complementarity_N: Optional[float] = None
 
     @property
     def certified(self) -> bool:
@@ -222,6 +230,27 @@ class Result:
     #: What an engineer must not miss (wall compression, line floating, an end in air):
     #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.solve.audit.result_warnings`.
     warnings: tuple = ()
+    #: Per fender: in_contact, compression_m, reaction_N, friction_N, stick, slip_m,
+    #: energy_J, utilisation (compression over rated deflection), force_N, contact_point_m
+    #: (:mod:`.contact_results`).
+    fenders: tuple = ()
+    #: Per pile guide: in_contact, reaction_N, force_N, offset_m, height_m, on_pile,
+    #: pile_moment_Nm and its pads.
+    guides: tuple = ()
+    #: Per hawser (weightless one-segment line): tension_N, slack, utilisation, length_m.
+    hawsers: tuple = ()
+
+    def fender(self, name: str) -> dict:
+        for f in self.fenders:
+            if f["name"] == name:
+                return f
+        raise KeyError(name)
+
+    def guide(self, name: str) -> dict:
+        for g in self.guides:
+            if g["name"] == name:
+                return g
+        raise KeyError(name)
 
     @property
     def lines(self) -> list:
@@ -278,6 +307,12 @@ class Result:
         if self.form == "network" or len(self.bodies) > 1 or self.points:
             out["bodies"] = [dict(b) for b in self.bodies]
             out["points"] = [dict(pt) for pt in self.points]
+        if c.penetration_m is not None:
+            out["residual"]["penetration_m"] = c.penetration_m
+            out["residual"]["complementarity_N"] = c.complementarity_N
+        for key in ("fenders", "guides", "hawsers"):
+            if getattr(self, key):
+                out[key] = [dict(item) for item in getattr(self, key)]
         if self.stability is not None:
             out["stability"] = self.stability.to_dict()
         return out

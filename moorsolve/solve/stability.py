@@ -81,6 +81,44 @@ def condensed_stiffness(problem, x, p) -> tuple:
     return K, keep
 
 
+def stiffness_modes(problem, x, p) -> tuple:
+    """``(values, vectors, keep)``: eigenvalues and modes (columns, over the kept body DOFs)
+    of the homogenised tangent stiffness at ``x``.
+
+    Where the scene has complementarities (hawsers, contacts) an active rigid contact or a
+    taut inextensible hawser is a constraint: the condensed block is singular and the
+    stiffness infinite across the constraint. The eigenvalues are then the finite ones of
+    the pencil ``(A, B)`` (``A`` the homogenised Jacobian of bodies and condensed unknowns,
+    ``B`` the identity on the bodies' rows): the stiffness along the directions the
+    constraints allow. Without constraints it is ``eig(K)`` either way.
+    """
+    keep, rest = _split(problem)
+    h = homogenising(problem, keep)
+    if not problem.smoothed or rest.size == 0:
+        K, keep = condensed_stiffness(problem, x, p)
+        values, vectors = np.linalg.eig(K / h[None, :] / h[:, None])
+        return values, vectors, keep
+    from scipy.linalg import eig
+    J = np.asarray(problem.jacobian(x, p))
+    rq, rr = _rows(problem, keep), _rows(problem, rest)
+    row_scale = np.array([problem.moment_scale if problem.rotational[j]
+                          else problem.force_scale for j in keep]) / h
+    col_scale = problem.x_scale[keep] * h
+    n = keep.size
+    A = np.block([[-row_scale[:, None] * J[np.ix_(rq, keep)] / col_scale[None, :],
+                   -row_scale[:, None] * J[np.ix_(rq, rest)]],
+                  [J[np.ix_(rr, keep)] / col_scale[None, :], J[np.ix_(rr, rest)]]])
+    B = np.zeros_like(A)
+    B[:n, :n] = np.eye(n)
+    values, vectors = eig(A, B)
+    # The constrained directions' eigenvalues are infinite; in floating point some come out
+    # finite but enormous (1e27 where the stiffnesses are 1e6).
+    bound = 1e6 * max(float(np.max(np.abs(A))), problem.contact_stiffness)
+    finite = np.isfinite(values) & (np.abs(values) < bound)
+    values, vectors = values[finite], vectors[:n, finite]
+    return values, vectors, keep
+
+
 def _dof_names(problem, keep) -> list:
     names = []
     for j in keep:
@@ -149,12 +187,12 @@ def assess(problem, x, p) -> Stability:
     keep, _ = _split(problem)
     if keep.size == 0:
         return Stability(stable=True, min_eigenvalue=math.inf)
-    K, keep = condensed_stiffness(problem, x, p)
-    h = homogenising(problem, keep)
-    Kh = K / h[None, :] / h[:, None]
-    values, vectors = np.linalg.eig(Kh)
+    values, vectors, keep = stiffness_modes(problem, x, p)
     names = _dof_names(problem, keep)
-    scale = max(float(np.max(np.abs(values))), 1e-300)
+    # Zero is judged against the largest eigenvalue, and against the scene's stiffness
+    # scale where constraints leave few finite ones.
+    scale = max(float(np.max(np.abs(values), initial=0.0)),
+                problem.contact_stiffness if problem.smoothed else 0.0, 1e-300)
     unstable, neutral = [], []
     stable = True
     for k, lam in enumerate(values):
@@ -177,7 +215,7 @@ def assess(problem, x, p) -> Stability:
         if lam.real < 0:
             stable = False
             unstable.append(main)
-    return Stability(stable=stable, min_eigenvalue=float(np.min(values.real)),
+    return Stability(stable=stable, min_eigenvalue=float(np.min(values.real, initial=math.inf)),
                      unstable_dofs=tuple(dict.fromkeys(unstable)),
                      neutral_dofs=tuple(dict.fromkeys(neutral)),
                      eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
@@ -241,14 +279,13 @@ def find_stable(problem, x, p, tol, assessment: Stability, polish):
     keep, _ = _split(problem)
     if keep.size == 0:
         return None
-    K, keep = condensed_stiffness(problem, x, p)
+    values, vectors, keep = stiffness_modes(problem, x, p)
     h = homogenising(problem, keep)
-    Kh = K / h[None, :] / h[:, None]
-    values, vectors = np.linalg.eig(Kh)
     arm = problem.moment_scale / problem.force_scale
     starts = []
     for k in np.argsort(values.real):
-        if values[k].real >= 0 and abs(values[k]) > _ZERO * max(np.max(np.abs(values)), 1e-300):
+        if values[k].real >= 0 and abs(values[k]) > _ZERO * max(np.max(np.abs(values)),
+                                                                  1e-300):
             continue
         mode = np.real(vectors[:, k])
         mode = mode / max(np.linalg.norm(mode), 1e-300)

@@ -55,6 +55,10 @@ def equivalent_line(case: Case, line, lower) -> tuple:
     return LegKind(elastic=False, contact=on_seabed and w > 0, neutral=(w == 0)), w
 
 
+#: Typical working strain of a hawser, for the tension scale of a scene of weightless lines.
+HAWSER_STRAIN = 0.01
+
+
 def scales(case: Case) -> tuple:
     """Typical tension [N] and length [m] of the scene, for scaling the unknowns."""
     tensions = [sum(abs(seg.line_type.weight_in_water) * seg.length for seg in line.segments)
@@ -63,6 +67,11 @@ def scales(case: Case) -> tuple:
     tensions += [math.hypot(max(u, 0.0), V) for u, V in rest_line_states(case)]
     tensions += [line_load(case, line)[0] * line.length for line in case.lines
                  if discretised(case, line)]
+    # A weightless line (a hawser) has no weight to set a tension: one percent of its
+    # axial stiffness, a typical working strain.
+    tensions += [HAWSER_STRAIN * start_ea(line.line_type) for line in case.lines
+                 if line.line_type.weight_in_water == 0 and line.line_type.elastic
+                 and not line.multi_segment]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
 
@@ -263,6 +272,10 @@ def initial_point(problem, case: Case) -> np.ndarray:
         if owner == "body":
             body = case.bodies[index]
             value = dict(zip(("surge", "sway", "heave"), body.position))
+            if body.buoyant:
+                # A floating body free in heave starts at the still-water level's height
+                # above the datum (a tide), where it floats as placed.
+                value["heave"] += case.environment.water_level
             value.update(zip(("roll", "pitch", "yaw"),
                              (math.radians(a) for a in body.orientation_deg)))
             x[j] = value[dof]

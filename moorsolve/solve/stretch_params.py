@@ -2,7 +2,7 @@
 
 A line type with a stretch law other than Hooke's (Baranov, a tension-strain table) gives
 its values (:meth:`~moorsolve.model.stretch.StretchLaw.parameters`) to every segment of that
-type. They close the parameter vector (:mod:`.layout`, block 7, named
+type. They close the parameter vector (:mod:`.layout`, block 8, named
 ``line[NAME].law[k]``), segment by segment in case order (lines, then their
 segments from end A), and only for segments with such a law; Hooke lines keep their
 compliance in the line and segment blocks.

@@ -298,7 +298,7 @@ def _sensitivity_function(problem) -> ca.Function:
         ps = ca.SX.sym("p", problem.n_p)
         g = problem.residual(xs, ps)
         table, _, _, poses = problem.report(xs, ps)[:4]
-        body, _, _ = problem.summary(xs, ps)
+        body = problem.summary(xs, ps)[0]
         rows = [body[0], body[1], body[2] * (180.0 / math.pi)]
         cols = {k: i for i, k in enumerate(LINE_COLUMNS)}
         for i in range(problem.n_legs):

@@ -18,7 +18,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from ..model import DOFS, Body, BodyLoads, Case, End
+from ..model import DOFS, Body, BodyLoads, Case, Contacts, End
 from ..model.build_network import rotation
 from ..solve.cache import get_problem
 from ..solve.equilibrium import solve
@@ -62,8 +62,8 @@ def _solved_poses(result: Result) -> dict:
 
 
 def posed_case(case: Case, poses: dict, free_body: Optional[str] = None) -> Case:
-    """``case`` with every body held at ``poses`` (loads, weight and hydrostatics removed:
-    the lines and points alone act), and ``free_body`` (if given) free in all six degrees
+    """``case`` with every body held at ``poses`` (loads, weight, hydrostatics and contacts
+    removed: the lines and points alone act), and ``free_body`` (if given) free in all six degrees
     of freedom with its frame turned so that its orientation is zero (its attachment points
     expressed in global axes about its origin)."""
     bodies, turned = [], {}
@@ -87,7 +87,7 @@ def posed_case(case: Case, poses: dict, free_body: Optional[str] = None) -> Case
                     end, position=tuple(turned[end.body] @ np.asarray(end.position)))
         lines.append(dataclasses.replace(line, **ends) if ends else line)
     return dataclasses.replace(case, bodies=tuple(bodies), lines=tuple(lines),
-                               form="network", source=None)
+                               form="network", source=None, contacts=Contacts())
 
 
 def _points_at(case: Case, result: Result) -> Case:

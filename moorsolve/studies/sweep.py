@@ -111,7 +111,8 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
         position in that order): the grid values, then ``converged``, ``reason``,
         ``solver``, ``iterations``, ``residual_N``, ``residual_Nm``,
         ``residual_relative``, ``x_m``, ``y_m``, ``yaw_deg`` and, per leg,
-        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``. Grid values are
+        ``<name>.fairlead_tension_N`` and ``<name>.anchor_tension_N``, per fender and pile
+        guide ``<name>.reaction_N`` (0 out of contact). Grid values are
         SI numbers in columns named with their unit (``environment.wind.speed [m/s]``
         for ``"20 kn"``; ``body.loads.force[0] [N]`` ... for a list); values that are
         not quantities keep the path as name. With ``output`` it is the finished file
@@ -153,7 +154,8 @@ def sweep(case: Case, grid: Mapping, *, solver: str = "newton", tol: float | Non
     if sink is not None:
         return sink.finish()
     if not frames:
-        return plan.frame(np.zeros(0, int), _Table(0, plan.names, plan.body_names).columns())
+        return plan.frame(np.zeros(0, int), _Table(0, plan.names, plan.body_names,
+                                                   plan.contacts).columns())
     points = np.concatenate([p for p, _ in frames])
     order = np.argsort(points, kind="stable")
     columns = {}
@@ -195,6 +197,8 @@ class SweepPlan:
         self.n_points = math.prod(self.shape)
         self.names = [leg.name for leg in case.legs]
         self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
+        self.contacts = ([f.name for f in case.contacts.fenders]
+                         + [g.name for g in case.contacts.guides])
         self._with_values, self._load_case = with_values, load_case
 
         # Each axis value validated once, as a case of its own; what it converted to SI
@@ -270,7 +274,7 @@ class SweepPlan:
         return [col.name for columns in self._grid for col in columns]
 
     def result_columns(self) -> list[str]:
-        return list(_Table(0, self.names, self.body_names).columns())
+        return list(_Table(0, self.names, self.body_names, self.contacts).columns())
 
     def grid_record(self) -> dict:
         """The grid as plain data, for the record beside an output file."""
@@ -309,7 +313,7 @@ class SweepPlan:
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
         """Solve ``points`` (snake order) and return them with their result columns."""
         points = np.asarray(points, dtype=int)
-        table = _Table(len(points), self.names, self.body_names)
+        table = _Table(len(points), self.names, self.body_names, self.contacts)
         if self.fast:
             self.prepare()
             problem = self._problem
@@ -513,10 +517,13 @@ _POSE_FIELDS = ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg")
 class _Table:
     """Results of ``n`` points, one array per column, filled by row."""
 
-    def __init__(self, n: int, names: list[str], bodies: tuple = ()):
+    def __init__(self, n: int, names: list[str], bodies: tuple = (), contacts: list[str] = ()):
         self.names = names
         self.bodies = tuple(bodies)
         self.poses = np.full((n, 6 * len(self.bodies)), np.nan)
+        #: Fenders and guides: their reaction [N] per point.
+        self.contacts = list(contacts)
+        self.reactions = np.full((n, len(self.contacts)), np.nan)
         self.done = np.zeros(n, bool)
         self.converged = np.zeros(n, bool)
         self.reason = [""] * n
@@ -540,6 +547,8 @@ class _Table:
             self.poses[i, 6 * k: 6 * k + 6] = [b[f] for f in _POSE_FIELDS]
         self.t_fair[i] = [leg.fairlead_tension_N for leg in result.legs]
         self.t_anchor[i] = [leg.anchor_tension_N for leg in result.legs]
+        self.reactions[i] = ([f["reaction_N"] for f in result.fenders]
+                             + [g["reaction_N"] for g in result.guides])
 
     def columns(self) -> dict:
         out = {"converged": self.converged, "reason": self.reason, "solver": self.solver,
@@ -552,6 +561,8 @@ class _Table:
         for k, name in enumerate(self.names):
             out[f"{name}.fairlead_tension_N"] = self.t_fair[:, k]
             out[f"{name}.anchor_tension_N"] = self.t_anchor[:, k]
+        for k, name in enumerate(self.contacts):
+            out[f"{name}.reaction_N"] = self.reactions[:, k]
         return out
 
 
@@ -566,8 +577,9 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
     check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
-        x, _, iterations, cert, body, tf, ta = kernel.raw(x_prev, vectors[i, :n_p], tol)
-        ok, force, moment, relative = problem.judge(cert[0], cert[1], cert[2], tol)
+        x, _, iterations, cert, body, tf, ta, reactions = kernel.raw(x_prev, vectors[i, :n_p],
+                                                                     tol)
+        ok, force, moment, relative = problem.judge(*cert, tol=tol)
         if not ok:
             continue            # left for the IPOPT pass
         if check_stability:
@@ -590,6 +602,7 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
             pose[:, 3:] = np.degrees(pose[:, 3:])
             table.poses[row] = pose.ravel()
         table.t_fair[row], table.t_anchor[row] = tf, ta
+        table.reactions[row] = reactions
         if over.any():
             table.reason[row] = "overload: " + "; ".join(
                 f"leg {table.names[k]} would break: tension "

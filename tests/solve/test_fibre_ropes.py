@@ -295,6 +295,52 @@ def test_sensitivity_names_what_it_cannot_map(fpu):
         moorsolve.sensitivity(result, ["x_m"], ["line_types[rope].stiffness_scale"])
 
 
+# ---- fibre hawsers (weightless lines) ---------------------------------------------------------
+
+
+NYLON = {"model": "table", "strain": [0.02, 0.05, 0.10, 0.16],
+         "tension": [1.5e4, 5e4, 1.3e5, 2.4e5]}
+
+
+def nylon_hawsers(pretension=None, free=()):
+    """The berth of tests/solve/test_berth.py moored by two nylon hawsers (a stiffening
+    table law, weightless), each given by a length or by its pretension."""
+    from test_berth import away_case
+    data = away_case()
+    data["bodies"][0]["free"] = list(free)
+    data["line_types"]["hawser"] = {"weight_in_water": 0, "stretch": copy.deepcopy(NYLON)}
+    if pretension is not None:
+        for line in data["lines"]:
+            line["segments"] = [{"type": "hawser", "pretension": pretension}]
+    return data
+
+
+def test_a_fibre_hawser_given_by_its_pretension_carries_it_at_the_case_pose():
+    """``L = D / (1 + eps(T0))``, eps the table's monotone cubic (the scipy reference), and
+    the solved tension is T0 with the body held where the case places it (D = 8.0 m)."""
+    result = moorsolve.solve(moorsolve.load_case(nylon_hawsers("30 kN")))
+    eps = table_reference([0.0] + NYLON["strain"], [0.0] + NYLON["tension"])(30e3)
+    assert 0.02 < eps < 0.05
+    for h in result.hawsers:
+        assert h["length_m"] == pytest.approx(8.0 / (1 + eps), rel=1e-12)
+        assert h["tension_N"] == pytest.approx(30e3, rel=1e-9)
+
+
+def test_a_load_draws_slack_fibre_hawsers_taut_through_the_law():
+    """Two 8.5 m nylon hawsers, slack at rest (chord 8 m), take a load away from the quay
+    half each (statics), stretched as the law says: the body moves until the chord is
+    ``8.5 (1 + eps(F/2))`` (the hawsers stay parallel to x: equal loads, no yaw)."""
+    from test_contact import F
+    data = nylon_hawsers(free=("surge",))
+    data["bodies"][0]["loads"]["force"] = [2 * F, 0, 0]
+    result = moorsolve.solve(moorsolve.load_case(data))
+    assert result.certificate.certified
+    eps = table_reference([0.0] + NYLON["strain"], [0.0] + NYLON["tension"])(F)
+    for name in ("H1", "H2"):
+        assert result.leg(name).fairlead_tension_N == pytest.approx(F, rel=1e-6)
+    assert result.body["x_m"] == pytest.approx(8.5 * (1 + eps) - 8.0, rel=1e-6)
+
+
 # ---- lumped-node lines -----------------------------------------------------------------------
 
 
