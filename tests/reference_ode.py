@@ -360,22 +360,25 @@ def integrate_in_current(*, H, V, L, w, ea, diameter, rho, normal, tangential, v
     return dict(X=-x, Z=-z, HA=tx, VA=tz)
 
 
-def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None):
+def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None, strain=None):
     """A suspended line whose upper end is ``z_top`` above the still-water level: weight
     ``w_air`` per unstretched metre above z = 0 and ``w_water`` below, integrated from the
     upper end's forces ``(H, V)`` down the whole length (no seabed). The crossing of the
     surface is found as an event and the integration restarted there with the other weight.
 
     Returns ``X``, ``Z`` (the upper end relative to the lower) and ``VA`` (the line's upward
-    pull on its lower end).
+    pull on its lower end); where the line crosses the surface also ``air_length`` (its
+    unstretched length above it), ``x_air`` (the horizontal extent of that part) and
+    ``V_surface`` (the vertical tension at the crossing). ``strain``: a strain law as in
+    :func:`integrate_leg` (``ea`` is then unused).
     """
-    c = 0.0 if ea is None else 1.0 / ea
+    factor = _stretch_factor(ea, strain)
 
     def rhs_for(w):
         def rhs(s, y):
             x, z, tx, tz = y
             T = math.hypot(tx, tz)
-            return [(1 + T * c) * tx / T, (1 + T * c) * tz / T, 0.0, w]
+            return [factor(T) * tx / T, factor(T) * tz / T, 0.0, w]
         return rhs
 
     def crossing(s, y):
@@ -385,13 +388,15 @@ def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None):
     scale = max(L, abs(z_top))
     sol = solve_ivp(rhs_for(w_air), (L, 0.0), y0, method="DOP853", rtol=RTOL,
                     atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2, events=crossing)
+    crossed = {}
     if sol.status == 1:
         s_c = sol.t_events[0][0]
         y_c = sol.y_events[0][0]
+        crossed = dict(air_length=L - s_c, x_air=-y_c[0], V_surface=y_c[3])
         sol = solve_ivp(rhs_for(w_water), (s_c, 0.0), y_c, method="DOP853", rtol=RTOL,
                         atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2)
     x, z, tx, tz = sol.y[:, -1]
-    return dict(X=-x, Z=z_top - z, VA=tz)
+    return dict(X=-x, Z=z_top - z, VA=tz, **crossed)
 
 
 # ---- a tension-strain table as a plain function ---------------------------------------------

@@ -183,7 +183,8 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
         tight = 1e-12 * size
         on_bed = pts[:, 2] - bed <= tight
         on_top = np.abs(pts[:, 2]) <= tight       # afloat: on the surface, not above
-        consistency += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol)
+        consistency += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol,
+                                             _weights_in_air(leg_case))
         consistency += _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights,
                                                on_bed, on_top, t_max, tight)
     for j, joint in enumerate(leg.joints):
@@ -224,7 +225,15 @@ def _element_load(leg_case, s, env) -> float:
     return q * step + clumps
 
 
-def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol) -> list[str]:
+def _weights_in_air(leg_case) -> np.ndarray:
+    """Per segment, its weight [N/m] above the water: its weight in air where the case
+    gives it, else its weight in water."""
+    return np.array([sg.line_type.weight_in_air if sg.line_type.weight_in_air is not None
+                     else sg.line_type.weight_in_water for sg in leg_case.segments])
+
+
+def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol,
+                          in_air=None) -> list[str]:
     """The end forces point along the profile where the line leaves an end through water."""
     out = []
     ux, uy = _plane(leg)
@@ -247,7 +256,9 @@ def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol) -> list[
         cosine = float(np.clip(direction @ chord / length, -1.0, 1.0))
         angle = math.acos(cosine)
         k = min(i, j) if i >= 0 else len(pts) - 2
-        w = abs(weights[min(np.searchsorted(ends, s[k] + 1e-12) - 1, len(weights) - 1)])
+        seg = min(np.searchsorted(ends, s[k] + 1e-12) - 1, len(weights) - 1)
+        above = in_air is not None and (pts[i][2] + pts[j][2]) / 2 > 0
+        w = abs((in_air if above else weights)[seg])
         ds = abs(s[j] - s[i])
         if T <= w * ds:
             continue     # too little tension for the step to bound the line's turning
@@ -273,8 +284,7 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
     seg = np.clip(np.searchsorted(ends, mid) - 1, 0, len(weights) - 1)
     w = weights[seg]
     # Above the water a line weighs its weight in air, where the case gives it.
-    in_air = np.array([sg.line_type.weight_in_air if sg.line_type.weight_in_air is not None
-                       else sg.line_type.weight_in_water for sg in leg_case.segments])[seg]
+    in_air = _weights_in_air(leg_case)[seg]
     w = np.where((pts[1:, 2] + pts[:-1, 2]) / 2 > 0, in_air, w)
     ds = np.diff(s)
     supported = (on_bed[1:] & on_bed[:-1]) | (on_top[1:] & on_top[:-1])

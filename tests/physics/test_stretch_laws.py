@@ -29,15 +29,15 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 from hypothesis_budget import examples
-from reference_ode import (integrate_from_anchor, integrate_leg, reference_interpolant,
-                           table_reference)
+from reference_ode import (integrate_from_anchor, integrate_leg, integrate_through_surface,
+                           reference_interpolant, table_reference)
 from scipy.integrate import quad
 from test_leg_ode import REGIMES as ODE_REGIMES
 from test_leg_ode import _span_map
 from test_leg_ode import legs as ode_legs
 from scipy.interpolate import PchipInterpolator
 
-from moorsolve.physics.catenary import (LIFTED_INPUTS, LegKind, evaluate_leg,
+from moorsolve.physics.catenary import (LIFTED_INPUTS, LegKind, air_part, evaluate_leg,
                                         evaluate_surface_leg, leg_function,
                                         lifted_segment_function, straight_segment_function,
                                         surface_leg_function, surface_segment_function)
@@ -483,3 +483,21 @@ def test_surface_segment_is_the_mirrored_lifted_segment(name):
     assert float(floating["rZ"]) == pytest.approx(-float(lifted["rZ"]), rel=1e-14, abs=1e-9)
     assert float(floating["floating"]) == pytest.approx(float(lifted["grounded"]), rel=1e-14)
     assert float(lifted["grounded"]) > 0
+
+
+@pytest.mark.parametrize("name", sorted(LAWS))
+@pytest.mark.parametrize("H, V, z_top", [(3e5, 4e5, 15.0), (2e4, 1.2e6, 25.0),
+                                         (8e5, 1.2e5, 4.0)])
+def test_the_part_in_air_through_the_law_matches_the_ode(name, H, V, z_top):
+    """A line end ``z_top`` above the water, weighing more in air: the vertical tension at
+    the surface crossing, the length in air and its horizontal extent (air_part, whose
+    tension drop is a Newton solve through the law) are the ODE's to 1e-9."""
+    model, params, f, _ = LAWS[name]
+    w_air = 900.0
+    ref = integrate_through_surface(H=H, V=V, L=400.0, w_water=400.0, w_air=w_air,
+                                    z_top=z_top, strain=f)
+    out = {k: float(v) for k, v in air_part(H, V, z_top, w_air, 0.0,
+                                            law=Law(model, params)).items()}
+    assert out["V"] == pytest.approx(ref["V_surface"], rel=1e-9, abs=1e-9 * V)
+    assert out["length"] == pytest.approx(ref["air_length"], rel=1e-9)
+    assert out["x"] == pytest.approx(ref["x_air"], rel=1e-9, abs=1e-12)

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 import yaml
 from conftest import CASES
-from reference_ode import integrate_leg, table_reference
+from reference_ode import integrate_leg, integrate_through_surface, table_reference
 
 import moorsolve
 from moorsolve.catalog import line_properties
@@ -293,6 +293,34 @@ def test_sensitivity_names_what_it_cannot_map(fpu):
         moorsolve.sensitivity(buoy, ["x_m"], ["legs[R0].ea"])
     with pytest.raises(ValueError, match="no line uses"):
         moorsolve.sensitivity(result, ["x_m"], ["line_types[rope].stiffness_scale"])
+
+
+# ---- a rope end above the water ---------------------------------------------------------------
+
+
+@pytest.mark.parametrize("stretch", [{"model": "hooke", "ea": 2.6e7}, TABLE,
+                                     {"model": "baranov", "n": 3e-5}],
+                         ids=["hooke", "table", "baranov"])
+def test_a_rope_whose_fairlead_is_above_the_water_matches_the_ode(stretch):
+    """A suspended rope 310 m long to a fairlead 12 m above the water, four times heavier in
+    air: integrated from the solved fairlead forces through the surface (the ODE with the
+    law), it reaches the anchor (300 m across, 112 m down) and pulls it as reported, to
+    1e-8. The audit passes: the end's direction is judged with the weight in air there."""
+    data = {"environment": {"depth": 100.0},
+            "line_types": {"rope": {"weight_in_water": 60.0, "weight_in_air": 240.0,
+                                    "stretch": copy.deepcopy(stretch)}},
+            "legs": [{"name": "A", "anchor": [0.0, 0.0], "fairlead": [300.0, 0.0, 12.0],
+                      "segments": [{"type": "rope", "length": 310.0}]}]}
+    leg = moorsolve.solve(moorsolve.load_case(data)).leg("A")
+    law = {"hooke": lambda T: T / 2.6e7, "baranov": lambda T: 3e-5 * math.sqrt(T),
+           "table": table_reference([0.0] + TABLE["strain"], [0.0] + TABLE["tension"])}
+    ref = integrate_through_surface(H=leg.horizontal_tension_N, V=leg.fairlead_vertical_N,
+                                    L=310.0, w_water=60.0, w_air=240.0, z_top=12.0,
+                                    strain=law[stretch["model"]])
+    assert ref["X"] == pytest.approx(300.0, abs=1e-8 * 310)
+    assert ref["Z"] == pytest.approx(112.0, abs=1e-8 * 310)
+    assert ref["VA"] == pytest.approx(leg.anchor_vertical_N, rel=1e-8)
+    assert ref["air_length"] > 30.0
 
 
 # ---- fibre hawsers (weightless lines) ---------------------------------------------------------
