@@ -18,6 +18,7 @@ from ..model import Case
 from ..physics.catenary import LegKind, air_part
 from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
+from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
@@ -61,11 +62,12 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
         q0 = np.array(list(body.position) + [math.radians(a) for a in body.orientation_deg])
         entry = {"name": body.name, "x_m": float(q[0]), "y_m": float(q[1]),
                  "z_m": float(q[2]), "roll_deg": math.degrees(q[3]),
-                 "pitch_deg": math.degrees(q[4]), "yaw_deg": math.degrees(q[5])}
+                 "pitch_deg": math.degrees(q[4]),
+                 "yaw_deg": wrap_degrees(math.degrees(q[5]))}
         d = q - q0
         entry["offset"] = {"x_m": float(d[0]), "y_m": float(d[1]), "z_m": float(d[2]),
                            "roll_deg": math.degrees(d[3]), "pitch_deg": math.degrees(d[4]),
-                           "yaw_deg": math.degrees(d[5])}
+                           "yaw_deg": wrap_degrees(math.degrees(d[5]))}
         bodies.append(entry)
     body = None
     if case.body is not None:
