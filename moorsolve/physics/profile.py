@@ -24,7 +24,8 @@ import math
 
 import numpy as np
 
-from .catenary import LegKind, descent_force
+from .catenary import LegKind
+from .segments import descent_force
 from .stretch import NumericLaw
 
 __all__ = ["leg_profile", "segment_profile", "single_leg_profile", "sloped_leg_profile",

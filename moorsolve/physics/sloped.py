@@ -15,7 +15,7 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, law_inputs, law_tag, shared
-from .catenary import _H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp
+from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp)
 from .stretch import StretchModel
 
 __all__ = ["SLOPED_INPUTS", "sloped_leg_equations", "sloped_leg_function"]

@@ -59,10 +59,9 @@ import casadi as ca
 
 from ..model import Case, Line
 from ..model.build_network import end_position
-from ..physics.catenary import (LegKind, air_part, descent_force, leg_function,
-                                lifted_segment_function, straight_segment_function,
-                                surface_leg_function, surface_segment_function,
-                                weightless_line_function)
+from ..physics.catenary import (LegKind, air_part, leg_function, weightless_line_function)
+from ..physics.segments import (descent_force, lifted_segment_function, straight_segment_function,
+                                surface_leg_function, surface_segment_function)
 from ..physics.sloped import sloped_leg_function
 from ..physics.stretch import Law, StretchModel
 from .stretch_params import law_model

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..model import Case
-from ..physics.catenary import LegKind, air_part
+from ..physics.catenary import (LegKind, air_part)
 from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.kinematics import wrap_degrees

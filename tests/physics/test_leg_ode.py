@@ -25,8 +25,7 @@ from hypothesis import strategies as st
 from hypothesis_budget import examples
 from reference_ode import integrate_leg
 
-from moorsolve.physics.catenary import (_H_FLOOR, LEG_INPUTS, LegKind, evaluate_leg,
-                                        leg_function)
+from moorsolve.physics.catenary import (_H_FLOOR, LEG_INPUTS, LegKind, evaluate_leg, leg_function)
 
 REL = 1e-8
 

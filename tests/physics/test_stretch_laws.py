@@ -37,8 +37,8 @@ from test_leg_ode import _span_map
 from test_leg_ode import legs as ode_legs
 from scipy.interpolate import PchipInterpolator
 
-from moorsolve.physics.catenary import (LIFTED_INPUTS, LegKind, air_part, evaluate_leg,
-                                        evaluate_surface_leg, leg_function,
+from moorsolve.physics.catenary import (LegKind, air_part, evaluate_leg, leg_function)
+from moorsolve.physics.segments import (LIFTED_INPUTS, evaluate_surface_leg,
                                         lifted_segment_function, straight_segment_function,
                                         surface_leg_function, surface_segment_function)
 from moorsolve.physics.sloped import SLOPED_INPUTS, sloped_leg_function
