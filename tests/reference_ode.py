@@ -8,7 +8,9 @@ Along the unstretched arc length ``s`` (0 at the anchor, ``L`` at the fairlead) 
 is the position ``(x, z)`` relative to the anchor and the effective tension ``(Tx, Tz)``
 that the line beyond ``s`` (toward the fairlead) exerts on the line before it.
 
-Suspended element (weight ``w`` per unstretched metre, Hooke's law with stiffness ``EA``)::
+Suspended element (weight ``w`` per unstretched metre, Hooke's law with stiffness ``EA``, or
+any strain law ``eps(T)`` given as a plain Python function: then ``1 + eps(T)`` replaces
+``1 + T/EA`` below)::
 
     dTx/ds = 0,   dTz/ds = w,
     dx/ds = (1 + T/EA) Tx/T,   dz/ds = (1 + T/EA) Tz/T,   T = sqrt(Tx^2 + Tz^2)
@@ -41,17 +43,26 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
 RTOL = 1e-13
 
 
-def _suspended_rhs(w, ea):
+def _stretch_factor(ea, strain):
+    """``T -> ds/ds0``: Hooke's ``1 + T/EA`` (1 without EA), or ``1 + strain(T)``."""
+    if strain is not None:
+        return lambda t: 1.0 + strain(t)
     c = 0.0 if ea is None else 1.0 / ea
+    return lambda t: 1.0 + t * c
+
+
+def _suspended_rhs(w, ea, strain=None):
+    factor = _stretch_factor(ea, strain)
 
     def rhs(s, y):
         x, z, tx, tz = y
         t = math.hypot(tx, tz)
-        stretch = 1.0 + t * c
+        stretch = factor(t)
         if t == 0.0:
             return [0.0, 0.0, 0.0, w]
         return [stretch * tx / t, stretch * tz / t, 0.0, w]
@@ -70,7 +81,8 @@ def _integrate(rhs, s0, s1, y0, scale):
     return sol.y[:, -1]
 
 
-def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
+def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True, strain=None,
+                  strain_max=None, tension_breaks=()):
     """Integrate one leg from its fairlead end forces down to the anchor.
 
     Parameters
@@ -87,6 +99,14 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
         Seabed friction coefficient (contact legs only).
     contact : bool
         The anchor lies on the seabed and the line may rest on it (needs w > 0).
+    strain : callable, optional
+        A strain law ``T [N] -> eps [-]`` replacing Hooke's (``ea`` is then unused).
+    strain_max : float, optional
+        The largest strain on the line (for the integrator's length scale) when ``strain``
+        is given.
+    tension_breaks : sequence of float
+        Tensions [N] where the strain law's higher derivatives jump (a table's rows): the
+        integration is split where the suspended line's tension passes them.
 
     Returns
     -------
@@ -97,9 +117,13 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
         unstretched length on the seabed [m].
     """
     t_scale = max(math.hypot(H, V), abs(w) * L, 1e-300)
-    stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
+    if strain is not None:
+        stretch_max = strain_max if strain_max is not None else strain(t_scale + abs(w) * L)
+    else:
+        stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
     scale = (L * (1.0 + stretch_max), t_scale)
-    rhs = _suspended_rhs(w, ea)
+    rhs = _suspended_rhs(w, ea, strain)
+    factor = _stretch_factor(ea, strain)
     # Fairlead at the origin of this local frame; the anchor end's coordinates are
     # relative to it and the span is minus them at the end.
     y = np.array([0.0, 0.0, float(H), float(V)])
@@ -115,7 +139,16 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
         vertex = L - V / w
         if s_end < vertex < L:
             breaks.append(vertex)
-    breaks.append(s_end)
+        # Tz(s) = V - w (L - s); the tension passes T_k where Tz = +-sqrt(T_k^2 - H^2).
+        for tk in tension_breaks:
+            if tk > H:
+                for tz in (math.sqrt(tk * tk - H * H), -math.sqrt(tk * tk - H * H)):
+                    s_k = L - (V - tz) / w
+                    if s_end < s_k < L:
+                        breaks.append(s_k)
+    breaks = sorted(set(breaks), reverse=True)
+    if breaks[-1] != s_end:
+        breaks.append(s_end)
     for a, b in zip(breaks[:-1], breaks[1:]):
         y = _integrate(rhs, a, b, y, scale)
     # Exact values for the force components (their equations are trivially integrable;
@@ -126,13 +159,12 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
     grounded = 0.0
     if touch is not None:
         grounded = s_end
-        c = 0.0 if ea is None else 1.0 / ea
         tx = float(H)
         if grounded > 0:
             if mu > 0 and tx > 0:
                 # Friction: Tx falls by mu w per metre toward the anchor until it is zero.
                 def ground_rhs(s, yy):
-                    return [1.0 + yy[1] * c, mu * w]
+                    return [factor(max(yy[1], 0.0)), mu * w]
 
                 def exhausted(s, yy):
                     return yy[1]
@@ -150,7 +182,7 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
                     tx = max(sol.y[1, -1], 0.0)
             else:
                 def ground_rhs(s, yy):
-                    return [1.0 + tx * c]
+                    return [factor(tx)]
                 sol = solve_ivp(ground_rhs, (grounded, 0.0), [y[0]], method="DOP853",
                                 rtol=RTOL, atol=[1e-16 * scale[0]])
                 y[0] = sol.y[0, -1]
@@ -158,7 +190,8 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True):
     return dict(X=-y[0], Z=-y[1], HA=y[2], VA=y[3], grounded=grounded)
 
 
-def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
+def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0, strain=None,
+                          strain_max=None, tension_breaks=()):
     """Integrate a line from its anchor end, for a line that may lie along a boundary.
 
     Written for lines bounded by the free surface (a buoyant line, ``w < 0``), and general:
@@ -170,6 +203,7 @@ def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
     ``dx/ds = 1 + Tx/EA``, ``Tx`` constant (no friction); then it is suspended again, with
     ``Tz = w (s - s_v - float_length)``. A slack line (``HA = 0``) is laid straight along the
     boundary (the loose part is the caller's business, as in :func:`integrate_leg`).
+    ``strain``, ``strain_max``, ``tension_breaks``: a strain law as in :func:`integrate_leg`.
 
     From the anchor this is an initial-value problem for a buoyant line: whether the vertex
     lies on the surface is what the caller checks (it sets the anchor's depth to the
@@ -185,10 +219,13 @@ def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
         ``s``, ``x``, ``z`` sampled at ``n`` points.
     """
     t_scale = max(math.hypot(HA, VA), abs(w) * L, 1e-300)
-    stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
+    if strain is not None:
+        stretch_max = strain_max if strain_max is not None else strain(t_scale + abs(w) * L)
+    else:
+        stretch_max = 0.0 if ea is None else (t_scale + abs(w) * L) / ea
     scale = (L * (1.0 + stretch_max), t_scale)
-    c = 0.0 if ea is None else 1.0 / ea
-    rhs = _suspended_rhs(w, ea)
+    factor = _stretch_factor(ea, strain)
+    rhs = _suspended_rhs(w, ea, strain)
     s_v = -VA / w if w != 0.0 else math.inf
     has_vertex = 0.0 < s_v < L
     s_f = min(s_v + float_length, L) if has_vertex and float_length > 0.0 else s_v
@@ -200,6 +237,16 @@ def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
         return 0.0 if s <= s_f else w * (s - s_f)
 
     breaks = [0.0] + ([s_v, s_f] if has_vertex else []) + [L]
+    # Where the suspended line's tension passes a law's breakpoint T_k (Tz = +-sqrt(T_k^2 -
+    # HA^2)): before the vertex Tz = VA + w s, after the boundary Tz = w (s - s_f).
+    runs = [(0.0, s_v if has_vertex else L, lambda t_z: (t_z - VA) / w)]
+    if has_vertex:
+        runs.append((s_f, L, lambda t_z: s_f + t_z / w))
+    for tk in tension_breaks:
+        if tk > HA and w != 0.0:
+            r = math.sqrt(tk * tk - HA * HA)
+            breaks += [at(t_z) for lo, hi, at in runs for t_z in (r, -r) if lo < at(t_z) < hi]
+    breaks = sorted(set(breaks))
     samples = np.linspace(0.0, L, n) if n else np.zeros(0)
     xs, zs = np.full(samples.shape, np.nan), np.full(samples.shape, np.nan)
     y = np.array([0.0, 0.0, float(HA), float(VA)])
@@ -212,9 +259,9 @@ def integrate_from_anchor(*, HA, VA, L, w, ea=None, float_length=0.0, n=0):
         if has_vertex and s0 == s_v and s1 == s_f:
             # On the boundary: horizontal, constant tension.
             x0 = y[0]
-            xs[inside] = x0 + (samples[inside] - s0) * (1.0 + HA * c)
+            xs[inside] = x0 + (samples[inside] - s0) * factor(HA)
             zs[inside] = y[1]
-            y = np.array([x0 + (s1 - s0) * (1.0 + HA * c), y[1], float(HA), 0.0])
+            y = np.array([x0 + (s1 - s0) * factor(HA), y[1], float(HA), 0.0])
             continue
         if inside.any():
             sol = solve_ivp(rhs, (s0, s1), y, method="DOP853", rtol=RTOL,
@@ -313,22 +360,25 @@ def integrate_in_current(*, H, V, L, w, ea, diameter, rho, normal, tangential, v
     return dict(X=-x, Z=-z, HA=tx, VA=tz)
 
 
-def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None):
+def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None, strain=None):
     """A suspended line whose upper end is ``z_top`` above the still-water level: weight
     ``w_air`` per unstretched metre above z = 0 and ``w_water`` below, integrated from the
     upper end's forces ``(H, V)`` down the whole length (no seabed). The crossing of the
     surface is found as an event and the integration restarted there with the other weight.
 
     Returns ``X``, ``Z`` (the upper end relative to the lower) and ``VA`` (the line's upward
-    pull on its lower end).
+    pull on its lower end); where the line crosses the surface also ``air_length`` (its
+    unstretched length above it), ``x_air`` (the horizontal extent of that part) and
+    ``V_surface`` (the vertical tension at the crossing). ``strain``: a strain law as in
+    :func:`integrate_leg` (``ea`` is then unused).
     """
-    c = 0.0 if ea is None else 1.0 / ea
+    factor = _stretch_factor(ea, strain)
 
     def rhs_for(w):
         def rhs(s, y):
             x, z, tx, tz = y
             T = math.hypot(tx, tz)
-            return [(1 + T * c) * tx / T, (1 + T * c) * tz / T, 0.0, w]
+            return [factor(T) * tx / T, factor(T) * tz / T, 0.0, w]
         return rhs
 
     def crossing(s, y):
@@ -338,10 +388,43 @@ def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None):
     scale = max(L, abs(z_top))
     sol = solve_ivp(rhs_for(w_air), (L, 0.0), y0, method="DOP853", rtol=RTOL,
                     atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2, events=crossing)
+    crossed = {}
     if sol.status == 1:
         s_c = sol.t_events[0][0]
         y_c = sol.y_events[0][0]
+        crossed = dict(air_length=L - s_c, x_air=-y_c[0], V_surface=y_c[3])
         sol = solve_ivp(rhs_for(w_water), (s_c, 0.0), y_c, method="DOP853", rtol=RTOL,
                         atol=[1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2)
     x, z, tx, tz = sol.y[:, -1]
-    return dict(X=-x, Z=z_top - z, VA=tz)
+    return dict(X=-x, Z=z_top - z, VA=tz, **crossed)
+
+
+# ---- a tension-strain table as a plain function ---------------------------------------------
+
+
+def reference_interpolant(strain, tension):
+    """The table law by scipy: PCHIP's slopes, the end slopes kept between ``delta^2 /
+    d_next`` and ``3 delta`` (scipy would take 0 where its estimate is not positive;
+    moorsolve's documented rule, so that the rope is not rigid beyond the table)."""
+    T, e = np.asarray(tension, float), np.asarray(strain, float)
+    d = PchipInterpolator(T, e).derivative()(T)
+    if len(T) > 2:
+        delta = np.diff(e) / np.diff(T)
+        h = np.diff(T)
+        for i, (h0, h1, m0, m1, dn) in ((0, (h[0], h[1], delta[0], delta[1], d[1])),
+                                        (-1, (h[-1], h[-2], delta[-1], delta[-2], d[-2]))):
+            three = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+            d[i] = min(max(three, m0 * m0 / dn), 3 * m0)
+    return CubicHermiteSpline(T, e, d)
+
+
+def table_reference(strain, tension):
+    """The table law as a plain function: the interpolant, linear beyond the last row."""
+    spline = reference_interpolant(strain, tension)
+    slope = float(spline.derivative()(tension[-1]))
+
+    def f(T):
+        if T <= tension[-1]:
+            return float(spline(T))
+        return strain[-1] + slope * (T - tension[-1])
+    return f

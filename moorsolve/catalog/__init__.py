@@ -13,6 +13,18 @@ rope (steel wire, polyester, nylon, polypropylene; static stiffness)::
 
     MBL [kN] = c d^2,  mass [kg/m] = m d^2,  EA [kN] = e d^2
 
+fibre (mooring ropes of polyester, nylon, HMPE with quasi-static and dynamic stiffness;
+NREL's MoorPy property library, fits to manufacturer catalogues)::
+
+    MBL [kN] = c d^2 + c3 d^3,  mass [kg/m] = m d^2
+    EA_static = Krs MBL                        quasi-static: the lower bound
+    EA_dynamic = (Krd_alpha + Krd_beta L_m) MBL   L_m the mean load in % of MBL: the upper
+
+A fibre-rope entry gives its line type both stiffnesses as ``stiffness_bounds`` for the
+bound analysis offshore standards ask for fibre ropes (``moorsolve bounds``); its ``ea`` is
+the quasi-static one. The ``fibre`` column marks fibre ropes (the old ``rope`` entries of
+polyester, nylon and polypropylene too).
+
 The submerged weight follows from the mass, the material density and the case's water
 density and gravity: ``w = mass g (1 - rho_water / rho_material)``.
 
@@ -33,6 +45,7 @@ import io
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
+from typing import Optional
 
 from ..constants import SEAWATER_DENSITY, STANDARD_GRAVITY
 
@@ -48,26 +61,41 @@ class CatalogEntry:
     description: str
     mbl_coeff: float
     mass_coeff: float
-    ea_coeff: float
+    ea_coeff: Optional[float]
     material_density: float
     hydro_factor: float
     mbl_source: str
     mass_ea_source: str
+    fibre: bool = False
+    mbl_coeff3: float = 0.0
+    krs: Optional[float] = None
+    krd_alpha: Optional[float] = None
+    krd_beta: Optional[float] = None
+    stiffness_source: str = ""
 
     def mbl_N(self, diameter_m: float) -> float:
         """Minimum breaking load [N] at ``diameter_m`` [m]."""
         d = diameter_m * 1e3
         if self.family == "chain":
             return self.mbl_coeff * d**2 * (44.0 - 0.08 * d) * 1e3
-        return self.mbl_coeff * d**2 * 1e3
+        return (self.mbl_coeff * d**2 + self.mbl_coeff3 * d**3) * 1e3
 
     def mass_per_length(self, diameter_m: float) -> float:
         """Mass in air per length [kg/m]."""
         return self.mass_coeff * (diameter_m * 1e3) ** 2
 
     def ea_N(self, diameter_m: float) -> float:
-        """Axial (static) stiffness [N]."""
+        """Axial (static, for fibre ropes quasi-static) stiffness [N]."""
+        if self.krs is not None:
+            return self.krs * self.mbl_N(diameter_m)
         return self.ea_coeff * (diameter_m * 1e3) ** 2 * 1e3
+
+    def dynamic_ea_N(self, diameter_m: float, mean_load: float) -> Optional[float]:
+        """Dynamic stiffness [N] at mean load ``mean_load`` [N] (fibre ropes; else None)."""
+        if self.krd_alpha is None:
+            return None
+        mbl = self.mbl_N(diameter_m)
+        return (self.krd_alpha + self.krd_beta * 100.0 * mean_load / mbl) * mbl
 
 
 @dataclass(frozen=True)
@@ -103,8 +131,27 @@ class LineProperties:
     hydrodynamic_diameter: float
 
     @property
+    def fibre(self) -> bool:
+        return self.entry.fibre
+
+    @property
+    def dynamic_stiffness(self) -> Optional[tuple]:
+        """``(alpha, beta)`` of the dynamic stiffness ``(alpha + beta L_m) MBL`` [-, per %
+        MBL], or None; ``MBL`` is the nominal one (``entry.mbl_N(diameter)``)."""
+        e = self.entry
+        return None if e.krd_alpha is None else (e.krd_alpha, e.krd_beta)
+
+    @property
+    def nominal_mbl(self) -> float:
+        """MBL [N] at the nominal diameter (the stiffness coefficients' reference)."""
+        return self.entry.mbl_N(self.diameter)
+
+    @property
     def source(self) -> str:
-        return f"MBL: {self.entry.mbl_source}; mass and EA: {self.entry.mass_ea_source}"
+        text = f"MBL: {self.entry.mbl_source}; mass and EA: {self.entry.mass_ea_source}"
+        if self.entry.stiffness_source:
+            text += f"; stiffness: {self.entry.stiffness_source}"
+        return text
 
 
 def _number(row: dict, key: str, line: int) -> float:
@@ -112,6 +159,10 @@ def _number(row: dict, key: str, line: int) -> float:
         return float(row[key])
     except (TypeError, ValueError):
         raise ValueError(f"lines.csv line {line}: {key} = {row[key]!r} is not a number") from None
+
+
+def _optional(row: dict, key: str, line: int) -> Optional[float]:
+    return None if not row.get(key) else _number(row, key, line)
 
 
 @lru_cache(maxsize=1)
@@ -124,10 +175,13 @@ def entries() -> dict:
         out[row["name"]] = CatalogEntry(
             name=row["name"], family=row["family"], description=row["description"],
             mbl_coeff=_number(row, "mbl_coeff", i), mass_coeff=_number(row, "mass_coeff", i),
-            ea_coeff=_number(row, "ea_coeff", i),
+            ea_coeff=_optional(row, "ea_coeff", i),
             material_density=_number(row, "material_density", i),
             hydro_factor=_number(row, "hydro_factor", i),
-            mbl_source=row["mbl_source"], mass_ea_source=row["mass_ea_source"])
+            mbl_source=row["mbl_source"], mass_ea_source=row["mass_ea_source"],
+            fibre=row["fibre"] == "1", mbl_coeff3=_optional(row, "mbl_coeff3", i) or 0.0,
+            krs=_optional(row, "krs", i), krd_alpha=_optional(row, "krd_alpha", i),
+            krd_beta=_optional(row, "krd_beta", i), stiffness_source=row["stiffness_source"])
     return out
 
 

@@ -12,6 +12,9 @@ Per leg and condition:
 * anchor uplift: ``drag`` none, ``deadweight`` up to ``allowed_uplift`` [N], ``pile`` up to
   ``allowed_uplift_angle_deg`` at the anchor;
 * grounded length at least ``min_grounded_length`` for legs that can rest on the seabed;
+* fibre rope: none of it on the seabed (legs with a ``fibre`` line type), and the least
+  tension along each segment of a line type with a ``min_tension`` at least that (a rope
+  that must not go slack: :mod:`moorsolve.checks.fibre`);
 
 and per condition the horizontal offset of the body origin against the offset limit. At a
 berth (issue 15, :mod:`.berth`) a hawser's tension is checked against the working load
@@ -32,6 +35,7 @@ from ..model.edit import without_line
 from ..solve import Result, solve
 from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
+from .fibre import LOWER_LIMIT_CHECKS, fibre_items
 
 #: Anchor uplift below this fraction of the line tension (or 1 N) counts as none: the
 #: solver's own residual is far smaller, a physical uplift far larger.
@@ -164,8 +168,8 @@ class CheckReport:
                 out.append(f"{c.name}: no equilibrium: {c.reason}")
             out += [f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
                     f"{_show(i.value, i.unit)} > limit {_show(i.limit, i.unit)} ({i.criterion})"
-                    if i.check != "grounded length" else
-                    f"{c.name}: grounded length of {i.leg}: {_show(i.value, i.unit)} < "
+                    if i.check not in LOWER_LIMIT_CHECKS else
+                    f"{c.name}: {i.check} of {i.leg}: {_show(i.value, i.unit)} < "
                     f"{_show(i.limit, i.unit)}"
                     for i in c.items if not i.passed]
         return out
@@ -276,6 +280,7 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
                 limit=minimum, unit="m",
                 utilisation=(minimum / g if g > 0 else (math.inf if minimum > 0 else 0.0)),
                 passed=g >= minimum, criterion=f"grounded length >= {minimum:.1f} m"))
+        items += fibre_items(name, leg, lr)
     limit = (checks.offset_limit if kind == "intact"
              else _damaged(checks.offset_limit_damaged, checks.offset_limit))
     if limit is not None:

@@ -63,15 +63,23 @@ def line_type_data(scene: MDScene, report: ImportReport,
                                     f"below the case's {MIN_WEIGHT:g} N/m: a neutrally buoyant "
                                     "line, taken as 0")
             weight = 0.0
-        entry = {"weight_in_water": weight, "ea": lt.ea}
+        if lt.stretch is not None:
+            entry = {"weight_in_water": weight, "stretch": lt.stretch}
+            stiffness = (f"EA from the curve file {lt.ea_token.split('|')[0]!r}: a table law "
+                         f"of {len(lt.stretch['strain'])} rows (moorsolve interpolates them by "
+                         "a monotone cubic, MoorDyn linearly)")
+        else:
+            entry = {"weight_in_water": weight, "ea": lt.ea}
+            static = (" (the static part of " + repr(lt.ea_token) + ")"
+                      if "|" in lt.ea_token else "")
+            stiffness = f"EA {lt.ea:g} N{static}"
         if lt.diameter > 0:
             entry["diameter"] = lt.diameter
         types[lt.name] = entry
         passthrough[lt.name] = dict(lt.columns)
-        static = " (the static part of " + repr(lt.ea_token) + ")" if "|" in lt.ea_token else ""
         report.converted.append(f"line type {lt.name} (line {lt.line}): weight in water "
                                 f"{weight:.6g} N/m = g (Mass/m {lt.mass:g} - rho pi Diam^2/4, "
-                                f"Diam {lt.diameter:g} m), EA {lt.ea:g} N{static}")
+                                f"Diam {lt.diameter:g} m), {stiffness}")
     dyn = sorted({k for cols in passthrough.values() for k in cols if k != "ea"})
     if dyn:
         report.ignored.append("line-type columns " + ", ".join(dyn) + " (damping, bending, "

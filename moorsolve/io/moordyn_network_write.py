@@ -34,14 +34,17 @@ def _section(title: str) -> str:
     return f"{('-' * 20)} {title} {'-' * max(4, 50 - len(title))}"
 
 
-def network_to_moordyn(case, result=None) -> str:
-    """The MoorDyn v2 input file of a network case, as text (see the module notes)."""
+def network_to_moordyn(case, result=None, *, curves: dict | None = None,
+                       curve_prefix: str = "") -> str:
+    """The MoorDyn v2 input file of a network case, as text (see the module notes);
+    ``curves`` receives the tension-strain curve files of stretch-law line types
+    (:func:`moorsolve.io.moordyn_write.case_to_moordyn`)."""
     env = case.environment
     if env.seabed.sloped:
         raise CaseError("environment.seabed.gradient", "MoorDyn's seabed is flat; a sloped "
                                                        "seabed cannot be written")
     notes = []
-    type_rows, _ = _line_type_rows(case, {}, 2)
+    type_rows, _, _ = _line_type_rows(case, {}, 2, curve_prefix, curves)
     poses = {b["name"]: b for b in (result.bodies if result is not None else ())}
     points_found = {p["name"]: p for p in (result.points if result is not None else ())}
 

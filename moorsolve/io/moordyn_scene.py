@@ -33,9 +33,11 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 
 from .moordyn_options import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, KNOWN_OPTIONS,
                               read_environment)
+from .moordyn_curves import read_curve
 from .moordyn_parse import MoorDynFile, Row, number_token
 
 __all__ = ["MDLineType", "MDRodType", "MDBody", "MDRod", "MDPoint", "MDLine", "MDScene",
@@ -63,10 +65,11 @@ class MDLineType:
     line: int
     diameter: float
     mass: float                       # [kg/m] in air
-    ea: float                         # static axial stiffness [N]
-    ea_token: str                     # as written ("6.0e8", "1.5e8|3.0e8")
+    ea: float                         # static axial stiffness [N] (None: a curve file)
+    ea_token: str                     # as written ("6.0e8", "1.5e8|3.0e8", "poly.txt")
     columns: dict                     # dynamic columns by moorsolve name (ba, ei, cd, ...)
     layout: int                       # 1: v1's 9 columns, 2: v2's 10, 11 or 13
+    stretch: dict = None              # the table law of an EA curve file (moordyn_curves)
 
 
 @dataclass(frozen=True)
@@ -256,25 +259,29 @@ def _line_types(md: MoorDynFile, scene_notes: list) -> dict:
         if len(parts) > 3:
             raise md.error(row.line, f"column 'EA': {ea_token!r} has more than 3 '|'-separated "
                                      "values (MoorDyn refuses it)")
+        stretch = None
         if number_token(parts[0]) is None:
-            raise md.error(row.line, f"column 'EA': {parts[0]!r} names a tension-strain curve "
-                                     "file; a nonlinear stretch law from a curve is not "
-                                     "imported yet: give the static EA as a number")
-        ea = _number(md, Row(row.line, parts), 0, "EA")
-        if not ea > 0:
-            raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
+            # EA names a file of strain and tension: a table law (moordyn_curves.py).
+            stretch = read_curve(Path(md.path).parent, parts[0],
+                                 lambda message, line=row.line: md.error(line, message))
+            ea = None
+        else:
+            ea = _number(md, Row(row.line, parts), 0, "EA")
+            if not ea > 0:
+                raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
         for p in parts[1:]:
             _number(md, Row(row.line, [p]), 0, "EA")
         keys = _LT_V1 if layout == 1 else _LT_V2
         columns = {_V1_TO_V2.get(k, k): t for k, t in zip(keys, row.values[4:])}
-        if len(parts) > 1:
+        if len(parts) > 1 or stretch is not None:
             columns["ea"] = ea_token
         if layout != md.version:
             scene_notes.append(f"line {row.line}: LINE TYPES row has v{layout}'s "
                                f"{n} columns in a v{md.version} file; its dynamic columns are "
                                f"read as v{layout}'s")
         types[name] = MDLineType(name=name, line=row.line, diameter=diameter, mass=mass, ea=ea,
-                                 ea_token=ea_token, columns=columns, layout=layout)
+                                 ea_token=ea_token, columns=columns, layout=layout,
+                                 stretch=stretch)
     if not types:
         raise md.error(md.section_lines["line_types"], "section LINE TYPES has no line types")
     return types

@@ -36,6 +36,7 @@ from pathlib import Path
 
 from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
+from .moordyn_curves import MAX_POINTS, curve_file_name, curve_text, is_number, sample_law
 from .output_files import write_text
 from .rotations import apply_transpose, moordyn_angles, moordyn_matrix, yawed
 
@@ -110,13 +111,33 @@ def _line_type_columns(lt, stored: dict | None) -> dict:
     return cols
 
 
-def _line_type_rows(case, block: dict, version: int):
+def _curve(lt, prefix: str, curves: dict) -> tuple:
+    """The EA token and the stiffness (for the time step) of a line type with a stretch law:
+    a curve file's name, its text put into ``curves``."""
+    law = lt.stretch
+    if law.model == "table":
+        if law.rows > MAX_POINTS:
+            raise CaseError(f"line_types.{lt.name}.stretch.tension",
+                            f"{law.rows} rows; MoorDyn reads at most {MAX_POINTS} points")
+        strain, tension = law.strain, law.tension
+    else:
+        strain, tension = sample_law(law, lt.mbl)
+    name = curve_file_name(prefix, lt.name)
+    curves[name] = curve_text(f"{lt.name}: {law.describe()}", strain, tension)
+    stiffest = max((t1 - t0) / (e1 - e0) for e0, e1, t0, t1 in
+                   zip(strain, strain[1:], tension, tension[1:]))
+    return name, stiffest
+
+
+def _line_type_rows(case, block: dict, version: int, curve_prefix: str = "",
+                    curves: dict | None = None):
     env = case.environment
     stored_types = block.get("line_types", {})
     from_moordyn = "legs" in block
-    rows, masses = [], {}
+    rows, masses, stiffness = [], {}, {}
+    curves = {} if curves is None else curves
     for name, lt in case.line_types.items():
-        if lt.ea is None:
+        if not lt.elastic:
             raise CaseError(f"line_types.{name}.ea", "an inextensible line cannot be written "
                                                      "for MoorDyn, which needs EA; give ea [N]")
         diameter = export_diameter(lt, env)
@@ -131,10 +152,17 @@ def _line_type_rows(case, block: dict, version: int):
         if stored is None and from_moordyn:
             stored = {}
         cols = _line_type_columns(lt, stored if stored else None)
-        ea = _g(lt.ea)
-        if "ea" in cols:
-            if _close(float(cols["ea"].split("|")[0]), lt.ea):
-                ea = cols["ea"]
+        if lt.stretch is not None:
+            # A tension-strain curve file; dynamic-stiffness values a v2 file gave after
+            # its name are kept.
+            ea, stiffness[name] = _curve(lt, curve_prefix, curves)
+            if "ea" in cols and "|" in cols["ea"] and not is_number(cols["ea"].split("|")[0]):
+                ea += "|" + cols["ea"].split("|", 1)[1]
+        else:
+            ea, stiffness[name] = _g(lt.ea), lt.ea
+            if "ea" in cols and is_number(cols["ea"].split("|")[0]):
+                if _close(float(cols["ea"].split("|")[0]), lt.ea):
+                    ea = cols["ea"]
         defaults = dict(CHAIN_COEFFICIENTS if _is_chain(lt) else ROPE_COEFFICIENTS,
                         ba=DEFAULT_BA, ei="0")
         get = lambda key: cols.get(key, defaults.get(key, "0"))  # noqa: E731
@@ -149,7 +177,7 @@ def _line_type_rows(case, block: dict, version: int):
             if any(v is not None for v in extra):
                 row += [v if v is not None else d for v, d in zip(extra, ("0", "0.08", "0.18"))]
         rows.append(row)
-    return rows, masses
+    return rows, masses, stiffness
 
 
 def _keyword(stored: str | None, kind: str, version: int, body_id: int | None = None) -> str:
@@ -217,20 +245,22 @@ def _default_num_segs(length: float) -> int:
                    SEGMENTS_RANGE[1]))
 
 
-def _default_dt(case, masses: dict, num_segs: list) -> str:
-    """Half the axial-wave transit time of the shortest segment, rounded down to one digit."""
+def _default_dt(case, masses: dict, num_segs: list, stiffness: dict) -> str:
+    """Half the axial-wave transit time of the shortest segment, rounded down to one digit
+    (a curve's stiffest part sets its wave speed)."""
     times = []
     for leg, segs in zip(case.legs, num_segs):
         for seg, n in zip(leg.segments, segs):
             lt = seg.line_type
             if masses[lt.name] > 0:
-                times.append(seg.length / n * math.sqrt(masses[lt.name] / lt.ea))
+                times.append(seg.length / n * math.sqrt(masses[lt.name] / stiffness[lt.name]))
     dt = 0.5 * min(times) if times else 1e-3
     exponent = math.floor(math.log10(dt))
     return _g(math.floor(dt / 10 ** exponent) * 10 ** exponent)
 
 
-def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
+def case_to_moordyn(case, *, version: int | None = None, result=None,
+                    curves: dict | None = None, curve_prefix: str = "") -> str:
     """The MoorDyn input file of a case, as text.
 
     Parameters
@@ -245,6 +275,12 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
         from the static equilibrium. v2 moves the body's reference pose (BODIES X0, Y0, y0)
         or the Coupled points; v1 keeps the Vessel points in the platform frame and notes
         the platform's pose in the front matter (give it to the driver).
+    curves : dict, optional
+        Filled with ``{file name: text}`` of the tension-strain curve files that line types
+        with a stretch law name in their EA column (:mod:`.moordyn_curves`); the caller
+        writes them beside the input file (:func:`export_moordyn` does).
+    curve_prefix : str
+        Prefix of the curve file names (``<prefix><type>_ea.txt``).
 
     Raises
     ------
@@ -257,7 +293,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
             raise CaseError("--version", "a network case (bodies, points, lines) is written "
                                          "as MoorDyn v2 only; v1 has no bodies")
         from .moordyn_network_write import network_to_moordyn
-        return network_to_moordyn(case, result)
+        return network_to_moordyn(case, result, curves=curves, curve_prefix=curve_prefix)
     block = dict(case.moordyn or {})
     version = version or block.get("version", 2)
     if version not in (1, 2):
@@ -267,7 +303,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
         raise CaseError("environment.seabed.gradient", "a sloped seabed cannot be written as "
                                                        "MoorDyn's flat WtrDpth; use a flat seabed")
     stored_legs = block.get("legs", {})
-    type_rows, masses = _line_type_rows(case, block, version)
+    type_rows, masses, stiffness = _line_type_rows(case, block, version, curve_prefix, curves)
     notes = []
 
     # ---- the body and where the fairleads are written ----
@@ -415,7 +451,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None) -> str:
     if "options" in block:
         options = [list(o) for o in block["options"]]
     else:
-        options = [["dtM", _default_dt(case, masses, num_segs_all)]] + \
+        options = [["dtM", _default_dt(case, masses, num_segs_all, stiffness)]] + \
                   [list(o) for o in DEFAULT_OPTIONS]
     present = set()
     for opt in options:
@@ -551,6 +587,10 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
     if equilibrium:
         from ..solve import solve
         result = solve(case, tol=tol, solver=solver, allow_overload=allow_overload)
-    text = case_to_moordyn(case, version=version, result=result)
+    curves = {}
+    text = case_to_moordyn(case, version=version, result=result, curves=curves,
+                           curve_prefix=f"{out.stem}_")
+    for name, curve in curves.items():
+        write_text(out.parent / name, curve)
     write_text(out, text)
     return result

@@ -339,6 +339,11 @@ def case_to_moorpy(case) -> dict:
     g, rho = env.gravity, env.water_density
     types = []
     for name, lt in case.line_types.items():
+        if lt.stretch is not None:
+            raise CaseError(f"line_types.{name}.stretch",
+                            f"a {lt.stretch.model} stretch law cannot be written to MoorPy's "
+                            "YAML, which takes one stiffness number; export it to MoorDyn "
+                            "(its EA column names a tension-strain file)")
         if lt.ea is None:
             raise CaseError(f"line_types.{name}.ea", "an inextensible line cannot be written "
                                                      "for MoorPy, which needs EA; give ea [N]")

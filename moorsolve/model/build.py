@@ -33,10 +33,16 @@ Schema (SI units, ``[...]`` lists)::
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
              weight_in_air >= weight_in_water [N/m or mass/m] (for a line end above
              the water; a catalogue line has it from its mass),
-             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm}}
+             sealed: bool, drag: {normal: Cn, tangential: Ct, side: Cm},
+             stretch: STRETCH (instead of ea), fibre: bool, min_tension >= 0 [N],
+             stiffness_bounds: {lower: BOUND, upper: BOUND}}
                                                drag needs a diameter
       NAME: {catalog: ENTRY, diameter > 0 [m], corrosion_allowance >= 0 [m],
-             weight_in_water, ea, mbl (override the catalogue), sealed, drag}
+             weight_in_water, ea, mbl (override the catalogue), sealed, drag,
+             stretch, fibre, min_tension, stiffness_bounds}
+    STRETCH: {model: hooke, ea} | {model: baranov, n > 0 [N^-1/2]}
+             | {model: table, strain: [...], tension: [...]}   (moorsolve.model.stretch)
+    BOUND: ea [N] | STRETCH | {model: dynamic, alpha, beta}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},

@@ -88,7 +88,7 @@ def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool)
         raise CaseError(spath, f"{len(segments)} segments on a sloped seabed: multi-segment legs "
                                "need a flat seabed (environment.seabed.gradient [0, 0]); a "
                                "sloped seabed takes one-segment legs")
-    if all(seg.line_type.ea is None for seg in segments):
+    if not any(seg.line_type.elastic for seg in segments):
         # Body at zero offset: the body-frame fairlead is its global position.
         distance = math.dist(anchor, fairlead)
         length = sum(seg.length for seg in segments)

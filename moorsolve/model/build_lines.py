@@ -16,6 +16,7 @@ from .. import catalog as line_catalog
 from ..constants import SEAWATER_DENSITY
 from .environment import Environment
 from .lines import ANCHOR_KINDS, AnchorType, Clump, LineDrag, LineType, Segment
+from .stretch import LINE_TYPE_KEYS, line_type_fields
 
 
 # ---- line types -------------------------------------------------------------------------
@@ -45,7 +46,7 @@ def _line_type(name: str, raw, path: str, gravity: float,
         return _catalog_line_type(name, raw, path, gravity, water_density)
     m = check_mapping(raw, path, required=("weight_in_water",),
                  optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag",
-                           "weight_in_air"))
+                           "weight_in_air") + LINE_TYPE_KEYS)
     wpath = field_path(path, "weight_in_water")
     weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
     if abs(weight) > MAX_WEIGHT:
@@ -61,9 +62,10 @@ def _line_type(name: str, raw, path: str, gravity: float,
     mbl = nullable_quantity(m, path, "mbl", "force", gt=0)
     diameter = nullable_quantity(m, path, "diameter", "length", gt=0)
     sealed = _sealed(m, path, diameter)
-    return LineType(name=name, weight_in_water=weight, ea=ea, mbl=mbl, diameter=diameter,
+    return LineType(name=name, weight_in_water=weight, mbl=mbl, diameter=diameter,
                     sealed=sealed, drag=_line_type_drag(m, path, diameter),
-                    weight_in_air=_weight_in_air(m, path, gravity, weight))
+                    weight_in_air=_weight_in_air(m, path, gravity, weight),
+                    **line_type_fields(m, path, ea))
 
 
 def _weight_in_air(m: dict, path: str, gravity: float, in_water: float, default=None):
@@ -109,7 +111,7 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
     m = check_mapping(raw, path, required=("catalog", "diameter"),
                  optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
                            "weight_in_air",
-                           "drag"))
+                           "drag") + LINE_TYPE_KEYS)
     known = line_catalog.entries()
     entry = m["catalog"]
     if not isinstance(entry, str) or entry not in known:
@@ -135,11 +137,12 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
                         "applies to the catalogue MBL only; with an explicit mbl give the "
                         "corroded value directly")
     return LineType(name=name, weight_in_water=weight,
-                    ea=props.ea if ea is None else ea,
                     mbl=props.mbl if mbl is None else mbl,
                     diameter=diameter, sealed=_sealed(m, path, diameter), catalog=entry,
                     drag=_line_type_drag(m, path, diameter),
                     corrosion_allowance=allowance, source=props.source,
+                    **line_type_fields(m, path, props.ea if ea is None else ea,
+                                       catalogue=props),
                     # The catalogue knows the mass: the weight in air follows.
                     weight_in_air=_weight_in_air(m, path, gravity, weight,
                                                  props.mass_per_length * gravity))
@@ -185,15 +188,17 @@ def _pretensioned_segment(raw, path: str, line_types: dict) -> Segment:
         raise CaseError(field_path(path, "type"), f"unknown line type {show_value(type_name)}; "
                                                   f"known line types: {', '.join(line_types)}")
     lt = line_types[type_name]
-    if lt.weight_in_water != 0 or lt.ea is None:
+    if lt.weight_in_water != 0 or not lt.elastic:
         raise CaseError(field_path(path, "pretension"),
                         f"a pretension sets the length of a weightless elastic line (a "
                         f"hawser); line type {type_name!r} has weight_in_water "
                         f"{format_si(lt.weight_in_water, 'force_per_length')} and ea "
                         f"{'none' if lt.ea is None else format_si(lt.ea, 'force')}: give a "
                         "length")
+    # Hooke: below EA (a strain under 1); a stretch law stretches finitely at any tension.
+    limits = {"lt": lt.ea} if lt.ea is not None else {}
     tension = quantity(m["pretension"], field_path(path, "pretension"), "force", ge=0,
-                       lt=lt.ea)
+                       **limits)
     return Segment(line_type=lt, length=math.nan, pretension=tension)
 
 

@@ -283,7 +283,7 @@ def _line(raw, path: str, environment: Environment, line_types: dict, bodies: di
     segments = _pretensioned_length(segments, spath, a, b, bodies)
     anchor_type = (None if m.get("anchor_type") is None
                    else _anchor_type(m["anchor_type"], field_path(path, "anchor_type")))
-    if a.fixed and b.fixed and all(seg.line_type.ea is None for seg in segments):
+    if a.fixed and b.fixed and not any(seg.line_type.elastic for seg in segments):
         distance = math.dist(a.position, b.position)
         length = sum(seg.length for seg in segments)
         if distance > length:
@@ -311,7 +311,7 @@ def _pretensioned_length(segments: tuple, path: str, a: End, b: End, bodies: dic
         raise CaseError(field_path(field_path(path, 0), "pretension"),
                         "the line's ends coincide at the case-file pose; a pretension cannot "
                         "give its length")
-    length = distance / (1 + seg.pretension / seg.line_type.ea)
+    length = distance / (1 + seg.line_type.strain_at(seg.pretension))
     if not MIN_LINE_LENGTH <= length <= MAX_LINE_LENGTH:
         raise CaseError(field_path(field_path(path, 0), "pretension"),
                         f"the line's ends are {format_si(distance, 'length')} apart at the "

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
+from .stretch import StiffnessBounds, StretchLaw
+
 @dataclass(frozen=True)
 class LineDrag:
     """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
@@ -32,7 +34,8 @@ class LineType:
         Submerged weight per unit unstretched length [N/m]; negative for a buoyant line,
         zero for a neutrally buoyant one.
     ea : float or None
-        Axial stiffness [N]; None for an inextensible line.
+        Axial stiffness [N] of a Hooke line; None for an inextensible line or one with
+        another stretch law.
     mbl : float or None
         Minimum breaking load [N].
     diameter : float or None
@@ -49,6 +52,17 @@ class LineType:
         Diameter reduction [m] already applied to ``mbl`` (catalogue lines only).
     source : str or None
         Where the catalogue values come from (citation), for reports.
+    stretch : StretchLaw or None
+        A stretch law other than Hooke's (Baranov, a tension-strain table); None for Hooke
+        (``ea``) and inextensible lines (:mod:`moorsolve.model.stretch`).
+    fibre : bool
+        A fibre rope (synthetic or plant fibre): the result flags it where it lies on the
+        seabed, and the checks hold it to ``min_tension``.
+    min_tension : float or None
+        Least tension [N] the line must keep everywhere (a rope that must not go slack).
+    stiffness_bounds : StiffnessBounds or None
+        Lower and upper bound of its stiffness for the bound analysis
+        (:func:`moorsolve.studies.bounds.stiffness_bounds`).
     """
 
     name: str
@@ -65,10 +79,21 @@ class LineType:
     #: fairlead in air); None when the case gives none (that part then takes the weight in
     #: water, with a warning).
     weight_in_air: Optional[float] = None
+    stretch: Optional[StretchLaw] = None
+    fibre: bool = False
+    min_tension: Optional[float] = None
+    stiffness_bounds: Optional[StiffnessBounds] = None
 
     @property
     def elastic(self) -> bool:
-        return self.ea is not None
+        return self.ea is not None or self.stretch is not None
+
+    def strain_at(self, T: float) -> float:
+        """The strain at tension ``T`` [N]: ``T/EA``, the stretch law's, or 0 when
+        inextensible."""
+        if self.stretch is not None:
+            return self.stretch.strain_at(T)
+        return T / self.ea if self.ea is not None else 0.0
 
 
 @dataclass(frozen=True)

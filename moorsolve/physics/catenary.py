@@ -36,16 +36,31 @@ fairlead is at the surface is solved from the fairlead end (``LegKind.from_fairl
 the floating length sits at the block's lower end as the grounded length does in the leg
 block, where the equations stay well conditioned (a line arriving along a boundary at the
 end whose vertical tension is the unknown has a span insensitive to it: ``Z ~ V|V|``).
+
+Stretch laws
+------------
+Hooke's law (``ea_inv = 1/EA``) has its own closed forms below. A line following another law
+of :mod:`moorsolve.physics.stretch` (Baranov, a tension-strain table) gives its
+:class:`~moorsolve.physics.stretch.StretchModel` in the kind (``law``) and its parameters as
+the block's extra input ``law``; the stretch is then integrated exactly along the line: on
+a catenary with vertical tension ``T_v`` as the variable (``ds0 = dT_v/w``) the vertical
+extent gains ``(T_F - T_A)/w`` times the mean strain over the tensions passed, the horizontal
+extent ``(H/w) [Psi(V) - Psi(V_A)]`` (:meth:`~moorsolve.physics.stretch.Law.horizontal`); on
+the seabed the tension falls linearly (friction) or stays ``H``, so the grounded stretch is
+the loaded length times the mean strain between the anchor's and the touchdown's tension.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Optional
 
 import casadi as ca
 
+from .block_laws import bind, ground_stretch, law_inputs, law_tag, shared
 from .contact import fischer_burmeister
+from .stretch import StretchModel
 
 #: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
 _H_FLOOR = 1e-9
@@ -66,7 +81,8 @@ class LegKind:
     neutral : bool
         Neutrally buoyant line (w = 0): straight when taut, loose otherwise.
     sloped : bool
-        The anchor rests on a sloped seabed (:func:`sloped_leg_equations`; needs ``contact``).
+        The anchor rests on a sloped seabed
+        (:func:`~moorsolve.physics.sloped.sloped_leg_equations`; needs ``contact``).
     lifted : bool
         A sinking line whose anchor is above a flat seabed: the seabed still bounds it
         (:func:`lifted_segment_equations` with the anchor's height above the seabed).
@@ -79,6 +95,9 @@ class LegKind:
         With ``surface``: the fairlead is at (or above) the surface, so the block is solved
         from the fairlead end and the unknown ``V`` is the vertical force at the anchor end
         (see the module notes).
+    law : StretchModel or None
+        The stretch law of an elastic line other than Hooke's (its parameters are then the
+        block's input ``law``); None: Hooke, with the compliance ``ea_inv``.
     """
 
     elastic: bool
@@ -90,6 +109,7 @@ class LegKind:
     surface: bool = False
     from_fairlead: bool = False
     air: bool = False
+    law: Optional[StretchModel] = None
 
     @property
     def bounded(self) -> bool:
@@ -115,7 +135,14 @@ class LegKind:
             parts.append("suspended")
         if self.air:
             parts.append("air")
+        if self.law is not None:
+            parts.append(self.law.tag)
         return "_".join(parts)
+
+
+def _hyp(a, b):
+    """``sqrt(a^2 + b^2)`` floored by 1e-9 N so that its derivative exists at (0, 0)."""
+    return ca.sqrt(a**2 + b**2 + _H_FLOOR**2)
 
 
 def _suspended_spans(H, Hg, V, VA, w, L, c):
@@ -138,7 +165,7 @@ def _suspended_spans(H, Hg, V, VA, w, L, c):
     return Xs, Zs
 
 
-def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
+def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     """Residuals and end forces of one leg, symbolic or numeric.
 
     Parameters
@@ -159,6 +186,8 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
         Compliance 1/EA [1/N] (unused for inextensible kinds).
     mu : float or symbol
         Seabed friction coefficient [-] (unused without friction).
+    law : sequence, optional
+        Parameters of ``kind.law`` (floats or symbols), when the line is not Hooke's.
 
     Returns
     -------
@@ -184,15 +213,28 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
 
     The ``sgn(V)`` form removes the mirrored false root at ``V = -w L_s`` that the even
     textbook form has once ``H = 0`` is admitted.
+
+    Another stretch law (``kind.law``): the terms ``H L/EA`` and ``(L/EA)(V - w L/2)`` become
+    ``(H/w)[Psi(V) - Psi(V_A)]`` and ``Z_0 mean_strain(T_A, T_F)`` (``Z_0`` the inextensible
+    rise); on touchdown the grounded length stretches by ``L_B eps(H)`` (with friction: the
+    loaded length ``min(L_B, H/(mu w))`` times the mean strain between ``H_A`` and ``H``) and
+    the suspended part by ``(H/w) Psi(V)`` and ``Z_0 mean_strain(H, T_F)``
+    (:mod:`moorsolve.physics.stretch`).
     """
     H = ca.fmax(u, 0)
+    bound = bind(kind.law, law)
     if kind.neutral:
-        return _neutral_equations(kind, X, Z, u, V, L, ea_inv)
+        return _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound=bound)
 
     Hg = ca.fmax(H, _H_FLOOR)
     VA = V - w * L
-    stretch = H * L * ea_inv if kind.elastic else 0
-    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, ea_inv if kind.elastic else 0)
+    c = ea_inv if kind.elastic and bound is None else 0
+    stretch = H * L * c
+    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
+    if bound is not None:
+        psi_V, psi_VA = bound.horizontal(Hg, V, VA)
+        Xs = Xs + (H / w) * (psi_V - psi_VA)
+        Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
 
     if not kind.contact:
         # No seabed under the line: one catenary whatever the sign of V_A. ``u < 0`` (no
@@ -209,18 +251,24 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     Xt = LB + Xsusp_t + stretch
     # sgn(V)[sqrt(H^2+V^2) - H]/w, written without cancellation for V << H.
     Zt = V * ca.fabs(V) / (w * ca.fmax(ca.sqrt(H**2 + V**2) + H, _H_FLOOR))
-    if kind.elastic:
+    if bound is not None:
+        Zt = Zt * (1 + bound.mean(H, ca.sqrt(H**2 + V**2)))
+        Xsusp_t = Xsusp_t + (H / w) * psi_V
+    elif kind.elastic:
         Zt = Zt + ea_inv * V * ca.fabs(V) / (2 * w)
         Xsusp_t = Xsusp_t + H * (V / w) * ea_inv
     if kind.friction:
         # Tension decays by mu*w per metre along the grounded length, from H at touchdown.
         # Where it would reach zero before the anchor (L_B > H/(mu w)) the rest is unloaded.
         excess = LB - H / (mu * w)
-        if kind.elastic:
+        if kind.elastic and bound is None:
             Xt = Xt + (mu * w * ea_inv / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
         HA_t = ca.fmax(H - mu * w * LB, 0)
     else:
         HA_t = H
+    if bound is not None:
+        Xt = LB + ground_stretch(bound, H, LB, HA_t, mu * w if kind.friction else None) \
+            + Xsusp_t
 
     suspended = VA >= 0
     Xc = ca.if_else(suspended, Xs, Xt)
@@ -237,7 +285,8 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu):
     )
 
 
-def _neutral_equations(kind, X, Z, u, V, L, ea_inv, stiffness=1.0, smoothing=0.0):
+def _neutral_equations(kind, X, Z, u, V, L, ea_inv, stiffness=1.0, smoothing=0.0,
+                       bound=None):
     """A weightless line (a hawser): straight at tension ``T = u`` when taut, loose otherwise.
 
     The tension and the slack are complementary (:mod:`moorsolve.physics.contact`)::
@@ -254,7 +303,10 @@ def _neutral_equations(kind, X, Z, u, V, L, ea_inv, stiffness=1.0, smoothing=0.0
     """
     T = u
     D = ca.sqrt(X**2 + Z**2)
-    stretched = L * (1 + T * ea_inv) if kind.elastic else L
+    if bound is not None:
+        stretched = L * (1 + bound.strain(ca.fmax(T, 0)))
+    else:
+        stretched = L * (1 + T * ea_inv) if kind.elastic else L
     opening = stretched - D
     H = T * X / ca.fmax(D, _H_FLOOR)
     rX = fischer_burmeister(T / stiffness, opening, smoothing)
@@ -270,18 +322,20 @@ LEG_INPUTS = ("X", "Z", "u", "V", "L", "w", "ea_inv", "mu")
 def leg_function(kind: LegKind) -> ca.Function:
     """The leg block for ``kind`` as one ``casadi.Function``, built once and reused.
 
-    Inputs ``(X, Z, u, V, L, w, ea_inv, mu)``, outputs ``LEG_OUTPUTS``; see
-    :func:`leg_equations`. Call it on SX/MX symbols to embed it, or on floats.
+    Inputs ``(X, Z, u, V, L, w, ea_inv, mu)`` and, for a line with ``kind.law``, ``law``
+    (its parameters); outputs ``LEG_OUTPUTS``; see :func:`leg_equations`. Call it on
+    SX/MX symbols to embed it, or on floats.
     """
-    args = [ca.SX.sym(n) for n in LEG_INPUTS]
-    out = leg_equations(kind, *args)
-    return ca.Function(f"leg_{kind.tag}", args, [out[k] for k in LEG_OUTPUTS],
-                       list(LEG_INPUTS), list(LEG_OUTPUTS))
+    names, args, law = law_inputs(kind.law, LEG_INPUTS)
+    out = leg_equations(kind, *args[:len(LEG_INPUTS)], law=law)
+    return ca.Function(f"leg_{kind.tag}", args, shared([out[k] for k in LEG_OUTPUTS], law),
+                       names, list(LEG_OUTPUTS))
 
 
-def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0) -> dict:
+def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0, law=None) -> dict:
     """Evaluate the leg block on floats; returns a dict of floats (``LEG_OUTPUTS``)."""
-    vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu)
+    extra = () if kind.law is None else (list(law),)
+    vals = leg_function(kind)(X, Z, u, V, L, w, ea_inv, mu, *extra)
     return {k: float(v) for k, v in zip(LEG_OUTPUTS, vals)}
 
 
@@ -289,23 +343,25 @@ WEIGHTLESS_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv", "k", "eps")
 
 
 @lru_cache(maxsize=None)
-def weightless_line_function(elastic: bool) -> ca.Function:
+def weightless_line_function(elastic: bool,
+                             model: Optional[StretchModel] = None) -> ca.Function:
     """The weightless line block as a ``casadi.Function``: inputs :data:`WEIGHTLESS_INPUTS`
-    (``k`` the contact stiffness scale [N/m], ``eps`` the Jacobian smoothing [m]), outputs
-    :data:`LEG_OUTPUTS`; see :func:`_neutral_equations`."""
-    args = [ca.SX.sym(n) for n in WEIGHTLESS_INPUTS]
-    X, Z, u, V, L, ea_inv, k, eps = args
+    (``k`` the contact stiffness scale [N/m], ``eps`` the Jacobian smoothing [m]) and, for a
+    stretch law ``model`` other than Hooke's, ``law``; outputs :data:`LEG_OUTPUTS`; see
+    :func:`_neutral_equations`."""
+    model = model if elastic else None
+    names, args, law = law_inputs(model, WEIGHTLESS_INPUTS)
+    X, Z, u, V, L, ea_inv, k, eps = args[:len(WEIGHTLESS_INPUTS)]
     out = _neutral_equations(LegKind(elastic, contact=False, neutral=True), X, Z, u, V, L,
-                             ea_inv, k, eps)
-    return ca.Function(f"weightless_{'elastic' if elastic else 'inextensible'}", args,
-                       [out[n] for n in LEG_OUTPUTS], list(WEIGHTLESS_INPUTS),
-                       list(LEG_OUTPUTS))
+                             ea_inv, k, eps, bound=bind(model, law))
+    return ca.Function(f"weightless_{law_tag(elastic, model)}", args,
+                       shared([out[n] for n in LEG_OUTPUTS], law), names, list(LEG_OUTPUTS))
 
 
 # ---- a line end above the water -------------------------------------------------------
 
 
-def air_part(H, V, z_top, w_air, ea_inv):
+def air_part(H, V, z_top, w_air, ea_inv, law=None):
     """The part of a line between the surface and an upper end ``z_top > 0`` above it.
 
     Above the water the line weighs ``w_air`` per metre (no buoyancy). From the upper end's
@@ -317,6 +373,11 @@ def air_part(H, V, z_top, w_air, ea_inv):
     z_top``, and ``V_c = sqrt(T_c^2 - H^2)`` (continued as ``-sqrt(H^2 - T_c^2)`` where the
     line could not reach the surface: no root there).
 
+    With another stretch law (``law``, a bound :class:`~moorsolve.physics.stretch.Law`) the
+    tension drop ``T - T_c`` solves ``(T - T_c)(1 + mean_strain(T_c, T)) = w_air z_top``
+    (:meth:`~moorsolve.physics.stretch.Law.drop`) and the horizontal extent gains
+    ``(H/w_air)[Psi(V) - Psi(V_c)]``.
+
     Returns
     -------
     dict
@@ -324,6 +385,14 @@ def air_part(H, V, z_top, w_air, ea_inv):
         air [m], ``x`` its horizontal extent [m].
     """
     T = _hyp(H, V)
+    if law is not None:
+        Tc = T - law.drop(T, w_air * z_top)
+        q = Tc**2 - H**2
+        Vc = ca.sign(q) * ca.sqrt(ca.fabs(q) + _H_FLOOR**2) - ca.sign(q) * _H_FLOOR
+        Hg = ca.fmax(H, _H_FLOOR)
+        psi_V, psi_c = law.horizontal(Hg, V, Vc)
+        x = (H / w_air) * (ca.asinh(V / Hg) - ca.asinh(Vc / Hg) + psi_V - psi_c)
+        return dict(V=Vc, length=(V - Vc) / w_air, x=x)
     r = ca.fmax(T + ea_inv * T**2 / 2 - w_air * z_top, 0)
     Tc = 2 * r / (1 + ca.sqrt(1 + 2 * ea_inv * r))
     q = Tc**2 - H**2
@@ -332,358 +401,3 @@ def air_part(H, V, z_top, w_air, ea_inv):
     length = (V - Vc) / w_air
     x = (H / w_air) * (ca.asinh(V / Hg) - ca.asinh(Vc / Hg)) + H * length * ea_inv
     return dict(V=Vc, length=length, x=x)
-
-
-# ---- segments of a multi-segment leg ----------------------------------------------------
-#
-# In a leg of several segments every joint is a free node. The horizontal tension is the same
-# in every segment (joints carry only vertical loads: a clump, a buoy, the seabed's reaction),
-# so one signed variable ``u`` serves the whole leg and each segment adds its top vertical
-# tension ``V``. A segment whose lower end is the anchor on the seabed is the leg block above;
-# the others use the blocks below.
-
-#: Square of a vertical force [N^2] under which the descent force is taken through its
-#: linear form, so that derivatives stay finite at a lower end resting on the seabed.
-_T_FLOOR = 1e-24
-
-LIFTED_INPUTS = ("X", "Z", "h", "u", "V", "L", "w", "ea_inv", "mu")
-SEGMENT_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x", "descent_x")
-
-
-def descent_force(H, h, w, ea_inv):
-    """Vertical force at a lifted end whose line runs down to touch a flat seabed.
-
-    A line that leaves its lower end (``h`` above the seabed) downward reaches the seabed
-    tangentially where its vertical tension is zero; over the descent the vertical tension
-    rises linearly by ``w`` per metre from ``V1`` (negative) to 0. With Hooke stretch the drop
-    is ``h = (sqrt(H^2 + V1^2) - H)/w + V1^2/(2 w EA)``, a quadratic in ``V1^2``; its root
-    (written without cancellation) is returned as ``V1 = -sqrt(t)`` [N].
-
-    Notes
-    -----
-    With ``d = w h (w h + 2 H)``, ``a = w h + H`` and ``c = 1/EA``:
-    ``t = 2 d / (1 + a c + sqrt(1 + 2 a c + c^2 H^2))``, which is ``d`` when ``c = 0``
-    (Merkin 1980, seed 004, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
-    """
-    d = w * h * (w * h + 2 * H)
-    a = w * h + H
-    c = ea_inv
-    t = 2 * d / (1 + a * c + ca.sqrt(1 + 2 * a * c + c**2 * H**2))
-    return -t / ca.sqrt(ca.fmax(t, _T_FLOOR))
-
-
-def _hyp(a, b):
-    """``sqrt(a^2 + b^2)`` floored by 1e-9 N so that its derivative exists at (0, 0)."""
-    return ca.sqrt(a**2 + b**2 + _H_FLOOR**2)
-
-
-def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
-                             friction: bool = False, between_joints: bool = False):
-    """A sinking segment whose lower end is ``h >= 0`` above a flat seabed.
-
-    The generalisation of :func:`leg_equations` (contact kind, no friction) to a lower end
-    that need not rest on the seabed: a joint lifted by a buoy, an anchor on a pile. Three
-    regimes, chosen in the graph:
-
-    - suspended (``V_A >= V1(h)``, or ``V < 0``: no vertex inside the segment): one
-      catenary, which may dip below its lower end without reaching the seabed (the S
-      between a buoy and a fairlead);
-    - two-sided touchdown (``V_A < V1``): the line runs down from the lower end to the seabed
-      (vertical force ``V1`` from :func:`descent_force`), lies on it for ``L_B`` and rises to the
-      upper end (the U under a buoyed joint, or a line between two points on the seabed);
-    - slack (``u < 0``): as in the leg block, ``-u / w`` of loose line lies on the seabed.
-
-    With ``h = 0`` it is the touchdown/suspended leg block (square roots are floored by
-    1e-9 N so that derivatives exist at H = V = 0, a grounded joint of a slack leg). With
-    ``friction`` (only for a lower end fixed on the seabed, ``h = 0``) the grounded tension
-    decays toward the lower end as in :func:`leg_equations`. ``between_joints``: the segment
-    joins two free joints of a multi-segment leg, whose span may be negative: loose line is
-    then counted only where the line lies, at most all of it.
-
-    Returns
-    -------
-    dict
-        ``SEGMENT_OUTPUTS``: span residuals ``rX``, ``rZ`` [m]; ``H``; ``VF`` the top vertical
-        tension; ``HA`` and ``VA`` the horizontal and (signed, upward positive) vertical pull
-        on the lower end [N]; ``grounded`` [m]; ``suspended_x`` horizontal extent of the part
-        rising to the upper end [m]; ``descent_x`` horizontal extent of the descent [m].
-    """
-    H = ca.fmax(u, 0)
-    Hg = ca.fmax(H, _H_FLOOR)
-    c = ea_inv if elastic else 0
-    VA = V - w * L
-    V1 = descent_force(H, h, w, c)
-    Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
-    s1 = -V1 / w
-    x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
-    LB = L - s1 - V / w
-    x_rise = (H / w) * ca.asinh(V / Hg) + H * (V / w) * c
-    Xt = x1 + LB * (1 + H * c) + x_rise
-    Zt = -h + ca.sign(V) * (_hyp(H, V) - _hyp(H, 0)) / w + c * V * ca.fabs(V) / (2 * w)
-    HA_t = H
-    if friction:
-        excess = LB - H / (mu * w)
-        if elastic:
-            Xt = Xt + (mu * w * c / 2) * (-LB**2 + excess * ca.fmax(excess, 0))
-        HA_t = ca.fmax(H - mu * w * LB, 0)
-    loose = ca.fmax(-u, 0) / w
-    if between_joints:
-        # Between two free joints the span may be negative: loose line is then only where
-        # the line lies, and at most all of that, or a slack segment folded back past its
-        # upper end (a negative span made of loose line) would be a false root.
-        loose = ca.fmin(loose, ca.fmax(LB, 0))
-    # Suspended when the line leaves the lower end less steeply than one that just touches
-    # the seabed at its vertex, or when it has no vertex inside (still descending at the
-    # upper end, V < 0: its lowest point is that end, which the caller puts on or above
-    # the seabed). V = 0 with a steep start is a line arriving along the seabed.
-    suspended = ca.logic_or(VA >= V1, V < 0)
-    return dict(
-        rX=(ca.if_else(suspended, Xs, Xt - loose) - X if between_joints
-            else ca.if_else(suspended, Xs, Xt) - X - loose),
-        rZ=ca.if_else(suspended, Zs, Zt) - Z,
-        H=H, VF=V, HA=ca.if_else(suspended, H, HA_t),
-        VA=ca.if_else(suspended, VA, V1),
-        grounded=ca.if_else(suspended, 0, LB),
-        suspended_x=ca.if_else(suspended, Xs, x_rise),
-        descent_x=ca.if_else(suspended, 0, x1),
-    )
-
-
-def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
-                              between_joints: bool = False):
-    """A buoyant segment (``w < 0``) whose lower end is ``d >= 0`` below the surface.
-
-    The free surface bounds it as the seabed bounds a sinking segment: this is
-    :func:`lifted_segment_equations` on the mirrored line (``w -> -w``, ``Z -> -Z``,
-    ``V -> -V``, the seabed at the surface and ``h = d``), its outputs mirrored back. Three
-    regimes, chosen in the graph:
-
-    - suspended: one catenary below the surface, which may rise above its lower end;
-    - floating: the line rises from the lower end to the surface, reaching it tangentially
-      (the suspended part's vertex at ``z = 0``), floats along it at constant tension for
-      ``floating`` metres and leaves it tangentially down to the upper end (which may be
-      at the surface: then it floats up to it);
-    - slack (``u < 0``): ``H = 0``; the line rises vertically to the surface and
-      ``-u / |w|`` of it floats loose.
-
-    "Lower end" is the block's start (``Z`` is the other end's height above it, of either
-    sign). Returns ``SEGMENT_OUTPUTS`` in the real orientation (``VF`` upward force on the
-    upper end of the line, ``VA`` signed upward pull on the lower end), with ``grounded``
-    0 and ``floating`` the unstretched length on the surface [m]; ``descent_x`` is the
-    horizontal extent of the rise from the lower end to the surface.
-
-    Notes
-    -----
-    REFERENCE.md section 7 ("Free surface": a buoyant line meets the surface as a chain
-    meets the seabed, mirrored). The surface carries the floating part's buoyancy as the
-    seabed carries a grounded part's weight; no drag or friction acts along it.
-    """
-    m = lifted_segment_equations(elastic, X, -Z, d, u, -V, L, -w, ea_inv,
-                                 between_joints=between_joints)
-    return dict(rX=m["rX"], rZ=-m["rZ"], H=m["H"], VF=-m["VF"], HA=m["HA"], VA=-m["VA"],
-                grounded=0 * m["H"], floating=m["grounded"], suspended_x=m["suspended_x"],
-                descent_x=m["descent_x"])
-
-
-SURFACE_INPUTS = LEG_INPUTS + ("d",)
-SURFACE_OUTPUTS = LEG_OUTPUTS + ("floating", "touchup_x")
-
-
-def surface_leg_equations(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, ea_inv,
-                          mu, d):
-    """A buoyant leg from its anchor to its fairlead, bounded by the free surface.
-
-    Parameters as :func:`leg_equations`, plus ``d``, the depth [m] below the surface of
-    the end the block starts from: the anchor, or with ``from_fairlead`` the fairlead
-    (which then lies at or above the surface: ``d = 0``). With ``from_fairlead`` the unknown
-    ``V`` is the upward force the anchor exerts on the line's end there (the block's top
-    tension), so that the floating length, next to the fairlead, is at the block's lower end.
-    ``mu`` is unused (no friction along the surface).
-
-    Returns
-    -------
-    dict
-        ``SURFACE_OUTPUTS`` in the leg's orientation: ``LEG_OUTPUTS`` (``grounded`` 0) plus
-        ``floating``, the unstretched length floating on the surface [m], and
-        ``touchup_x``, the horizontal distance from the anchor at which the line first
-        reaches the surface [m] (meaningful when ``floating > 0``).
-    """
-    del mu
-    if not from_fairlead:
-        o = surface_segment_equations(elastic, X, Z, d, u, V, L, w, ea_inv)
-        return dict(rX=o["rX"], rZ=o["rZ"], H=o["H"], VF=o["VF"], HA=o["HA"], VA=o["VA"],
-                    grounded=o["grounded"], suspended_x=X - o["descent_x"],
-                    floating=o["floating"], touchup_x=o["descent_x"])
-    o = surface_segment_equations(elastic, X, -Z, d, u, V, L, w, ea_inv)
-    # Back to the leg's orientation: the fairlead holds the block's lower end, the anchor
-    # its upper end.
-    return dict(rX=o["rX"], rZ=-o["rZ"], H=o["H"], VF=-o["VA"], HA=o["HA"], VA=-o["VF"],
-                grounded=o["grounded"], suspended_x=X - o["suspended_x"],
-                floating=o["floating"], touchup_x=o["suspended_x"])
-
-
-@lru_cache(maxsize=None)
-def surface_leg_function(elastic: bool, from_fairlead: bool) -> ca.Function:
-    """:func:`surface_leg_equations` as a ``casadi.Function`` (inputs ``SURFACE_INPUTS``,
-    outputs ``SURFACE_OUTPUTS``)."""
-    args = [ca.SX.sym(n) for n in SURFACE_INPUTS]
-    out = surface_leg_equations(elastic, from_fairlead, *args)
-    tag = ("elastic" if elastic else "inextensible") + ("_from_fairlead" if from_fairlead
-                                                        else "")
-    return ca.Function(f"leg_surface_{tag}", args, [out[k] for k in SURFACE_OUTPUTS],
-                       list(SURFACE_INPUTS), list(SURFACE_OUTPUTS))
-
-
-@lru_cache(maxsize=None)
-def surface_segment_function(elastic: bool, between_joints: bool = False) -> ca.Function:
-    """:func:`surface_segment_equations` as a ``casadi.Function`` (inputs
-    ``LIFTED_INPUTS`` with ``h`` the lower end's depth below the surface; outputs
-    ``SEGMENT_OUTPUTS + ("floating",)``)."""
-    args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
-    X, Z, h, u, V, L, w, ea_inv, _ = args
-    out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv, between_joints)
-    names = SEGMENT_OUTPUTS + ("floating",)
-    tag = ("elastic" if elastic else "inextensible") + ("_joints" if between_joints else "")
-    return ca.Function(f"segment_surface_{tag}", args,
-                       [out[k] for k in names], list(LIFTED_INPUTS), list(names))
-
-
-def evaluate_surface_leg(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, ea_inv=0.0,
-                         d=0.0) -> dict:
-    """Evaluate :func:`surface_leg_function` on floats; a dict of floats."""
-    vals = surface_leg_function(elastic, from_fairlead)(X, Z, u, V, L, w, ea_inv, 0.0, d)
-    return {k: float(v) for k, v in zip(SURFACE_OUTPUTS, vals)}
-
-
-def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv):
-    """A weightless segment inside a multi-segment leg: straight, ``H = max(u, 0)``.
-
-    Its tension ``T = sqrt(H^2 + V^2)`` is the same at both ends and its direction is the
-    chord's: ``X = H L (1/T + 1/EA)``, ``Z = V L (1/T + 1/EA)``. With ``H = 0`` it hangs
-    vertical under the joint loads. (A weightless segment with no tension at all has no
-    definite shape; the model does not represent it.)
-    """
-    H = ca.fmax(u, 0)
-    T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
-    k = L * (1 / T + (ea_inv if elastic else 0))
-    return dict(rX=H * k - X, rZ=V * k - Z, H=H, VF=V, HA=H, VA=V, grounded=0 * H,
-                suspended_x=X, descent_x=0 * H)
-
-
-@lru_cache(maxsize=None)
-def lifted_segment_function(elastic: bool, friction: bool = False,
-                            between_joints: bool = False) -> ca.Function:
-    """:func:`lifted_segment_equations` as a ``casadi.Function`` (inputs ``LIFTED_INPUTS``)."""
-    args = [ca.SX.sym(n) for n in LIFTED_INPUTS]
-    out = lifted_segment_equations(elastic, *args, friction=friction,
-                                   between_joints=between_joints)
-    tag = (("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
-           + ("_joints" if between_joints else ""))
-    return ca.Function(f"segment_lifted_{tag}", args,
-                       [out[k] for k in SEGMENT_OUTPUTS], list(LIFTED_INPUTS),
-                       list(SEGMENT_OUTPUTS))
-
-
-@lru_cache(maxsize=None)
-def straight_segment_function(elastic: bool) -> ca.Function:
-    """:func:`straight_segment_equations` as a ``casadi.Function``."""
-    names = ("X", "Z", "u", "V", "L", "ea_inv")
-    args = [ca.SX.sym(n) for n in names]
-    out = straight_segment_equations(elastic, *args)
-    return ca.Function(f"segment_straight_{'elastic' if elastic else 'inextensible'}", args,
-                       [out[k] for k in SEGMENT_OUTPUTS], list(names), list(SEGMENT_OUTPUTS))
-
-
-# ---- a leg on a sloped seabed -------------------------------------------------------------
-
-SLOPED_INPUTS = LEG_INPUTS + ("t",)
-
-
-def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv, mu, t):
-    """A sinking leg whose anchor is on a seabed of slope ``t = tan(theta)`` in its plane.
-
-    ``t`` is the seabed's rise per metre along the leg's horizontal direction (anchor toward
-    fairlead), so the seabed in the leg's vertical plane is ``z = t x`` from the anchor.
-    Regimes, chosen in the graph:
-
-    - suspended (``V_A >= H t``): the line leaves the anchor at least as steeply as the
-      seabed; the ordinary elastic catenary;
-    - touchdown (``V_A < H t``): ``L_B = L - (V - H t)/w`` lies on the slope; the line
-      leaves it tangentially, where the vertical tension is ``H t`` and the tension
-      ``H sqrt(1 + t^2)``;
-    - slack (``u < 0``): ``H = 0``; the line hangs vertically from the fairlead onto the
-      slope and ``-u/w`` of it lies loose on the slope.
-
-    On the slope the tension falls from the touchdown toward the anchor by
-    ``k = w (sin(theta) + mu cos(theta))`` per metre (the weight's component along the slope,
-    and fully mobilised friction), down to zero at most: ``T_A = max(H sqrt(1+t^2) - k L_B,
-    0)``; with ``theta < 0`` (seabed falling toward the fairlead) and little friction the
-    tension grows toward the anchor instead. The anchor force is ``T_A`` along the slope.
-
-    Notes
-    -----
-    Suspended part from the touchdown (Merkin 1980, seed 004, sections 2.1, 2.3, integrated
-    from the vertical tension ``H t`` instead of 0)::
-
-        X_s = (H/w)[asinh(V/H) - asinh(t)] + H L_s/EA,   L_s = (V - H t)/w
-        Z_s = [sqrt(H^2+V^2) - H sqrt(1+t^2)]/w + (V^2 - H^2 t^2)/(2 w EA)
-
-    The grounded part adds ``(L_B + stretch)(cos, sin)(theta)`` with the stretch
-    ``int T/EA ds`` over the slope. With ``t = 0`` this is :func:`leg_equations`.
-    The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
-    the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
-    """
-    H = ca.fmax(u, 0)
-    Hg = ca.fmax(H, _H_FLOOR)
-    c = ea_inv if elastic else 0
-    sec = ca.sqrt(1 + t**2)
-    cos_t, sin_t = 1 / sec, t / sec
-    VA = V - w * L
-    Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
-    Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
-
-    Vtd = H * t
-    loose = ca.fmax(-u, 0) / w
-    LB = L - (V - Vtd) / w
-    Ls = L - LB
-    x_susp = (H / w) * (ca.asinh(V / Hg) - ca.asinh(t)) + H * Ls * c
-    # Rise of the suspended part; below V = Vtd (a negative suspended length, outside the
-    # regime) a monotone continuation, so that no false root appears there (for H = 0 it
-    # is the sgn(V) form of the leg block).
-    z_susp = ca.if_else(V >= Vtd,
-                        (_hyp(H, V) - _hyp(H, Vtd)) / w + c * (V**2 - Vtd**2) / (2 * w),
-                        (V - Vtd) / w + c * (V * ca.fabs(V) - Vtd * ca.fabs(Vtd)) / (2 * w))
-    k = w * (sin_t + (mu * cos_t if friction else 0))
-    T_td = H * sec
-    TA_raw = T_td - k * LB
-    if elastic:
-        # Stretch of the grounded part: the tension is max(TA_raw + k s, 0) along it.
-        k_pos = ca.fmax(k, 1e-300)
-        s0 = ca.if_else(k > 0, ca.fmin(ca.fmax(-TA_raw / k_pos, 0), LB), 0)
-        ground_stretch = c * (TA_raw * (LB - s0) + k * (LB**2 - s0**2) / 2)
-    else:
-        ground_stretch = 0
-    on_ground = LB - loose + ground_stretch
-    Xt = on_ground * cos_t + x_susp
-    Zt = on_ground * sin_t + z_susp
-    TA = ca.fmax(TA_raw, 0)
-    suspended = VA >= Vtd
-    return dict(
-        rX=ca.if_else(suspended, Xs, Xt) - X,
-        rZ=ca.if_else(suspended, Zs, Zt) - Z,
-        H=H, VF=V,
-        HA=ca.if_else(suspended, H, TA * cos_t),
-        VA=ca.if_else(suspended, VA, TA * sin_t),
-        grounded=ca.if_else(suspended, 0, LB),
-        suspended_x=ca.if_else(suspended, Xs, x_susp),
-    )
-
-
-@lru_cache(maxsize=None)
-def sloped_leg_function(elastic: bool, friction: bool) -> ca.Function:
-    """:func:`sloped_leg_equations` as a ``casadi.Function`` (inputs ``SLOPED_INPUTS``)."""
-    args = [ca.SX.sym(n) for n in SLOPED_INPUTS]
-    out = sloped_leg_equations(elastic, friction, *args)
-    tag = ("elastic" if elastic else "inextensible") + ("_friction" if friction else "")
-    return ca.Function(f"leg_sloped_{tag}", args, [out[k] for k in LEG_OUTPUTS],
-                       list(SLOPED_INPUTS), list(LEG_OUTPUTS))

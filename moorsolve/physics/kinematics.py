@@ -70,3 +70,11 @@ def generalized_forces(force, moment, pitch, yaw):
     """
     axes = rotation_axes(pitch, yaw)
     return ca.vertcat(force, axes.T @ moment)
+
+
+def wrap_degrees(angle):
+    """An angle [deg] (float or numpy array) in (-180, 180]: the same orientation as
+    reported, whichever turn the solver's unbounded yaw reached it on."""
+    import numpy as np
+    wrapped = -((-np.asarray(angle, dtype=float) + 180.0) % 360.0 - 180.0)
+    return float(wrapped) if np.ndim(wrapped) == 0 else wrapped

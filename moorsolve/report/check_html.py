@@ -228,7 +228,8 @@ def _case_section(report: CheckReport, case) -> list:
     out.append(_table(
         ["line type", "w [N/m]", "EA [MN]", "MBL [kN]", "diameter [mm]", "source"],
         [[lt.name, f"{lt.weight_in_water:.1f}",
-          "inextensible" if lt.ea is None else f"{lt.ea / 1e6:.1f}",
+          (lt.stretch.describe() if lt.stretch is not None
+           else "inextensible" if lt.ea is None else f"{lt.ea / 1e6:.1f}"),
           kN(lt.mbl) if lt.mbl else "none", "-" if lt.diameter is None
           else f"{lt.diameter * 1e3:.1f}",
           (f"catalogue {lt.catalog}"

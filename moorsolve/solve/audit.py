@@ -42,6 +42,7 @@ import math
 import numpy as np
 
 from ..errors import ConvergenceError
+from .stretch_params import numeric_law
 
 __all__ = ["audit", "audit_findings", "result_warnings", "AuditFailure"]
 
@@ -95,12 +96,22 @@ def _is_lumped(case, leg_case) -> bool:
 
 
 def _segment_data(leg_case):
-    """Per segment: unstretched length, weight [N/m], compliance [1/N]; cumulative ends."""
+    """Per segment: unstretched length, weight [N/m], its strain as a function of the
+    tension (numpy); cumulative ends."""
     lengths = np.array([s.length for s in leg_case.segments])
     weights = np.array([s.line_type.weight_in_water for s in leg_case.segments])
-    comp = np.array([1.0 / s.line_type.ea if s.line_type.ea else 0.0
-                     for s in leg_case.segments])
-    return lengths, weights, comp, np.concatenate([[0.0], np.cumsum(lengths)])
+    strain = [_strain_of(s.line_type) for s in leg_case.segments]
+    return lengths, weights, strain, np.concatenate([[0.0], np.cumsum(lengths)])
+
+
+def _strain_of(line_type):
+    """The strain of a line type at tension ``T`` [N]: ``T/EA``, its stretch law's (the
+    material's definition, :mod:`moorsolve.physics.stretch`), or 0 when inextensible."""
+    law = numeric_law(line_type)
+    if law is not None:
+        return lambda T: law.strain(np.maximum(T, 0.0))
+    c = 1.0 / line_type.ea if line_type.ea else 0.0
+    return lambda T: c * np.asarray(T, float)
 
 
 def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> list[str]:
@@ -110,11 +121,11 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
     pts = np.column_stack([np.asarray(prof[k], float) for k in ("x_m", "y_m", "z_m")])
     T = np.asarray(prof["tension_N"], float)
     s = np.asarray(prof["s_m"], float) if "s_m" in prof else None
-    lengths, weights, comp, ends = _segment_data(leg_case)
+    lengths, weights, strain, ends = _segment_data(leg_case)
     L = float(ends[-1])
     t_max = max(float(np.max(np.abs(T))) if T.size else 0.0, leg.fairlead_tension_N,
                 leg.anchor_tension_N, float(np.sum(np.abs(weights) * lengths)), 1e-300)
-    size = max(L * (1.0 + t_max * float(np.max(comp))), env.depth, 1.0)
+    size = max(L * (1.0 + max(float(f(t_max)) for f in strain)), env.depth, 1.0)
     tol = tol_rel * size
     if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(T)) and math.isfinite(t_max)
             and math.isfinite(size)):
@@ -129,9 +140,12 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
     step = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     if s is not None and s.size == len(pts):
         ds = np.diff(s)
-        c_seg = comp[np.clip(np.searchsorted(ends, s[:-1] + ds / 2) - 1, 0, len(comp) - 1)]
+        seg = np.clip(np.searchsorted(ends, s[:-1] + ds / 2) - 1, 0, len(strain) - 1)
         t_step = np.maximum(np.abs(T[1:]), np.abs(T[:-1]))
-        allowed = ds * (1.0 + t_step * c_seg) * (1.0 + 1e-9) + tol
+        eps = np.zeros_like(t_step)
+        for k, f in enumerate(strain):
+            eps[seg == k] = f(t_step[seg == k])
+        allowed = ds * (1.0 + eps) * (1.0 + 1e-9) + tol
         k = int(np.argmax(step - allowed))
         if np.any(ds < -tol) or step[k] > allowed[k]:
             consistency.append(f"the profile is not continuous: a step of {step[k]:.4g} m "
@@ -169,7 +183,8 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
         tight = 1e-12 * size
         on_bed = pts[:, 2] - bed <= tight
         on_top = np.abs(pts[:, 2]) <= tight       # afloat: on the surface, not above
-        consistency += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol)
+        consistency += _audit_end_directions(leg, pts, s, ends, weights, on_bed | on_top, tol,
+                                             _weights_in_air(leg_case))
         consistency += _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights,
                                                on_bed, on_top, t_max, tight)
     for j, joint in enumerate(leg.joints):
@@ -210,7 +225,15 @@ def _element_load(leg_case, s, env) -> float:
     return q * step + clumps
 
 
-def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol) -> list[str]:
+def _weights_in_air(leg_case) -> np.ndarray:
+    """Per segment, its weight [N/m] above the water: its weight in air where the case
+    gives it, else its weight in water."""
+    return np.array([sg.line_type.weight_in_air if sg.line_type.weight_in_air is not None
+                     else sg.line_type.weight_in_water for sg in leg_case.segments])
+
+
+def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol,
+                          in_air=None) -> list[str]:
     """The end forces point along the profile where the line leaves an end through water."""
     out = []
     ux, uy = _plane(leg)
@@ -233,7 +256,9 @@ def _audit_end_directions(leg, pts, s, ends, weights, on_boundary, tol) -> list[
         cosine = float(np.clip(direction @ chord / length, -1.0, 1.0))
         angle = math.acos(cosine)
         k = min(i, j) if i >= 0 else len(pts) - 2
-        w = abs(weights[min(np.searchsorted(ends, s[k] + 1e-12) - 1, len(weights) - 1)])
+        seg = min(np.searchsorted(ends, s[k] + 1e-12) - 1, len(weights) - 1)
+        above = in_air is not None and (pts[i][2] + pts[j][2]) / 2 > 0
+        w = abs((in_air if above else weights)[seg])
         ds = abs(s[j] - s[i])
         if T <= w * ds:
             continue     # too little tension for the step to bound the line's turning
@@ -259,8 +284,7 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
     seg = np.clip(np.searchsorted(ends, mid) - 1, 0, len(weights) - 1)
     w = weights[seg]
     # Above the water a line weighs its weight in air, where the case gives it.
-    in_air = np.array([sg.line_type.weight_in_air if sg.line_type.weight_in_air is not None
-                       else sg.line_type.weight_in_water for sg in leg_case.segments])[seg]
+    in_air = _weights_in_air(leg_case)[seg]
     w = np.where((pts[1:, 2] + pts[:-1, 2]) / 2 > 0, in_air, w)
     ds = np.diff(s)
     supported = (on_bed[1:] & on_bed[:-1]) | (on_top[1:] & on_top[:-1])

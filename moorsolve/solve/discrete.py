@@ -10,7 +10,8 @@ element and, for each inner node, its horizontal position ``(x, y)`` and a signe
 ``zeta`` above the seabed plane. Equations:
 
 - each element's length: ``|r_e - r_{e-1}| = L_e (1 + T_e / EA)`` (Hooke; inextensible
-  without an EA), so tension and stretch are exact at every element;
+  without an EA; ``L_e (1 + eps(T_e))`` with another stretch law,
+  :mod:`moorsolve.physics.stretch`), so tension and stretch are exact at every element;
 - each inner node's force balance (3-D): the two element tensions along their chords, half
   of each adjacent element's submerged weight ``w L_e`` (on the unstretched length) and flow
   force (:func:`moorsolve.physics.drag.line_drag` on the stretched chord, at the current
@@ -37,6 +38,7 @@ from __future__ import annotations
 import casadi as ca
 
 from ..physics.drag import current_velocity, line_drag
+from ..physics.stretch import Law
 from .layout import DISCRETE_PARAMS
 from .lines import LineBlock
 
@@ -92,9 +94,11 @@ def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair)
     # Element properties, anchor first; joints are the nodes between segments.
     props, joint_nodes = [], {}
     count = 0
+    laws = kind.laws or (None,) * nseg
     for k, m in enumerate(kind.elements):
+        law = None if laws[k] is None else Law(laws[k], problem.line_laws[i][k])
         for _ in range(m):
-            props.append((seg[k], seg[k]["length"] / m, kind.elastic_segments[k]))
+            props.append((seg[k], seg[k]["length"] / m, kind.elastic_segments[k], law))
         count += m
         if k < nseg - 1:
             joint_nodes[count] = clumps[k]
@@ -104,15 +108,15 @@ def discrete_leg(problem, i, kind, x, iu, values, seabed, current, anchor, fair)
     res, mismatch = [], []
     tau, loads = [], []
     for e in range(n):
-        sp, L_e, elastic = props[e]
+        sp, L_e, elastic, law = props[e]
         d = nodes[e + 1] - nodes[e]
         length = ca.sqrt(ca.sumsqr(d) + _FLOOR**2)
         t = d / length
-        c = sp["ea_inv"] if elastic else 0
-        r = length - L_e * (1 + c * T[e])
+        c = law.compliance(T[e]) if law is not None else sp["ea_inv"] if elastic else 0
+        r = length - L_e * (1 + (law.strain(T[e]) if law is not None else c * T[e]))
         res.append(r / L_e)
-        # The length mismatch as a force: through the axial stiffness EA/L of an elastic
-        # element; through the geometric stiffness T/L (a kink at the node) of an
+        # The length mismatch as a force: through the axial (tangent) stiffness EA/L of an
+        # elastic element; through the geometric stiffness T/L (a kink at the node) of an
         # inextensible one, and never less than the scene's scale.
         stiff = ca.fmax(ca.fabs(T[e]) / L_e, fs / ls)
         mismatch.append(ca.fabs(r) * (ca.fmax(1 / (L_e * c), stiff) if elastic else stiff))

@@ -606,12 +606,12 @@ def _diagnose(problem, case, result) -> str:
         lt = line.line_type
         chord = math.dist(lr.anchor, lr.fairlead)
         fixed = line.a.fixed and (line.b.fixed or line.b.body is not None)
-        if fixed and all(s.line_type.ea is None for s in line.segments) \
+        if fixed and not any(s.line_type.elastic for s in line.segments) \
                 and chord > line.length * (1 + 1e-9):
             reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
                            f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
                            f"by {chord - line.length:.2f} m")
-        elif fixed and lt.ea is None and chord > line.length * (1 - 1e-4):
+        elif fixed and not lt.elastic and chord > line.length * (1 - 1e-4):
             reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
                            f"{line.length:.3f} m): an inextensible line would need an "
                            f"unbounded tension; give the line type an ea")

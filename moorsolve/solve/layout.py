@@ -21,6 +21,8 @@ place that knows the order. The vector is, in blocks:
    every fender's face and reaction law (its
    stiffness, or the table's deflections then reactions), every guide's collar centre and
    clearance.
+8. The stretch-law parameters of every segment whose line type has a law other than
+   Hooke's (:mod:`.stretch_params`), lines and segments in case order.
 
 :class:`ParameterLayout` names every entry (``"line[L3].length"``, ``"body[hull].pose"``) for
 the studies that set or differentiate by name.
@@ -35,6 +37,7 @@ import numpy as np
 
 from ..model import Case
 from . import prepared
+from .stretch_params import law_slot
 
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
               "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor",
@@ -294,4 +297,8 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
     for guide in c.guides:
         add(f"guide[{guide.name}].at", 3)
         add(f"guide[{guide.name}].clearance")
+    for line in case.lines:
+        for k, seg in enumerate(line.segments):
+            if seg.line_type.stretch is not None:
+                add(law_slot(line, k), len(seg.line_type.stretch.parameters()))
     return ParameterLayout(names=names, size=cursor)

@@ -60,10 +60,12 @@ import casadi as ca
 
 from ..model import Case, Line
 from ..model.build_network import end_position
-from ..physics.catenary import (LegKind, air_part, descent_force, leg_function,
-                                lifted_segment_function, sloped_leg_function,
-                                straight_segment_function, surface_leg_function,
-                                surface_segment_function, weightless_line_function)
+from ..physics.catenary import (LegKind, air_part, leg_function, weightless_line_function)
+from ..physics.segments import (descent_force, lifted_segment_function, straight_segment_function,
+                                surface_leg_function, surface_segment_function)
+from ..physics.sloped import sloped_leg_function
+from ..physics.stretch import Law, StretchModel
+from .stretch_params import law_model
 
 #: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment line
 #: (from its lower end), its tensions [N] (top H and V, pull on its lower end HA and signed
@@ -87,13 +89,14 @@ class SegmentKind:
     ``friction`` for the anchor segment), ``"floating"`` (a buoyant segment bounded by the
     free surface, :func:`~moorsolve.physics.catenary.surface_segment_equations`),
     ``"straight"`` (weightless) or ``"leg"`` (the leg block of :func:`leg_function` with
-    ``leg``).
+    ``leg``). ``law``: its stretch law when it is not Hooke's.
     """
 
     block: str
     elastic: bool
     leg: Optional[LegKind] = None
     friction: bool = False
+    law: Optional[StretchModel] = None
 
 
 @dataclass(frozen=True)
@@ -153,6 +156,8 @@ class DiscreteLegKind:
     #: Some part of the line is buoyant: the free surface may hold nodes (the node heights
     #: are clipped to the water column in every lumped-node line).
     surface: bool = False
+    #: Each segment's stretch law when it is not Hooke's (:class:`StretchModel` or None).
+    laws: tuple = ()
 
     @property
     def elastic(self) -> bool:
@@ -291,7 +296,8 @@ def line_kind(case: Case, line: Line) -> LineKind:
             surface=any(seg.line_type.weight_in_water < 0 for seg in line.segments)
             or any(c is not None and c.weight < 0 for c in line.joint_clumps),
             side=any(seg.line_type.drag is not None and seg.line_type.drag.side != 0
-                     for seg in line.segments))
+                     for seg in line.segments),
+            laws=tuple(law_model(seg.line_type) for seg in line.segments))
         return LineKind(block, False, role_a, role_b)
     # The lower end: an anchor if there is one, else the end lower in the case.
     if role_a == "anchor":
@@ -318,7 +324,7 @@ def line_kind(case: Case, line: Line) -> LineKind:
                     friction=contact and case.environment.seabed.friction > 0,
                     neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,
                     surface=w < 0, from_fairlead=w < 0 and at_surface(tz) and not air,
-                    air=air)
+                    air=air, law=law_model(lt))
     return LineKind(block, flipped, lower, upper, lifted=(w > 0 and lower != "anchor"))
 
 
@@ -333,15 +339,16 @@ def _multi_kind(case: Case, segments, lower: str, top_on_seabed: bool,
     for k, seg in enumerate(segments):
         lt = seg.line_type
         w = lt.weight_in_water
+        law = law_model(lt)
         if w == 0:
-            kinds.append(SegmentKind("straight", lt.elastic))
+            kinds.append(SegmentKind("straight", lt.elastic, law=law))
         elif w < 0:
             # Bounded by the free surface, which may hold the joint above it down.
-            kinds.append(SegmentKind("floating", lt.elastic))
+            kinds.append(SegmentKind("floating", lt.elastic, law=law))
         else:
             # Friction acts on the anchor segment's grounded length only (README).
             friction = k == 0 and lower == "anchor" and case.environment.seabed.friction > 0
-            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction))
+            kinds.append(SegmentKind("lifted", lt.elastic, friction=friction, law=law))
     return MultiLegKind(tuple(kinds), reversed_top=(
         (top_on_seabed and kinds[-1].block == "lifted")
         or (top_at_surface and kinds[-1].block == "floating")))
@@ -403,30 +410,36 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     block = kind.block
     args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], w=P["weight"], ea_inv=P["ea_inv"],
                 mu=P["friction"])
+    law = None
+    if block.law is not None:
+        # The stretch law's parameters (solve/stretch_params.py).
+        args["law"] = ca.vertcat(*problem.line_laws[i][0])
+        law = Law(block.law, problem.line_laws[i][0])
     air = None
     if block.air:
         # The upper end is above the water: its part in air, in closed form, then the water
         # block up to the surface crossing (its top, at z = 0).
         air = air_part(ca.fmax(u, 0), V, upper[2], P["weight_air"],
-                       P["ea_inv"] if block.elastic else 0)
+                       P["ea_inv"] if block.elastic else 0, law=law)
         args = dict(args, X=X - air["x"], Z=-lower[2], V=air["V"],
                     L=P["length"] - air["length"])
     if kind.lifted:
         args["h"] = ca.fmax(lower[2] - seabed_height(seabed, lower[0], lower[1]), 0)
-        fn = lifted_segment_function(block.elastic, False)
+        fn = lifted_segment_function(block.elastic, False, model=block.law)
     elif block.neutral:
+        law = {} if block.law is None else {"law": args["law"]}
         args = dict(X=X, Z=Z, u=u, V=V, L=P["length"], ea_inv=P["ea_inv"],
-                    k=problem.contact_stiffness, eps=problem.smoothing_symbol)
-        fn = weightless_line_function(block.elastic)
+                    k=problem.contact_stiffness, eps=problem.smoothing_symbol, **law)
+        fn = weightless_line_function(block.elastic, block.law)
     elif block.surface:
         # Depth below the surface of the end the block starts from.
         start_z = upper[2] if block.from_fairlead else lower[2]
         args["d"] = ca.fmax(-start_z, 0)
-        fn = surface_leg_function(block.elastic, block.from_fairlead)
+        fn = surface_leg_function(block.elastic, block.from_fairlead, block.law)
     elif block.sloped:
         # The seabed's rise per metre along the line, lower end toward upper end.
         args["t"] = seabed["gradient_x"] * ux + seabed["gradient_y"] * uy
-        fn = sloped_leg_function(block.elastic, block.friction)
+        fn = sloped_leg_function(block.elastic, block.friction, block.law)
     else:
         fn = leg_function(block)
     out = fn.call(args)
@@ -476,8 +489,9 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
     seg = [dict(zip(("length", "weight", "ea_inv"), values[3 * k: 3 * k + 3]))
            for k in range(n)]
     clump = list(values[3 * n: 3 * n + nj])
+    laws = list(problem.line_laws[i])
     if kind.flipped:
-        seg, clump = seg[::-1], clump[::-1]
+        seg, clump, laws = seg[::-1], clump[::-1], laws[::-1]
     ux, uy, X, Z = plane_geometry(lower, upper)
     u, V_top = x[iu], x[iu + 1]
     xi = [x[iu + 2 + 2 * j] for j in range(nj)]
@@ -502,22 +516,26 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
             h = ca.fmax(upper[2] - z_bed, 0)
             d = ca.fmax(-upper[2], 0)
         L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
+        # A stretch law other than Hooke's: its parameters (solve/stretch_params.py).
+        law = {} if sk.law is None else {"law": ca.vertcat(*laws[k])}
         if not top:
-            Vs[k], Nk = _joint_split(sk, sigma[k], u, L, w, c if sk.elastic else 0, h, d)
+            bound = None if sk.law is None else Law(sk.law, laws[k])
+            Vs[k], Nk = _joint_split(sk, sigma[k], u, L, w, c if sk.elastic else 0, h, d,
+                                     bound)
             N.append(Nk)
         if sk.block == "leg":
             o = leg_function(sk.leg).call(dict(X=Xk, Z=Zk, u=u, V=Vs[k], L=L, w=w,
-                                               ea_inv=c, mu=P["friction"]))
+                                               ea_inv=c, mu=P["friction"], **law))
             o["descent_x"] = 0 * u
         elif sk.block == "floating":
-            o = surface_segment_function(sk.elastic, True).call(dict(
-                X=Xk, Z=Zk, h=d, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=0))
+            o = surface_segment_function(sk.elastic, True, sk.law).call(dict(
+                X=Xk, Z=Zk, h=d, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=0, **law))
         elif sk.block == "lifted":
-            o = lifted_segment_function(sk.elastic, sk.friction, True).call(dict(
-                X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"]))
+            o = lifted_segment_function(sk.elastic, sk.friction, True, sk.law).call(dict(
+                X=Xk, Z=Zk, h=h, u=u, V=Vs[k], L=L, w=w, ea_inv=c, mu=P["friction"], **law))
         else:
-            o = straight_segment_function(sk.elastic).call(dict(
-                X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c))
+            o = straight_segment_function(sk.elastic, sk.law).call(dict(
+                X=Xk, Z=Zk, u=u, V=Vs[k], L=L, ea_inv=c, **law))
         if top:
             res += [o["rX"] / L, o["rZ"] / L]
             e = ca.vertcat(o["rX"], o["rZ"])
@@ -571,7 +589,7 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
     return LineBlock(res, force_a, force_b, worst, row, rows, [])
 
 
-def _joint_split(kind: SegmentKind, sigma, u, L, w, c, h, d):
+def _joint_split(kind: SegmentKind, sigma, u, L, w, c, h, d, law=None):
     """The top tension ``V`` of the segment below a joint and the boundary's reaction on
     the joint [N, upward], from the joint's signed unknown ``sigma``.
 
@@ -582,15 +600,16 @@ def _joint_split(kind: SegmentKind, sigma, u, L, w, c, h, d):
     the seabed, or ``d`` below the surface), reaches the boundary at all; otherwise ``V =
     sigma`` and no reaction. Without that condition a state with the segment's vertex at the
     joint, clear of the boundary, and a reaction holding the joint there would satisfy every
-    equation: a false root the solver can fall into (issue 20).
+    equation: a false root the solver can fall into (issue 20). ``law``: the segment's
+    bound stretch law when it is not Hooke's.
     """
     if kind.block == "lifted":
-        V1 = descent_force(ca.fmax(u, 0), h, w, c)
+        V1 = descent_force(ca.fmax(u, 0), h, w, c, law)
         reaches = w * L > -V1
         return (ca.if_else(reaches, ca.fmax(sigma, 0), sigma),
                 ca.if_else(reaches, ca.fmax(-sigma, 0), 0))
     if kind.block == "floating":
-        V1 = descent_force(ca.fmax(u, 0), d, -w, c)
+        V1 = descent_force(ca.fmax(u, 0), d, -w, c, law)
         reaches = -w * L > -V1
         return (ca.if_else(reaches, ca.fmin(sigma, 0), sigma),
                 ca.if_else(reaches, -ca.fmax(sigma, 0), 0))

@@ -9,6 +9,7 @@ joint, lumped-node lines through their nodes).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -17,12 +18,15 @@ from ..model import Case
 from ..physics.catenary import LegKind, air_part
 from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
+from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
 from .contact_results import contact_results, hawser_results
+from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
 from .prepared import per_case
 from .problem import LINE_COLUMNS, ROTATIONS
 from .result import LazyProfile, LegList, LegResult, Result
+from .stretch_params import numeric_law
 
 _PROFILE_POINTS = 51
 
@@ -50,15 +54,18 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
             u = float(xp[problem.line_offsets[i]])
             if kind.discrete:
                 nodes = np.array([r for r in node_table if int(r[0]) == i])
-                yield _discrete_result(case, line, kind, row, nodes)
+                lr = _discrete_result(case, line, kind, row, nodes)
             elif kind.multi:
                 rows = [dict(zip(SEGMENT_COLUMNS, r.tolist()))
                         for r in seg_table if int(r[0]) == i]
-                yield _multi_result(case, line, kind, row, rows, u)
+                lr = _multi_result(case, line, kind, row, rows, u)
             else:
-                yield _single_result(case, line, kind, row, u,
-                                     problem.contact_stiffness)
+                lr = _single_result(case, line, kind, row, u, problem.contact_stiffness)
+            if fibre:
+                lr = dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
+            yield lr
 
+    fibre = _has_fibre(case)
     legs = LegList(make_legs)
     poses = np.ravel(poses).tolist()
     bodies = []
@@ -68,11 +75,11 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
         d = [a - b for a, b in zip(q, q0)]
         bodies.append({"name": body.name, "x_m": q[0], "y_m": q[1], "z_m": q[2],
                        "roll_deg": math.degrees(q[3]), "pitch_deg": math.degrees(q[4]),
-                       "yaw_deg": math.degrees(q[5]),
+                       "yaw_deg": wrap_degrees(math.degrees(q[5])),
                        "offset": {"x_m": d[0], "y_m": d[1], "z_m": d[2],
                                   "roll_deg": math.degrees(d[3]),
                                   "pitch_deg": math.degrees(d[4]),
-                                  "yaw_deg": math.degrees(d[5])}})
+                                  "yaw_deg": wrap_degrees(math.degrees(d[5]))}})
     body = None
     if case.body is not None:
         off = bodies[0]["offset"]
@@ -95,6 +102,8 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
         f = lv[6 * k: 6 * k + 6]
         loads[name] = [f[0], f[1], f[5]] if legacy else f
     notes = list(notes) + _line_notes(case, problem, legs)
+    if fibre:
+        notes += fibre_notes(case, legs)
     effects = list(problem.effects) + _clump_effects(case)
     fenders, guides = (contact_results(problem, case, x, p, np.asarray(poses))
                        if problem.contacts else ((), ()))
@@ -135,6 +144,12 @@ def _has_hawsers(case) -> bool:
     """Whether ``case`` has a weightless one-segment line (a hawser)."""
     return any(line.line_type.weight_in_water == 0 and not line.multi_segment
                for line in case.lines)
+
+
+@per_case
+def _has_fibre(case) -> bool:
+    """Whether any segment of ``case``'s lines is fibre rope."""
+    return any(seg.line_type.fibre for line in case.lines for seg in line.segments)
 
 
 @per_case
@@ -215,7 +230,11 @@ def _weightless_slack(line, row, u, stiffness) -> bool:
     exceeds its tension as a length at the contact stiffness (the side of its
     complementarity that holds, :mod:`moorsolve.physics.contact`)."""
     lt = line.line_type
-    stretched = line.length * (1 + u / lt.ea) if lt.ea else line.length
+    law = numeric_law(lt)
+    if law is not None:
+        stretched = line.length * (1 + float(law.strain(max(u, 0.0))))
+    else:
+        stretched = line.length * (1 + u / lt.ea) if lt.ea else line.length
     return stretched - math.hypot(row["X"], row["Z"]) > u / stiffness
 
 
@@ -238,30 +257,33 @@ def _single_result(case, line, kind, row, u, stiffness) -> LegResult:
 
     def draw() -> dict:
         length, Vw, Xw, Zw = line.length, VF, X, Z
+        law = numeric_law(lt)
         if kind.block.air:
             # The water part up to the surface crossing; the part in air is added below.
             part = {k: float(v) for k, v in air_part(
-                H, VF, upper[2], lt.weight_in_air, 1.0 / lt.ea if lt.ea else 0.0).items()}
+                H, VF, upper[2], lt.weight_in_air, 1.0 / lt.ea if lt.ea else 0.0,
+                law=law.bound if law is not None else None).items()}
             length, Vw, Xw, Zw = (line.length - part["length"], part["V"], X - part["x"],
                                   -lower[2])
         if kind.lifted:
             h = max(lower[2] - env.seabed_z(lower[0], lower[1]), 0.0)
             prof = segment_profile(H=H, V=Vw, L=length, w=lt.weight_in_water, ea=lt.ea, h=h,
-                                   X=Xw, Z=Zw, n=_PROFILE_POINTS)
+                                   X=Xw, Z=Zw, n=_PROFILE_POINTS, law=law)
         elif kind.surface:
             start_z = upper[2] if kind.block.from_fairlead else lower[2]
             prof = surface_leg_profile(from_fairlead=kind.block.from_fairlead, H=H, VF=Vw,
                                        VA=VA, L=length, w=lt.weight_in_water, ea=lt.ea,
-                                       d=max(-start_z, 0.0), X=Xw, Z=Zw, n=_PROFILE_POINTS)
+                                       d=max(-start_z, 0.0), X=Xw, Z=Zw, n=_PROFILE_POINTS,
+                                       law=law)
         elif kind.sloped:
             prof = sloped_leg_profile(H=H, V=Vw, L=length, w=lt.weight_in_water, ea=lt.ea,
-                                      mu=mu, t=slope, X=Xw, Z=Zw, n=_PROFILE_POINTS)
+                                      mu=mu, t=slope, X=Xw, Z=Zw, n=_PROFILE_POINTS, law=law)
         else:
             prof = leg_profile(kind.block, H=H, V=Vw, L=length, w=lt.weight_in_water,
-                               ea=lt.ea, mu=mu, X=Xw, Z=Zw, n=_PROFILE_POINTS)
+                               ea=lt.ea, mu=mu, X=Xw, Z=Zw, n=_PROFILE_POINTS, law=law)
         if kind.block.air:
             prof = with_air_part(prof, H=H, V=VF, z_top=upper[2], w_air=lt.weight_in_air,
-                                 ea=lt.ea, L=line.length)
+                                 ea=lt.ea, L=line.length, law=law)
         profile = _orient(prof, lower, upper, kind.flipped, line.length)
         _add_wall_tension(profile, line, env)
         return profile
@@ -308,33 +330,34 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
     segments, joints = [], []
     for k, (seg, sk, r) in enumerate(zip(segments_lf, block.segments, rows)):
         lt = seg.line_type
+        law = numeric_law(lt)
         if sk.friction:
             prof = leg_profile(LegKind(elastic=sk.elastic, contact=True, friction=True),
                                H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                ea=lt.ea, mu=env.seabed.friction, X=r["X"], Z=r["Z"],
-                               n=_PROFILE_POINTS)
+                               n=_PROFILE_POINTS, law=law)
         elif k == len(rows) - 1 and block.reversed_top:
             # Solved from the top end: draw it from there, then turn it round.
             if sk.block == "floating":
                 back = surface_segment_profile(
                     H=r["H"], V=-r["VA"], L=seg.length, w=lt.weight_in_water, ea=lt.ea,
-                    d=max(-upper[2], 0.0), X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+                    d=max(-upper[2], 0.0), X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
             else:
                 back = segment_profile(H=r["H"], V=-r["VA"], L=seg.length,
                                        w=lt.weight_in_water, ea=lt.ea,
                                        h=max(upper[2] - env.seabed_z(*upper[:2]), 0.0),
-                                       X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS)
+                                       X=r["X"], Z=-r["Z"], n=_PROFILE_POINTS, law=law)
             prof = {"s": (seg.length - back["s"])[::-1], "x": (r["X"] - back["x"])[::-1],
                     "z": (r["Z"] + back["z"])[::-1], "tension": back["tension"][::-1]}
         elif sk.block == "floating":
             prof = surface_segment_profile(H=r["H"], V=r["VF"], L=seg.length,
                                            w=lt.weight_in_water, ea=lt.ea,
                                            d=max(-r["lower_z"], 0.0), X=r["X"], Z=r["Z"],
-                                           n=_PROFILE_POINTS)
+                                           n=_PROFILE_POINTS, law=law)
         else:
             prof = segment_profile(H=r["H"], V=r["VF"], L=seg.length, w=lt.weight_in_water,
                                    ea=lt.ea, h=r["lower_h"], X=r["X"], Z=r["Z"],
-                                   n=_PROFILE_POINTS)
+                                   n=_PROFILE_POINTS, law=law)
         sl = slice(1, None) if k else slice(None)
         parts["s"].append(arc_below + prof["s"][sl])
         arc_below += seg.length

@@ -141,14 +141,16 @@ def _parameters(case) -> np.ndarray:
            env.current.profile if env.current is not None else None)
     hit = _LINE_BLOCKS.get(key)
     if hit is not None and hit[0] is case.lines:
-        lines = hit[1]
+        lines, laws = hit[1], hit[2]
     else:
+        from .stretch_params import stretch_parameters
         lines = np.concatenate([layout.line_parameters(case),
                                 layout.segment_parameters(case, kinds)])
-        _LINE_BLOCKS.put(key, (case.lines, lines))
+        laws = stretch_parameters(case)
+        _LINE_BLOCKS.put(key, (case.lines, lines, laws))
     p = np.concatenate([layout.environment_parameters(case, 1.0), lines,
                         layout.body_parameters(case), layout.point_parameters(case),
-                        layout.contact_parameters(case)])
+                        layout.contact_parameters(case), laws])
     p.setflags(write=False)
     return p
 

@@ -41,6 +41,7 @@ from .discrete import discrete_leg
 from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
 from .contact import add_contacts, contact_points, element_reactions
+from .stretch_params import line_laws
 from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
                     seabed_height, single_block)
 from .prepared import HashedKey, line_ends_of, line_kinds_of, per_case
@@ -177,6 +178,9 @@ class EquilibriumProblem:
             effects.append("elastic")
         if not all(k.elastic for k in kinds):
             effects.append("inextensible")
+        if any(seg.line_type.stretch is not None for line in case.lines
+               for seg in line.segments):
+            effects.append("nonlinear_stretch")
         if any(k.contact for k in kinds):
             effects.append("seabed_contact")
         if any(k.surface for k in kinds):
@@ -278,6 +282,8 @@ class EquilibriumProblem:
 
         # -- lines ------------------------------------------------------------------------
         seg_values = self._segment_values(p)
+        # Stretch-law parameters per line and segment (None: Hooke or inextensible).
+        self.line_laws = line_laws(case, layout, p)
         line_res, line_rows, seg_rows, node_rows = [], [], [], []
         closing, tensions, line_weights = [], [], []
         current = self._current(E, p)

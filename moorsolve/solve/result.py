@@ -130,6 +130,8 @@ class LegResult:
     ``floating_length_m`` is the unstretched length floating on the free surface (a buoyant
     line, the analogue of ``grounded_length_m``) and ``touchup_from_anchor_m`` the horizontal
     distance from end A at which the line first reaches the surface (0 when nothing floats).
+    ``fibre_grounded_m`` is the length of fibre rope lying on the seabed [m] (None for a
+    line without fibre rope).
     """
 
     name: str
@@ -154,6 +156,7 @@ class LegResult:
     joints: tuple = ()
     fairlead_force: Optional[tuple] = None
     anchor_force: Optional[tuple] = None
+    fibre_grounded_m: Optional[float] = None
     floating_length_m: float = 0.0
     touchup_from_anchor_m: float = 0.0
 
@@ -199,6 +202,8 @@ class LegResult:
             d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
         if self.anchor_force is not None:
             d["anchor_force_N"] = [float(v) for v in self.anchor_force]
+        if self.fibre_grounded_m is not None:
+            d["fibre_grounded_length_m"] = self.fibre_grounded_m
         if self.segments:
             d["segments"] = [dict(s) for s in self.segments]
             d["joints"] = [dict(j) for j in self.joints]

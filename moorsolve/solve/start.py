@@ -22,6 +22,7 @@ from .layout import parameter_vector
 from .lines import _can_ground, discretised, line_kind
 from .concurrency import LockedLRU
 from .prepared import geometry_key, line_kinds_of, per_case
+from .stretch_params import start_ea
 
 #: Closed-form line states by scene (structure and parameters).
 _REST_STATES = LockedLRU(256)
@@ -87,8 +88,8 @@ def _scales(case: Case) -> tuple:
                  if discretised(case, line)]
     # A weightless line (a hawser) has no weight to set a tension: one percent of its
     # axial stiffness, a typical working strain.
-    tensions += [HAWSER_STRAIN * line.line_type.ea for line in case.lines
-                 if line.line_type.weight_in_water == 0 and line.line_type.ea
+    tensions += [HAWSER_STRAIN * start_ea(line.line_type) for line in case.lines
+                 if line.line_type.weight_in_water == 0 and line.line_type.elastic
                  and not line.multi_segment]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
@@ -127,13 +128,13 @@ def _compute_rest_states(case: Case) -> list:
             g = case.environment.seabed.gradient
             t = (g[0] * (upper[0] - lower[0]) + g[1] * (upper[1] - lower[1])) / X
             u, V = initial_state(dataclasses.replace(block, sloped=False), X, Z - t * X,
-                                 line.length, lt.weight_in_water, lt.ea)
+                                 line.length, lt.weight_in_water, start_ea(lt))
             states.append((u, V + max(u, 0.0) * t))
             continue
         # A buoyant line solved from its lower end starts from its depth there.
         gap = -lower[2] if block.surface and not block.from_fairlead else 0.0
-        states.append(initial_state(block, X, Z, line.length, lt.weight_in_water, lt.ea,
-                                    max(gap, 0.0)))
+        states.append(initial_state(block, X, Z, line.length, lt.weight_in_water,
+                                    start_ea(lt), max(gap, 0.0)))
     return states
 
 

@@ -76,11 +76,12 @@ def accuracy_ladder(case: Case, *, tolerances=TOLERANCES, solvers=("ipopt", "new
 
 def _fidelity_variants(case: Case):
     yield "as declared", case
-    if any(lt.ea is not None for lt in case.line_types.values()):
-        types = {name: dataclasses.replace(lt, ea=None) for name, lt in case.line_types.items()}
+    if any(lt.elastic for lt in case.line_types.values()):
+        types = {name: dataclasses.replace(lt, ea=None, stretch=None)
+                 for name, lt in case.line_types.items()}
         legs = tuple(dataclasses.replace(
             leg, segments=tuple(dataclasses.replace(
-                seg, line_type=dataclasses.replace(seg.line_type, ea=None))
+                seg, line_type=dataclasses.replace(seg.line_type, ea=None, stretch=None))
                 for seg in leg.segments)) for leg in case.legs)
         yield "inextensible lines", dataclasses.replace(case, line_types=types, lines=legs)
     if case.environment.seabed.friction > 0:

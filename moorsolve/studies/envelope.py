@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import CaseError
 from ..model import Case
+from ..physics.kinematics import wrap_degrees
 from ..model.directions import direction_edit, wrap_deg
 from .sweep import sweep
 
@@ -186,7 +187,8 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         yaw0 = target.orientation_deg[2]
         x = np.where(solved, table[f"{target.name}.x_m"].to_numpy(float) - x0, np.nan)
         y = np.where(solved, table[f"{target.name}.y_m"].to_numpy(float) - y0, np.nan)
-        yaw = np.where(solved, table[f"{target.name}.yaw_deg"].to_numpy(float) - yaw0, np.nan)
+        yaw = np.where(solved, wrap_degrees(
+            table[f"{target.name}.yaw_deg"].to_numpy(float) - yaw0), np.nan)
     elif case.body is not None:
         x = np.where(solved, table["x_m"].to_numpy(float), np.nan)
         y = np.where(solved, table["y_m"].to_numpy(float), np.nan)

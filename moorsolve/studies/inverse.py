@@ -31,7 +31,7 @@ import casadi as ca
 import numpy as np
 
 from ..errors import ConvergenceError
-from ..physics.catenary import LegKind, leg_function
+from ..physics.catenary import (LegKind, leg_function)
 
 __all__ = ["InverseResult", "minimum_anchor_distance", "required_chain_length",
            "uplift_at_distance"]

@@ -27,6 +27,7 @@ from ..model import Case
 from ..solve.cache import get_problem
 from ..solve.problem import LINE_COLUMNS
 from ..solve.result import Result
+from ..solve.stretch_params import baranov_n_column, stiffness_scale_column
 from .stiffness import as_result
 
 #: Line outputs available to :func:`sensitivity`.
@@ -161,10 +162,15 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
             raise ValueError(f"{name}: the case has no seabed friction (0 builds none)")
         return col
     m = _TYPE_PATH.match(name)
+    if m and m.group(2) in ("stiffness_scale", "n"):
+        # The stretch law of every segment of the type (solve/stretch_params.py).
+        columns = {"stiffness_scale": stiffness_scale_column, "n": baranov_n_column}
+        return columns[m.group(2)](case, layout, m.group(1))
     if m:
         field = m.group(2)
         if field not in ("ea", "weight_in_water"):
-            raise ValueError(f"{name}: line-type parameters are ea and weight_in_water")
+            raise ValueError(f"{name}: line-type parameters are ea, weight_in_water, n "
+                             "(Baranov) and stiffness_scale")
         used = [(i, k, seg) for i, line in enumerate(case.lines)
                 for k, seg in enumerate(line.segments) if seg.line_type.name == m.group(1)]
         if not used:
@@ -174,7 +180,8 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
             # line's own segment parameters, else the line's).
             if field == "ea":
                 if seg.line_type.ea is None:
-                    raise ValueError(f"{name}: line type {m.group(1)!r} is inextensible")
+                    raise ValueError(f"{name}: line type {m.group(1)!r} "
+                                     f"{_no_ea(seg.line_type)}")
                 col[_segment_slot(case, problem, i, k, "ea_inv")] += -1.0 / seg.line_type.ea ** 2
             else:
                 col[_segment_slot(case, problem, i, k, "weight")] += 1.0
@@ -198,7 +205,7 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
             # A one-segment lumped-node line: its segment's own parameters.
             key = "ea_inv" if field == "ea" else field
             if field == "ea" and line.line_type.ea is None:
-                raise ValueError(f"{name}: leg {line.name}'s line is inextensible (no ea)")
+                raise ValueError(f"{name}: leg {line.name}'s line {_no_ea(line.line_type)}")
             col[_segment_slot(case, problem, i, 0, key)] = (
                 -1.0 / line.line_type.ea ** 2 if field == "ea" else 1.0)
             return col
@@ -210,7 +217,7 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
                              "like the square root of the depth): there is no derivative")
         if field == "ea":
             if line.line_type.ea is None:
-                raise ValueError(f"{name}: leg {line.name}'s line is inextensible (no ea)")
+                raise ValueError(f"{name}: leg {line.name}'s line {_no_ea(line.line_type)}")
             col[line_slot(i, "ea_inv")] = -1.0 / line.line_type.ea ** 2
         elif field == "anchor_z" and line.a.on_seabed:
             raise ValueError(f"{name}: leg {line.name}'s anchor lies on the seabed; raising "
@@ -226,9 +233,17 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         return col
     raise ValueError(
         f"parameter {name!r}: must be legs[NAME].FIELD with FIELD in "
-        f"{', '.join(_LEG_PARAMETERS)}, line_types[NAME].ea or .weight_in_water, "
+        f"{', '.join(_LEG_PARAMETERS)}, line_types[NAME].ea, .weight_in_water, .n or "
+        ".stiffness_scale, "
         f"{', '.join(_ENV_PARAMETERS)}, environment.seabed.friction, body.loads.force[0-2] "
         "or bodies[NAME].loads.force[0-5]")
+
+
+def _no_ea(line_type) -> str:
+    """Why a line type has no ``ea`` to differentiate by."""
+    if line_type.stretch is not None:
+        return "follows a stretch law (use line_types[NAME].stiffness_scale)"
+    return "is inextensible (no ea)"
 
 
 def _segment_slot(case: Case, problem, i: int, k: int, key: str) -> int:
@@ -320,7 +335,10 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
         ``legs[NAME].segments[K].length`` (item K of the case file's segment list, clumps
         counted), ``legs[NAME].anchor_x | anchor_y | anchor_z | fairlead_x | fairlead_y |
         fairlead_z``, ``line_types[NAME].ea`` and ``.weight_in_water`` (every segment of
-        the type in every line), ``environment.wind.speed``,
+        the type in every line), ``line_types[NAME].n`` (Baranov's coefficient) and
+        ``.stiffness_scale`` (per unit factor on the tension at every strain: a stiffer
+        rope; any stretch law or Hooke, every segment of the type),
+        ``environment.wind.speed``,
         ``environment.current.speed``, ``environment.waves.hs`` and their
         ``toward_deg``, ``environment.seabed.friction``, ``body.loads.force[0|1|2]``,
         ``bodies[NAME].loads.force[0-5]``.

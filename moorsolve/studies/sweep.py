@@ -44,6 +44,7 @@ from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from ..model.paths import concrete_paths
 from ..model.units import KINDS, recording
+from ..physics.kinematics import wrap_degrees
 from ..solve.cache import get_problem
 from ..solve.equilibrium import over_mbl, rest_point, solve, turn_jump
 from ..solve.stability import assess
@@ -644,10 +645,11 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
         if has_body:
-            table.body[row] = (body[0], body[1], math.degrees(body[2]))
+            table.body[row] = (body[0], body[1], wrap_degrees(math.degrees(body[2])))
         if table.bodies:
             pose = np.asarray(body[3:], dtype=float).reshape(-1, 6).copy()
             pose[:, 3:] = np.degrees(pose[:, 3:])
+            pose[:, 5] = wrap_degrees(pose[:, 5])
             table.poses[row] = pose.ravel()
         table.t_fair[row], table.t_anchor[row] = tf, ta
         table.reactions[row] = reactions

@@ -497,7 +497,7 @@ def test_the_version_and_why():
     ("1 chain 1 2 420 20 -", "1 chain 1 R1A 420 20 -", "'R1A': unknown rod 1"),
     ("2 Coupled 10 0 -10 0 0 0 0", "2 Glued 10 0 -10 0 0 0 0",
      "column 'Attachment': unknown attachment 'Glued'"),
-    ("chain 0.1 90 5e8", "chain 0.1 90 ea.txt", "names a tension-strain curve file"),
+    ("chain 0.1 90 5e8", "chain 0.1 90 ea.txt", "curve file 'ea.txt' not found"),
     ("chain 0.1 90 5e8", "chain 0.1 90 SYROPE:a|1|2", "SYROPE"),
     ("2 Coupled 10 0 -10 0 0 0 0", "2 Free 10 0 -10 0 0 5 0 0 0 0 0",
      "a steady horizontal force (FX 5, FY 0 N)"),

@@ -12,7 +12,7 @@ import pytest
 from scipy.optimize import brentq, fsolve
 
 import moorsolve
-from moorsolve.physics.catenary import LegKind, evaluate_leg
+from moorsolve.physics.catenary import (LegKind, evaluate_leg)
 from moorsolve.physics.profile import leg_profile
 
 KGF = 9.80665

@@ -25,8 +25,7 @@ from hypothesis import strategies as st
 from hypothesis_budget import examples
 from reference_ode import integrate_leg
 
-from moorsolve.physics.catenary import (_H_FLOOR, LEG_INPUTS, LegKind, evaluate_leg,
-                                        leg_function)
+from moorsolve.physics.catenary import (_H_FLOOR, LEG_INPUTS, LegKind, evaluate_leg, leg_function)
 
 REL = 1e-8
 
@@ -157,12 +156,15 @@ def test_neutral_line_is_a_straight_stretched_bar(angle, T, L, ea):
 
 
 def _span_map(kind):
-    """(u, V, X, Z, L, w, ea_inv, mu) -> span residuals and their Jacobian in (u, V)."""
+    """(u, V, X, Z, L, w, ea_inv, mu) -> span residuals and their Jacobian in (u, V); a
+    kind with a stretch law (tests/physics/test_stretch_laws.py) takes its parameters last."""
     args = {n: ca.SX.sym(n) for n in LEG_INPUTS}
+    if kind.law is not None:
+        args["law"] = ca.SX.sym("law", kind.law.n_params)
     f = leg_function(kind).call(args)
     r = ca.vertcat(f["rX"], f["rZ"])
     uv = ca.vertcat(args["u"], args["V"])
-    others = [args[n] for n in LEG_INPUTS if n not in ("u", "V")]
+    others = [v for n, v in args.items() if n not in ("u", "V")]
     return ca.Function("F", [uv, *others], [r, ca.jacobian(r, uv)])
 
 

@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 from hypothesis_budget import examples
 from reference_ode import integrate_from_anchor
 
-from moorsolve.physics.catenary import evaluate_surface_leg
+from moorsolve.physics.segments import evaluate_surface_leg
 
 REL = 1e-8
 REGIMES = ("suspended", "float_to_fairlead", "float_two_sided", "slack", "edge")

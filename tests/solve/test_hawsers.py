@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.physics.catenary import LegKind, evaluate_leg, weightless_line_function
+from moorsolve.physics.catenary import (LegKind, evaluate_leg, weightless_line_function)
 
 EA = 2.0e7          # [N] a synthetic hawser
 BOLLARD_X = -30.0   # [m] bollards on the quay, the body's fairleads at x = 0

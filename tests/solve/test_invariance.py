@@ -29,7 +29,7 @@ from hypothesis import strategies as st
 from hypothesis_budget import examples
 
 from moorsolve import ConvergenceError, load_case, solve
-from moorsolve.physics.catenary import LEG_INPUTS, LegKind, leg_function
+from moorsolve.physics.catenary import (LEG_INPUTS, LegKind, leg_function)
 
 SETTINGS = {"deadline": None, "suppress_health_check": [HealthCheck.too_slow]}
 

@@ -15,8 +15,8 @@ import yaml
 from scipy.integrate import solve_ivp
 
 from moorsolve import CaseError, load_case, solve
-from moorsolve.physics.catenary import (LEG_OUTPUTS, LegKind, evaluate_leg,
-                                        sloped_leg_function)
+from moorsolve.physics.catenary import (LEG_OUTPUTS, LegKind, evaluate_leg)
+from moorsolve.physics.sloped import sloped_leg_function
 from conftest import ROOT
 
 CASES = ROOT / "cases"

@@ -229,7 +229,8 @@ def test_drag_anchor_no_uplift_closed_form():
 
 # ---- a small moored body: lengths and anchor distances, several active constraints -------
 
-def four_leg_case():
+def four_leg_case(line_type=None):
+    """Four legs of 290 m round a body; ``line_type`` (case-file data) replaces the chain."""
     legs = []
     for i, ang in enumerate((0, 90, 180, 270)):
         a = math.radians(ang)
@@ -239,15 +240,16 @@ def four_leg_case():
                      "segments": [{"type": "chain", "length": 290.0}]})
     return moorsolve.load_case({
         "name": "four legs", "environment": {"depth": 60.0},
-        "line_types": {"chain": {"weight_in_water": 1200.0, "ea": 6e8, "mbl": 6e6}},
+        "line_types": {"chain": line_type or {"weight_in_water": 1200.0, "ea": 6e8,
+                                              "mbl": 6e6}},
         "body": {"free": ["surge", "sway", "yaw"], "loads": {"force": [4e5, 1.5e5, 2e6]}},
         "legs": legs})
 
 
-@pytest.fixture(scope="module")
-def four_legs():
-    case = four_leg_case()
-    study = load_study({
+def four_leg_study(case):
+    """Cost of line and anchors; two length groups and the anchor radius; offset, grounded
+    length and safety factor limits over two storm headings and a calm."""
+    return load_study({
         "objective": "cost", "currency": "EUR",
         "line_types": {"chain": {"cost_per_length": 250}}, "anchor_cost": 40000,
         "variables": {
@@ -257,6 +259,12 @@ def four_legs():
         "limits": {"offset_limit": "6 m", "min_grounded_length": "15 m", "safety_factor": 2},
         "load_cases": [{"name": "storm", "headings": [0, 90]},
                        {"name": "calm", "set": {"body.loads.force": [0, 0, 0]}}]}, case)
+
+
+@pytest.fixture(scope="module")
+def four_legs():
+    case = four_leg_case()
+    study = four_leg_study(case)
     return case, study, optimise(case, study)
 
 
@@ -378,3 +386,16 @@ def test_network_case_optimises_its_lines_and_verifies():
     assert offset <= 30.0 * (1 + 1e-6)
     # The offset limit binds: a slightly longer line would drift past it.
     assert offset == pytest.approx(30.0, rel=1e-4) or length == pytest.approx(885.0)
+
+
+def test_optimisation_through_a_table_law_is_verified_and_kkt():
+    """The four-leg design study with a table-law rope (issue 17): the optimum holds in
+    independent solves and is a KKT point by their central differences (derivatives flow
+    through the stretch law)."""
+    case = four_leg_case({"weight_in_water": 1200.0, "mbl": 6e6, "stretch": {
+        "model": "table", "strain": [0.002, 0.004, 0.007, 0.01],
+        "tension": [2e5, 6e5, 1.5e6, 2.6e6]}})
+    study = four_leg_study(case)
+    opt = optimise(case, study)
+    assert opt.verified and opt.objective_optimum < opt.objective_start
+    check_kkt(case, study, opt, step=1e-3)

@@ -1,0 +1,113 @@
+"""MoorDyn tension-strain curve files: a line type's EA given as a file name, in and out.
+
+MoorDyn reads a line type's ``EA`` column as a number or, failing that, as the name of a
+file of strain and tension (MoorDyn-C v2 ``MoorDyn2::read_curve``: a token that does not
+parse as a number; MoorDyn-F: a token holding a letter other than ``e``/``E``), relative to
+the input file's folder. v2 may add dynamic-stiffness values after bars (``poly.txt|3e8``).
+The file (MoorDyn documentation, "Nonlinear Stiffness (EA) Inputs")::
+
+    ----Polyester----            three header lines
+    Strain    Tension
+    (-)       (N)
+    0.0       0.0                then one row per point: strain [-], tension [N]
+    0.01      1.2e5
+
+MoorDyn takes at most 30 points (``nCoef``), splits rows on blanks, and its C reader rejects
+an empty line, so a file it reads has no blank line, not even a final newline; the writer
+here writes it so. (MoorPy's reader wants the name in quotes and a closing ``---`` line,
+which MoorDyn would not read: MoorDyn's form is written.) MoorDyn interpolates linearly
+and holds the last tension beyond the table; moorsolve interpolates the same rows by a
+monotone cubic and continues linearly (:mod:`moorsolve.physics.stretch`): the two agree at
+the rows.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+from ..errors import CaseError
+
+__all__ = ["MAX_POINTS", "is_number", "read_curve", "curve_text", "curve_file_name",
+           "sample_law"]
+
+#: MoorDyn's ``nCoef``: the most points a curve file may hold.
+MAX_POINTS = 30
+
+_FORTRAN_EXPONENT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))[dD]([+-]?\d+)$")
+
+
+def _float(token: str) -> float:
+    m = _FORTRAN_EXPONENT.match(token)
+    return float(f"{m.group(1)}e{m.group(2)}" if m else token)
+
+
+def is_number(token: str) -> bool:
+    """Whether MoorDyn reads an EA token as a number (else it names a curve file)."""
+    try:
+        return math.isfinite(_float(token))
+    except ValueError:
+        return False
+
+
+def read_curve(folder: Path, token: str, error) -> dict:
+    """The table law of curve file ``token`` (quotes stripped) in ``folder``.
+
+    ``error(message)`` makes the exception to raise (the MoorDyn file and line). Returns
+    ``{"model": "table", "strain": [...], "tension": [...]}`` as a case file holds it.
+    """
+    name = token.strip().strip("'\"")
+    path = folder / name
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except FileNotFoundError:
+        raise error(f"column 'EA': curve file {name!r} not found in {str(folder)!r} (MoorDyn "
+                    "reads it relative to the input file)") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise error(f"column 'EA': cannot read curve file {name!r}: {exc}") from None
+    strain, tension = [], []
+    for number, line in enumerate(lines[3:], start=4):
+        words = line.replace(",", " ").split()
+        if not words or words[0].startswith("---"):
+            break
+        try:
+            e, t = _float(words[0]), _float(words[1])
+        except (ValueError, IndexError):
+            raise error(f"column 'EA': curve file {name}:{number}: {line.strip()!r} is not a "
+                        "row 'strain tension'") from None
+        strain.append(e)
+        tension.append(t)
+    if len(strain) < 2:
+        raise error(f"column 'EA': curve file {name} has {len(strain)} rows after its three "
+                    "header lines; MoorDyn needs at least 2 (strain, tension)")
+    if len(strain) > MAX_POINTS:
+        raise error(f"column 'EA': curve file {name} has {len(strain)} rows; MoorDyn reads at "
+                    f"most {MAX_POINTS}")
+    return {"model": "table", "strain": strain, "tension": tension}
+
+
+def curve_file_name(prefix: str, line_type: str) -> str:
+    """The curve file of a line type: ``<prefix><type>_ea.txt`` (letters, so MoorDyn reads
+    it as a name; no folder, so it sits beside the input file)."""
+    safe = re.sub(r"[^A-Za-z0-9_.-]", "_", line_type)
+    return f"{prefix}{safe}_ea.txt"
+
+
+def curve_text(title: str, strain, tension) -> str:
+    """A MoorDyn curve file: three header lines, then ``strain tension`` rows; no blank
+    line and no final newline (MoorDyn-C's reader rejects an empty line)."""
+    if len(strain) > MAX_POINTS:
+        raise CaseError("stretch", f"{len(strain)} rows; MoorDyn reads at most {MAX_POINTS}")
+    rows = [f"---- {title} ----", "Strain Tension", "(-) (N)"]
+    rows += [f"{e!r} {t!r}" for e, t in zip(strain, tension)]
+    return "\n".join(rows)
+
+
+def sample_law(law, mbl: float | None) -> tuple:
+    """``(strain, tension)`` rows for MoorDyn of a law it has no form for (Baranov's):
+    ``MAX_POINTS`` rows evenly spaced in strain, so that MoorDyn's linear interpolation of
+    ``T = (eps/n)^2`` errs alike everywhere, up to the MBL (or 20 % strain without one)."""
+    eps_max = law.n * math.sqrt(mbl) if mbl else 0.2
+    strain = [eps_max * i / (MAX_POINTS - 1) for i in range(MAX_POINTS)]
+    return strain, [(e / law.n) ** 2 for e in strain]
