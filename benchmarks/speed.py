@@ -460,7 +460,7 @@ def main(argv=None) -> int:
         out["dask"] = dask_table(n_rows)
     if "scaling" not in args.skip:
         print("== scaling: one body on N lines")
-        out["scaling"] = scaling(sizes, budget_s=900.0, moorpy_max=192)
+        out["scaling"] = scaling(sizes, budget_s=300.0, moorpy_max=192)
         plot_scaling(out["scaling"], ROOT / "docs" / "scaling.png")
     Path(args.out).write_text(json.dumps(out, indent=1) + "\n")
     print(f"wrote {args.out}")

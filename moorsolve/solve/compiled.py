@@ -283,6 +283,8 @@ class CompiledFunction:
         sizes = [fn.nnz_out(i) for i in range(fn.n_out())]
         ends = np.cumsum([0] + sizes)
         self._slices = [slice(int(a), int(b)) for a, b in zip(ends[:-1], ends[1:])]
+        #: Where each output lies in :attr:`output_buffer`.
+        self.output_slices = self._slices
         self.output_buffer = np.zeros(max(int(ends[-1]), 1))
         self.outputs = [self.output_buffer[sl] for sl in self._slices]
         self._iw = np.zeros(max(n_iw, 1), dtype=np.int64)

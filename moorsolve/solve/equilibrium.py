@@ -428,6 +428,15 @@ def turn_jump(problem, x_rest, x) -> bool:
     return False
 
 
+def turn_jumps(problem, x_rest, X: np.ndarray) -> np.ndarray:
+    """:func:`turn_jump` of every row of ``X`` (a scaled point a row), as an array."""
+    jumped = np.zeros(len(X), bool)
+    for j, rotational in enumerate(problem.rotational):
+        if rotational:
+            jumped |= np.abs(X[:, j] - x_rest[j]) * problem.x_scale[j] > YAW_JUMP
+    return jumped
+
+
 def _finite(x: np.ndarray) -> np.ndarray:
     """``x`` with any non-finite entry replaced by 0 (for reporting a failed point)."""
     return x if np.isfinite(x).all() else np.where(np.isfinite(x), x, 0.0)
@@ -647,6 +656,6 @@ def _along_a_boundary(case, result) -> str:
     return ""
 
 
-__all__ = ["solve", "rest_point", "turn_jump", "polish", "over_mbl", "get_problem",
+__all__ = ["solve", "rest_point", "turn_jump", "turn_jumps", "polish", "over_mbl", "get_problem",
            "initial_point",
            "SOLVERS", "YAW_JUMP"]

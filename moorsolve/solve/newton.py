@@ -26,13 +26,20 @@ the outputs, and so are the body position and the leg tensions a sweep records.
 
 from __future__ import annotations
 
+import logging
+
 import casadi as ca
 import numpy as np
+
+log = logging.getLogger(__name__)
 
 #: Most node unknowns whose Schur complement is solved symbolically (beyond: sparse QR).
 _ARROW_NODES = 24
 #: Largest change of any scaled unknown in one Newton step.
 STEP_LIMIT = 1.0
+#: Largest problem (unknowns) whose kernel is compiled: beyond (some 190 one-segment lines)
+#: the C compiler takes minutes for about twice the speed of the interpreted kernel.
+COMPILE_MAX_UNKNOWNS = 400
 #: Unrolled iterations; a point still unconverged after them reports status 2.
 MAX_ITERATIONS = 40
 _BACKTRACKS = 12
@@ -228,8 +235,13 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     status = ca.if_else(done, CONVERGED, ca.if_else(stall, STALLED, MAX_ITER))
     cert = ca.vertcat(*problem.certificate(xk, p))
     body, t_fair, t_anchor, reactions = problem.summary(xk, p)
+    # The stability test of the point reached (1: clearly stable; see .stability), so a
+    # sweep judges each point without another call.
+    from .stability import clearly_stable_graph, stiffness_graph
+    stable = (clearly_stable_graph(problem, stiffness_graph(problem, problem.jacobian(xk, p)))
+              if not problem.smoothed else ca.MX(0))
     return ca.Function("moorsolve_newton", [x, p, tol],
-                       [xk, status, count, cert, body, t_fair, t_anchor, reactions],
+                       [xk, status, count, cert, body, t_fair, t_anchor, reactions, stable],
                        ["x0", "p", "tol"], list(_OUTPUTS))
 
 
@@ -244,7 +256,7 @@ def kernel_key(problem) -> str:
 
 #: Outputs of the kernel (:func:`newton_function`).
 _OUTPUTS = ("x", "status", "iterations", "certificate", "body", "fairlead_tension",
-            "anchor_tension", "reactions")
+            "anchor_tension", "reactions", "clearly_stable")
 
 
 class NewtonKernel:
@@ -261,12 +273,18 @@ class NewtonKernel:
 
         self.problem = problem
         self.function = newton_function(problem)
+        label = f"the Newton kernel of {problem.n_legs} lines"
+        if compile and problem.n_x > COMPILE_MAX_UNKNOWNS:
+            # Its C would take minutes to compile for about twice the speed: it stays
+            # interpreted (its time per solve grows linearly, as compiled).
+            log.info("%s runs interpreted: %d unknowns (compiling stops past %d)", label,
+                     problem.n_x, COMPILE_MAX_UNKNOWNS)
+            compile = False
         # The problem's post function (certificate, stiffness, report) goes into the
         # same library: a solved point becomes a Result without an interpreted call.
         self._library = Library(
             [self.function, problem.post_function()], key=kernel_key(problem),
-            label=f"the Newton kernel of {problem.n_legs} lines",
-            mode=None if compile else "off")
+            label=label, mode=None if compile else "off")
         self._lib = self._post = None
 
     @property
@@ -296,6 +314,22 @@ class NewtonKernel:
         lib.inputs[1][:] = p
         lib()
         return dict(zip(lib.output_names, lib.copy_outputs(shaped=True)))
+
+    def run_many(self, x0: np.ndarray, P: np.ndarray, tol: float) -> dict:
+        """The kernel from ``x0`` at every row of ``P`` (a parameter vector each): every
+        output as an array with one row per run (a load table's rows)."""
+        if not self.compiled:
+            runs = [self.raw(x0, p, tol) for p in P]
+            return {name: np.array([r[k] for r in runs]) for k, name in enumerate(_OUTPUTS)}
+        lib = self._lib
+        out = np.empty((len(P), lib.output_buffer.size))
+        lib.inputs[0][:] = x0
+        lib.inputs[2][0] = tol
+        for row, p in enumerate(P):
+            lib.inputs[1][:] = p
+            lib()
+            out[row] = lib.output_buffer
+        return {name: out[:, sl] for name, sl in zip(_OUTPUTS, lib.output_slices)}
 
     def raw(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
         """Run the kernel; its outputs in order, as views of this kernel's buffers

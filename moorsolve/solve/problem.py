@@ -615,6 +615,22 @@ class EquilibriumProblem:
                   and moment_ok and penetration <= tol * self.length_scale)
         return ok, force, moment, relative
 
+    def judge_rows(self, cert: np.ndarray, tol: float) -> tuple:
+        """:meth:`judge` of every row of ``cert`` (a certificate a row, as the kernel
+        returns it): arrays ``(certified, force, moment, relative)``."""
+        cert = np.asarray(cert, dtype=float)
+        force, moment, t_max = cert[:, 0], cert[:, 1], cert[:, 2]
+        zero = np.zeros(len(cert))
+        penetration = cert[:, 3] if cert.shape[1] > 3 else zero
+        complementarity = cert[:, 4] if cert.shape[1] > 4 else zero
+        scale = np.where(t_max > 0, t_max, self.force_scale)
+        with np.errstate(invalid="ignore"):
+            relative = np.maximum(force, complementarity) / scale
+            ok = (np.isfinite(relative) & np.isfinite(moment) & (relative <= tol)
+                  & (moment <= tol * scale * self.moment_scale / self.force_scale)
+                  & (penetration <= tol * self.length_scale))
+        return ok, force, moment, relative
+
     # -- everything a Result needs, in one evaluation -------------------------------------
     def post_function(self) -> ca.Function:
         """``post(x, p)``: the certificate ``[force, moment, t_max]``, the condensed

@@ -46,7 +46,7 @@ from ..model.paths import concrete_paths
 from ..model.units import KINDS, recording
 from ..physics.kinematics import wrap_degrees
 from ..solve.cache import get_problem
-from ..solve.equilibrium import over_mbl, rest_point, solve, turn_jump
+from ..solve.equilibrium import over_mbl, rest_point, solve, turn_jumps
 from ..solve.stability import assess
 from ..solve.start import initial_point
 from ..solve.layout import parameter_vector
@@ -621,43 +621,88 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
                 allow_overload=False, from_rest=False):
     """The kernel at every point: from the previous point's solution (a grid's snake), or
     with ``from_rest`` from the rest state as a single solve starts (a load table's rows,
-    which need not be neighbours). A point that does not certify, is not clearly stable
-    or (from rest) turns a body far is left for a full solve."""
+    which need not be neighbours: run as one batch, :func:`_solve_rows`). A point that
+    does not certify, is not clearly stable or (from rest) turns a body far is left for a
+    full solve."""
+    if from_rest:
+        _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                    allow_overload)
+        return
     n_p = problem.n_p
     # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
-    check_stability = any(owner == "body" for owner, _, _ in problem.nodes)
+    check_stability = _has_body_nodes(problem)
     x_prev = x_rest.copy()
     for row, i in enumerate(points):
         p = vectors[i, :n_p]
-        x, _, iterations, cert, body, tf, ta, reactions = kernel.raw(x_prev, p, tol)
+        x, _, iterations, cert, body, tf, ta, reactions, stable = kernel.raw(x_prev, p, tol)
         ok, force, moment, relative = problem.judge(*cert, tol=tol)
-        if not ok or (from_rest and turn_jump(problem, x_rest, x)):
+        if not ok:
             continue            # left for the full solve
-        if check_stability and not _stable(problem, kernel, x, p):
+        if check_stability and not (stable[0] > 0.5 or _stable(problem, x, p)):
             continue            # the full solve looks for the stable equilibrium
-        if not from_rest:
-            x_prev[:] = x
-        mbl = vectors[i, n_p:]
-        over = np.maximum(tf, ta) > mbl
+        x_prev[:] = x
         table.done[row] = True
-        table.converged[row] = allow_overload or not over.any()
-        table.solver[row] = "newton"
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
-        if has_body:
-            table.body[row] = (body[0], body[1], wrap_degrees(math.degrees(body[2])))
-        if table.bodies:
-            pose = np.asarray(body[3:], dtype=float).reshape(-1, 6).copy()
-            pose[:, 3:] = np.degrees(pose[:, 3:])
-            pose[:, 5] = wrap_degrees(pose[:, 5])
-            table.poses[row] = pose.ravel()
-        table.t_fair[row], table.t_anchor[row] = tf, ta
-        table.reactions[row] = reactions
-        if over.any():
-            table.reason[row] = "overload: " + "; ".join(
-                f"leg {table.names[k]} would break: tension "
-                f"{max(tf[k], ta[k]) / 1e3:.1f} kN > MBL {mbl[k] / 1e3:.1f} kN"
-                for k in np.flatnonzero(over))
+        _record(table, [row], body[None, :], tf[None, :], ta[None, :], reactions[None, :],
+                vectors[i:i + 1, n_p:], has_body, allow_overload)
+
+
+def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                allow_overload):
+    """:func:`_solve_fast` for a load table: the kernel from the rest state at every row
+    in one batch (:meth:`~moorsolve.solve.newton.NewtonKernel.run_many`), judged and
+    recorded as arrays. A row is kept when it certifies, no angle turned
+    further than a single solve's Newton step takes (:func:`turn_jumps`), and the kernel's
+    stability test passes (else the full check, :func:`_stable`)."""
+    n_p = problem.n_p
+    out = kernel.run_many(x_rest, vectors[points, :n_p], tol)
+    x = out["x"]
+    ok, force, moment, relative = problem.judge_rows(out["certificate"], tol)
+    ok &= np.isfinite(x).all(axis=1) & ~turn_jumps(problem, x_rest, x)
+    if _has_body_nodes(problem):
+        doubtful = np.flatnonzero(ok & ~(out["clearly_stable"][:, 0] > 0.5))
+        for row in doubtful:
+            ok[row] = _stable(problem, x[row], vectors[points[row], :n_p])
+    rows = np.flatnonzero(ok)
+    table.done[rows] = True
+    table.iterations[rows] = out["iterations"][rows, 0]
+    table.residual[rows] = np.column_stack([force, moment, relative])[rows]
+    _record(table, rows, out["body"][rows], out["fairlead_tension"][rows],
+            out["anchor_tension"][rows], out["reactions"][rows],
+            vectors[points[rows], n_p:], has_body, allow_overload)
+
+
+def _record(table, rows, body, tf, ta, reactions, mbl, has_body, allow_overload) -> None:
+    """Write the kernel's outputs of certified ``rows`` (arrays with one row each) into
+    ``table``: body pose, tensions, reactions, and an overload against ``mbl``."""
+    if len(rows) == 0:
+        return
+    rows = np.asarray(rows)
+    for row in rows.tolist():
+        table.solver[row] = "newton"
+    if has_body:
+        table.body[rows] = np.column_stack(
+            [body[:, 0], body[:, 1], wrap_degrees(np.degrees(body[:, 2]))])
+    if table.bodies:
+        pose = body[:, 3:].reshape(len(rows), -1, 6).copy()
+        pose[:, :, 3:] = np.degrees(pose[:, :, 3:])
+        pose[:, :, 5] = wrap_degrees(pose[:, :, 5])
+        table.poses[rows] = pose.reshape(len(rows), -1)
+    table.t_fair[rows], table.t_anchor[rows] = tf, ta
+    table.reactions[rows] = reactions
+    over = np.maximum(tf, ta) > mbl
+    table.converged[rows] = allow_overload | ~over.any(axis=1)
+    for k in np.flatnonzero(over.any(axis=1)).tolist():
+        row = int(rows[k])
+        table.reason[row] = "overload: " + "; ".join(
+            f"leg {table.names[j]} would break: tension "
+            f"{max(tf[k, j], ta[k, j]) / 1e3:.1f} kN > MBL {mbl[k, j] / 1e3:.1f} kN"
+            for j in np.flatnonzero(over[k]))
+
+
+def _has_body_nodes(problem) -> bool:
+    return any(owner == "body" for owner, _, _ in problem.nodes)
 
 
 def _overload(result) -> str:
@@ -666,13 +711,10 @@ def _overload(result) -> str:
     return "overload: " + "; ".join(over) if over else ""
 
 
-def _stable(problem, kernel, x, p) -> bool:
-    """Whether the kernel's point is a stable equilibrium: the kernel's own test, else the
-    full check (:func:`~moorsolve.solve.stability.assess`)."""
-    if kernel.compiled:
-        post = kernel.post(x, p)
-        if post["clearly_stable"].item() > 0.5:
-            return True
+def _stable(problem, x, p) -> bool:
+    """Whether the kernel's point, which its own stability test did not call clearly
+    stable, is a stable equilibrium: the full check
+    (:func:`~moorsolve.solve.stability.assess`)."""
     with problem.lock:
         return assess(problem, x, p).stable
 

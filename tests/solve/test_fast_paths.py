@@ -114,6 +114,29 @@ def test_kernel_stability_test_agrees_with_the_eigenvalues(path, six, max_force,
     assert flagged >= 6
 
 
+@pytest.mark.parametrize("path,six,max_force,max_moment", [
+    (DOCK, False, 8e6, 5e7), (SPAR, True, 1.5e6, 5e6)], ids=["dock", "spar"])
+def test_kernel_batch_is_the_kernel_point_by_point(path, six, max_force, max_moment):
+    """A load table's batch (NewtonKernel.run_many) returns, row by row, what one run of
+    the kernel returns; its stability flag is the post function's test at that point."""
+    base = moorsolve.load_case(path)
+    cases = [with_force(base, load) for load in random_loads(8, max_force, max_moment, six)]
+    problem = get_problem(cases[0])
+    kernel = problem.newton()
+    assert kernel.wait_compiled(300)
+    x_rest = rest_point(problem, cases[0], 1e-9, kernel)
+    P = np.array([problem.parameters(c) for c in cases])
+    batch = kernel.run_many(x_rest, P, 1e-9)
+    names = ("x", "status", "iterations", "certificate", "body", "fairlead_tension",
+             "anchor_tension", "reactions", "clearly_stable")
+    for row, p in enumerate(P):
+        single = [np.array(v) for v in kernel.raw(x_rest, p, 1e-9)]
+        for name, value in zip(names, single):
+            np.testing.assert_array_equal(batch[name][row], value, err_msg=name)
+        post = kernel.post(batch["x"][row], p)
+        assert batch["clearly_stable"][row, 0] == post["clearly_stable"].item()
+
+
 def test_unstable_point_still_reaches_the_full_check():
     """The turret ship held stern to the wind is unstable: the kernel's test must not call
     it stable, so the solve still finds the stable heading (tests/test_network.py)."""

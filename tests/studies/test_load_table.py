@@ -128,6 +128,28 @@ def test_network_force_components_with_units():
         assert result.iloc[i]["spar.x_m"] > 0
 
 
+def test_rows_that_turn_far_are_solved_as_single_solves():
+    """Rows whose moment turns the spar (without its yaw spring) past a Newton step's
+    reach, and every other row, are their single solves: the batch leaves the far turns to
+    the solve's continuation."""
+    data = dict(moorsolve.load_case(SPAR).source)
+    body = {k: v for k, v in data["bodies"][0].items() if k != "stiffness"}
+    data["bodies"] = [dict(body, loads={"force": [0, 0, 0, 0, 0, 0]})]
+    base = moorsolve.load_case(data)
+    table = pd.DataFrame({"bodies[spar].loads.force[0] [kN]": [300.0, 300.0, 600.0, 100.0],
+                          "bodies[spar].loads.force[5] [kN*m]": [1e3, 5e3, -1e4, 2e2]})
+    result = moorsolve.sweep(base, table=table)
+    assert result["converged"].all() and (result["solver"] == "newton").all()
+    turned = 0
+    for i in range(len(table)):
+        solved = moorsolve.solve(row_case(base, table, i), solver="newton")
+        assert_row_is_the_solve(result.iloc[i], solved, 1e-8)
+        assert result.iloc[i]["spar.yaw_deg"] == pytest.approx(solved.bodies[0]["yaw_deg"],
+                                                               abs=1e-7)
+        turned += abs(solved.bodies[0]["yaw_deg"]) > 20
+    assert turned >= 2
+
+
 @pytest.mark.parametrize("column,values,words", [
     ("environment.wind.speed", [10.0, 500.0], ["environment.wind.speed", "row 1", "500"]),
     ("environment.wind.speed [furlong]", [10.0, 20.0], ["furlong"]),
