@@ -334,7 +334,9 @@ SCALING_PROBE = textwrap.dedent("""
     t1 = time.perf_counter()
     first = moorsolve.solve(case, solver="newton", audit=False)
     t2 = time.perf_counter()
+    from moorsolve.solve.newton import COMPILE_MAX_UNKNOWNS
     kernel = get_problem(case).newton()
+    compiles = get_problem(case).n_x <= COMPILE_MAX_UNKNOWNS
     compiled_at_first = kernel.compiled
     times = []
     for _ in range(5):
@@ -342,7 +344,7 @@ SCALING_PROBE = textwrap.dedent("""
         times.append(time.perf_counter() - t)
     interpreted = sorted(times)[2] if not compiled_at_first else None
     t3 = time.perf_counter()
-    ready = kernel.wait_compiled({budget})
+    ready = kernel.wait_compiled({budget}) if compiles else False
     compile_wait = time.perf_counter() - t3
     compiled = None
     if ready:
@@ -355,6 +357,7 @@ SCALING_PROBE = textwrap.dedent("""
         peak = next(int(l.split()[1]) for l in f if l.startswith("VmHWM:"))
     print(json.dumps(dict(lines={n}, import_s=t1 - t0, first_solve_s=t2 - t1,
                           solver=first.solver, cached_library=compiled_at_first,
+                          compiles=compiles,
                           interpreted_s=interpreted, compiled_s=compiled, ready=ready,
                           compile_wait_s=compile_wait, peak_rss_kB=peak)))
 """)
@@ -375,10 +378,12 @@ def scaling(sizes, budget_s: float, moorpy_max: int) -> list:
             loads = [tuple(f * (0.6 + 0.4 * k / 2) for f in force) for k in range(3)]
             row["moorpy_s"] = time_moorpy(case, with_constant_force, loads, "legs")["wall_s"]
         rows.append(row)
-        print(f"  {n:4d} lines: first solve {row['first_solve_s']:.2f} s "
-              f"(build included, kernel compiling in the background), then "
-              f"{_ms(row['interpreted_s'])} interpreted, {_ms(row['compiled_s'])} compiled "
-              f"(compile ready {row['ready']} after {row['compile_wait_s']:.1f} s more), "
+        compile_note = (f"{_ms(row['compiled_s'])} compiled (compile ready {row['ready']} "
+                        f"after {row['compile_wait_s']:.1f} s more)" if row["compiles"]
+                        else "never compiled (past COMPILE_MAX_UNKNOWNS)")
+        print(f"  {n:4d} lines: first solve {row['first_solve_s']:.2f} s (build included"
+              f"{', kernel compiling in the background' if row['compiles'] else ''}), then "
+              f"{_ms(row['interpreted_s'])} interpreted, {compile_note}, "
               f"peak RSS {row['peak_rss_kB'] / 1024:.0f} MB"
               + (f"; MoorPy {row['moorpy_s'] * 1e3:.0f} ms" if "moorpy_s" in row else ""),
               flush=True)

@@ -36,7 +36,7 @@ from .audit import audit as audit_result
 from .audit import audit_findings, result_warnings
 from .newton import CONVERGED, FLAT, STATUS_TEXT, STEP_LIMIT
 from .outcome import build_result, hull_out_of_range
-from .prepared import geometry_key, per_case
+from .prepared import geometry_key, line_facts
 from .layout import LOAD_FACTOR_INDEX
 from .problem import LINE_COLUMNS
 from .result import Certificate, Result
@@ -88,15 +88,16 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     x0 = initial_point(problem, case)
     if not (problem.n_q and problem.load_names):
         return x0
-    p_rest = problem.parameters(case, 0.0)
     # At load factor 0 nothing acts through the loads: one rest state per geometry (a
     # lumped line's start is drawn under its current, so there all parameters count).
-    key = b"rest:" + (p_rest.tobytes() if any(k.discrete for k in problem.kinds)
-                      else geometry_key(case)[1])
+    p_rest = problem.parameters(case, 0.0) if problem.any_discrete else None
+    key = b"rest:" + (p_rest.tobytes() if problem.any_discrete else geometry_key(case)[1])
     with problem.lock:
         cached = problem.start_cache.get(key)
         if cached is not None:
             return cached.copy()
+        if p_rest is None:
+            p_rest = problem.parameters(case, 0.0)
         if kernel is not None:
             out = kernel.solve(x0, p_rest, tol)
             if _kernel_certified(problem, out, tol):
@@ -248,18 +249,9 @@ def _may_warn(problem, case, post) -> bool:
     """Whether :func:`~.audit.result_warnings` can find anything: False, from the arrays
     alone, for one-segment lines of unsealed types that neither float nor have an end
     above the water (so their legs and profiles need not be made to find nothing)."""
-    single = problem.derived.get("all_single")
-    if single is None:
-        single = problem.derived["all_single"] = all(k.single for k in problem.kinds)
-    if not single or _sealed(case):
+    if not problem.all_single or line_facts(case).sealed:
         return True
     return bool((np.atleast_2d(post["lines"])[:, _WARN_COLUMNS] > 0).any())
-
-
-@per_case
-def _sealed(case) -> bool:
-    """Whether a line type of ``case`` is sealed."""
-    return any(seg.line_type.sealed for line in case.lines for seg in line.segments)
 
 
 #: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
@@ -554,12 +546,6 @@ _FA = slice(LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FAx") + 3)
 _FB = slice(LINE_COLUMNS.index("FBx"), LINE_COLUMNS.index("FBx") + 3)
 
 
-@per_case
-def _mbl(case) -> np.ndarray:
-    """Each line's minimum breaking load [N] (inf where none is given)."""
-    return np.array([line.line_type.mbl or np.inf for line in case.lines])
-
-
 def over_mbl(result: Result, problem=None, post=None) -> list:
     """``"leg NAME would break ..."`` for every line above its minimum breaking load; a line
     whose unstretched length is shorter than the distance between its ends at the case-file
@@ -568,8 +554,8 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
     ``problem`` and ``post`` (the arrays the result was made from) let one-segment lines
     be judged from their end forces without making the legs.
     """
-    if problem is not None and post is not None and all(k.single for k in problem.kinds):
-        mbl = _mbl(result.case)
+    if problem is not None and post is not None and problem.all_single:
+        mbl = line_facts(result.case).mbl
         if not np.isfinite(mbl).any():
             return []
         f = post["lines"]

@@ -23,7 +23,7 @@ from ..physics.wall_tension import wall_tension
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
-from .prepared import per_case
+from .prepared import line_facts
 from .problem import LINE_COLUMNS, ROTATIONS
 from .result import LazyProfile, LegList, LegResult, Result
 from .stretch_params import numeric_law
@@ -65,7 +65,8 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                 lr = dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
             yield lr
 
-    fibre = _has_fibre(case)
+    facts = line_facts(case)
+    fibre = facts.fibre
     legs = LegList(make_legs)
     poses = np.ravel(poses).tolist()
     bodies = []
@@ -104,7 +105,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     notes = list(notes) + _line_notes(case, problem, legs)
     if fibre:
         notes += fibre_notes(case, legs)
-    effects = list(problem.effects) + _clump_effects(case)
+    effects = [*problem.effects, *facts.clump_effects]
     fenders, guides = (contact_results(problem, case, x, p, np.asarray(poses))
                        if problem.contacts else ((), ()))
     notes += [f"guide {g['name']}: the collar is {g['height_m'] - g['pile_top_m']:.2f} m "
@@ -115,7 +116,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
                   points=tuple(points), stability=stability, form=case.form,
                   fenders=fenders, guides=guides,
-                  hawsers=hawser_results(case, legs) if _has_hawsers(case) else ())
+                  hawsers=hawser_results(case, legs) if facts.hawsers else ())
 
 
 def hull_out_of_range(problem, x, p, post=None) -> list:
@@ -137,27 +138,6 @@ def hull_out_of_range(problem, x, p, post=None) -> list:
                            "not hold (extend the member or give the linear hydrostatics)")
             k += 1
     return out
-
-
-@per_case
-def _has_hawsers(case) -> bool:
-    """Whether ``case`` has a weightless one-segment line (a hawser)."""
-    return any(line.line_type.weight_in_water == 0 and not line.multi_segment
-               for line in case.lines)
-
-
-@per_case
-def _has_fibre(case) -> bool:
-    """Whether any segment of ``case``'s lines is fibre rope."""
-    return any(seg.line_type.fibre for line in case.lines for seg in line.segments)
-
-
-@per_case
-def _clump_effects(case) -> list:
-    """``clump_weight`` and ``buoy`` where the case's lines carry them."""
-    clumps = [c.weight for line in case.lines for c in line.joint_clumps if c is not None]
-    return (["clump_weight"] if any(w > 0 for w in clumps) else []) + (
-        ["buoy"] if any(w < 0 for w in clumps) else [])
 
 
 def _line_notes(case, problem, legs) -> list:

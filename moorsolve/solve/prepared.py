@@ -24,6 +24,7 @@ from __future__ import annotations
 import functools
 import threading
 import weakref
+from typing import NamedTuple
 
 import numpy as np
 
@@ -127,6 +128,46 @@ def line_ends_of(case) -> HashedKey:
                      for line in case.lines)
     _ENDS.put(id(case.lines), (case.lines, ends))
     return ends
+
+
+class LineFacts(NamedTuple):
+    """What a Result's making asks of a case's lines at every solve."""
+    #: Whether a line type is sealed (wall tension, audit warnings).
+    sealed: bool
+    #: Whether a one-segment line is weightless (a hawser).
+    hawsers: bool
+    #: Whether a segment is fibre rope.
+    fibre: bool
+    #: ``clump_weight`` and ``buoy`` where the lines carry them.
+    clump_effects: tuple
+    #: Each line's minimum breaking load [N] (inf where none is given; read-only).
+    mbl: np.ndarray
+
+
+_FACTS = LockedLRU(256)
+
+
+@per_case
+def line_facts(case) -> LineFacts:
+    """:class:`LineFacts` of ``case``'s lines, once per lines tuple."""
+    lines = case.lines
+    hit = _FACTS.get(id(lines))
+    if hit is not None and hit[0] is lines:
+        return hit[1]
+    segments = [seg for line in lines for seg in line.segments]
+    clumps = [c.weight for line in lines for c in line.joint_clumps if c is not None]
+    mbl = np.array([line.line_type.mbl or np.inf for line in lines])
+    mbl.setflags(write=False)
+    facts = LineFacts(
+        sealed=any(seg.line_type.sealed for seg in segments),
+        hawsers=any(line.line_type.weight_in_water == 0 and not line.multi_segment
+                    for line in lines),
+        fibre=any(seg.line_type.fibre for seg in segments),
+        clump_effects=(("clump_weight",) if any(w > 0 for w in clumps) else ())
+        + (("buoy",) if any(w < 0 for w in clumps) else ()),
+        mbl=mbl)
+    _FACTS.put(id(lines), (lines, facts))
+    return facts
 
 
 #: The line and seabed blocks of parameter vectors, per lines tuple and seabed.

@@ -104,6 +104,10 @@ class EquilibriumProblem:
     def __init__(self, case: Case, force_scale: float, length_scale: float):
         self.case = case
         self.kinds = line_kinds(case)
+        #: Whether every line is one segment (its report is one row of the line table), and
+        #: whether any is a lumped-node line (whose start depends on the flows).
+        self.all_single = all(k.single for k in self.kinds)
+        self.any_discrete = any(k.discrete for k in self.kinds)
         self.layout = build_layout(case, self.kinds)
         self.n_legs = len(case.lines)
         self.force_scale = force_scale

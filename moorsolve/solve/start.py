@@ -273,8 +273,7 @@ def initial_point(problem, case: Case) -> np.ndarray:
     """
     # A lumped line starts from a shape drawn under the current: its start depends on
     # the flow too. Every other start depends on the geometry alone.
-    loads_matter = any(kind.discrete for kind in problem.kinds)
-    key = b"start:" + (parameter_vector(case).tobytes() if loads_matter
+    key = b"start:" + (parameter_vector(case).tobytes() if problem.any_discrete
                        else geometry_key(case)[1])
     with problem.lock:
         cached = problem.start_cache.get(key)
