@@ -32,3 +32,18 @@ def cases_dir() -> Path:
 def data_dir() -> Path:
     """Test data files (``tests/data/``)."""
     return DATA
+
+
+def _hypothesis_profiles() -> None:
+    """The default run draws the same examples every time (CI and a developer's machine see
+    the same cases; what a random hunt found is kept as explicit tests); the ``thorough``
+    profile (MOORSOLVE_HYPOTHESIS_PROFILE=thorough) draws new ones each run."""
+    from hypothesis import settings
+
+    settings.register_profile("moorsolve-default", derandomize=True, print_blob=True)
+    settings.register_profile("moorsolve-thorough", derandomize=False, print_blob=True)
+    thorough = os.environ.get("MOORSOLVE_HYPOTHESIS_PROFILE") == "thorough"
+    settings.load_profile("moorsolve-thorough" if thorough else "moorsolve-default")
+
+
+_hypothesis_profiles()

@@ -170,8 +170,19 @@ def integrate_leg(*, H, V, L, w, ea=None, mu=0.0, contact=True, strain=None,
                     return yy[1]
                 exhausted.terminal = True
                 atol = [1e-16 * scale[0], 1e-16 * scale[1]]
-                sol = solve_ivp(ground_rhs, (grounded, 0.0), [y[0], tx], method="DOP853",
-                                rtol=RTOL, atol=atol, events=exhausted)
+                # The tension falls linearly along the seabed: split the integration where
+                # it passes the strain law's breakpoints (a table's rows), as above.
+                cuts = [grounded] + sorted(
+                    (grounded - (tx - tk) / (mu * w) for tk in tension_breaks
+                     if 0.0 < tk < tx and 0.0 < grounded - (tx - tk) / (mu * w) < grounded),
+                    reverse=True) + [0.0]
+                state = [y[0], tx]
+                for a, b in zip(cuts[:-1], cuts[1:]):
+                    sol = solve_ivp(ground_rhs, (a, b), state, method="DOP853",
+                                    rtol=RTOL, atol=atol, events=exhausted)
+                    if sol.status == 1:
+                        break
+                    state = [sol.y[0, -1], sol.y[1, -1]]
                 if sol.status == 1:           # tension used up before the anchor
                     s_zero = sol.t_events[0][0]
                     x_zero = sol.y_events[0][0][0]

@@ -501,3 +501,15 @@ def test_the_part_in_air_through_the_law_matches_the_ode(name, H, V, z_top):
     assert out["V"] == pytest.approx(ref["V_surface"], rel=1e-9, abs=1e-9 * V)
     assert out["length"] == pytest.approx(ref["air_length"], rel=1e-9)
     assert out["x"] == pytest.approx(ref["x_air"], rel=1e-9, abs=1e-12)
+
+
+def test_long_grounded_table_rope_with_heavy_friction():
+    """A case hypothesis found in a fresh run (4.9 km of table-law rope, 2.8 km on the
+    seabed with friction falling through the table's rows): the reference integrator now
+    splits the grounded part at the rows as it does the suspended part, and block and ODE
+    agree to round-off."""
+    leg = {"regime": "friction", "H": 344223.618697815, "V": 2488.6727209425735,
+           "L": 10.0 ** 3.6875, "w": 1.201736953237385, "ea": None,
+           "mu": 88.78175141975596, "u": 344223.618697815, "law": "table", "contact": True}
+    errors, _, _ = check_leg(leg)
+    assert max(errors.values()) <= REL, errors
