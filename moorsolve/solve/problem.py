@@ -33,12 +33,14 @@ import casadi as ca
 import numpy as np
 
 from ..model import DOFS, Case
-from ..physics.hydrostatics import linear_buoyancy, member_buoyancy, weight
-from ..physics.kinematics import cross, generalized_forces, rotation_matrix
+from ..physics.kinematics import cross, rotation_matrix
 from . import body_loads as body_load_models
+from .certify import Certification
 from .concurrency import SYMBOLIC_LOCK
+from .nodes import node_balances
+from .numerics import SolverAccess
 from .discrete import discrete_leg
-from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, MEMBER_PARAMS, SEABED_PARAMS,
+from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
 from .contact import add_contacts, contact_points, element_reactions
 from .stretch_params import line_laws
@@ -57,11 +59,6 @@ LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X
                 "bx", "by", "fx", "fy", "J00", "J10", "J01", "J11",
                 "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz", "floating")
 ROTATIONS = ("roll", "pitch", "yaw")
-#: Outputs of :meth:`EquilibriumProblem.post_function`: the certificate, the condensed
-#: stiffness and its stability test, the seven outputs of ``report``, and the segment and
-#: node tables.
-POST_OUTPUTS = ("certificate", "stiffness", "clearly_stable", "lines", "unbalanced",
-                "loads", "poses", "points", "wrenches", "hull_in_range", "segments", "nodes")
 POINT_DOFS = ("x", "y", "zeta")
 
 
@@ -71,7 +68,7 @@ def _body_radius(case: Case) -> float:
     return max([1.0] + arms)
 
 
-class EquilibriumProblem:
+class EquilibriumProblem(Certification, SolverAccess):
     """The symbolic problem of one scene structure, built once.
 
     Attributes
@@ -227,7 +224,6 @@ class EquilibriumProblem:
 
     def _build(self):
         case = self.case
-        env = case.environment
         layout = self.layout
         xs = ca.SX.sym("x", self.n_x)
         x = xs * ca.DM(self.x_scale)
@@ -238,7 +234,6 @@ class EquilibriumProblem:
 
         E = {k: p[layout.index("env." + k)] for k in ENV_PARAMS}
         seabed = {k: p[layout.index("seabed." + k)] for k in SEABED_PARAMS}
-        lf = E["load_factor"]
 
         # -- node positions -------------------------------------------------------------
         poses, rotations = [], []
@@ -334,80 +329,13 @@ class EquilibriumProblem:
         contact_res, contact_rows, contact_terms = add_contacts(
             self, x, par, poses, rotations, body_index, apply_body)
 
-        # -- body loads -------------------------------------------------------------------
-        load_vectors, self.load_names = [], []
-        rho, g = env.water_density, env.gravity
-        body_scale = []
-        generalized, wrenches, hull_range = [], [], []
-        for bi, body in enumerate(case.bodies):
-            q = poses[bi]
-            R = rotations[bi]
-            r = ca.vertcat(*q[:3])
-            F, M = body_force[bi], body_moment[bi]
-            name = f"body[{body.name}]"
-            if body.mass is not None:
-                wf, wm = weight(r, R, mass=par(name + ".mass"),
-                                centre_of_gravity=ca.vertsplit(par(name + ".centre_of_gravity")),
-                                gravity=g)
-                F, M = F + wf, M + wm
-                body_scale.append(par(name + ".mass") * g)
-            # Hydrostatics act about the still-water level: the origin's height above it.
-            r_water = r - ca.vertcat(0, 0, E["water_level"])
-            if body.hydrostatics is not None:
-                bf, bm = linear_buoyancy(
-                    r_water, R, displaced_volume=par(name + ".displaced_volume"),
-                    metacentre=ca.vertsplit(par(name + ".metacentre")),
-                    waterplane_area=par(name + ".waterplane_area"),
-                    water_density=rho, gravity=g)
-                F, M = F + bf, M + bm
-                body_scale.append(rho * g * par(name + ".displaced_volume"))
-            for j, member in enumerate(body.hull):
-                mp = dict(zip(MEMBER_PARAMS, ca.vertsplit(par(f"{name}.hull[{j}]"))))
-                out = member_buoyancy(r_water, R, shape=member.shape, bottom=mp["bottom"],
-                                      top=mp["top"], radius=mp["radius"],
-                                      length=mp["length"], width=mp["width"],
-                                      centre=(mp["centre_x"], mp["centre_y"]),
-                                      water_density=rho, gravity=g)
-                F, M = F + out["force"], M + out["moment"]
-                body_scale.append(out["force"][2])
-                hull_range.append(out["in_range"])
-            loads = body_load_models.body_loads_3d(
-                body.loads, env, R, q[5], E["wind_speed"], E["wind_toward"],
-                E["current_speed"], E["current_toward"], E["wave_hs"], E["wave_toward"])
-            for key, (lfor, lmom) in loads.items():
-                F, M = F + lf * lfor, M + lf * lmom
-                load_vectors.append(ca.vertcat(lf * lfor, lf * lmom))
-                self.load_names.append(key if len(case.bodies) == 1 else f"{body.name}.{key}")
-            if body.loads.force is not None:
-                if case.form == "legs" and bi == 0:
-                    cf = ca.vertcat(E["force_x"], E["force_y"], 0)
-                    cm = ca.vertcat(0, 0, E["moment_z"])
-                else:
-                    f6 = par(name + ".force")
-                    cf, cm = f6[:3], f6[3:]
-                F, M = F + lf * cf, M + lf * cm
-                load_vectors.append(ca.vertcat(lf * cf, lf * cm))
-                self.load_names.append("constant_force" if len(case.bodies) == 1
-                                       else f"{body.name}.constant_force")
-            wrenches.append(ca.vertcat(F, M))
-            Q = generalized_forces(F, M, q[4], q[5])
-            if body.stiffness is not None:
-                K = ca.reshape(par(name + ".stiffness"), 6, 6).T
-                q0 = par(name + ".pose")
-                Q = Q - K @ (ca.vertcat(*q) - q0)
-            generalized.append(Q)
-
-        point_forces = []
-        for pi, point in enumerate(case.free_points):
-            name = f"point[{point.name}]"
-            net = g * (par(name + ".mass") - rho * par(name + ".volume"))
-            pt = points[pi]
-            gx, gy = seabed["gradient_x"], seabed["gradient_y"]
-            normal = ca.vertcat(-gx, -gy, 1) / ca.sqrt(1 + gx**2 + gy**2)
-            N = ca.fmax(-pt["zeta"], 0) * k_contact
-            force = pt["force"] + ca.vertcat(0, 0, -net) + N * normal
-            point_forces.append(force)
-            body_scale.append(ca.fabs(net))
+        # -- bodies and free points ---------------------------------------------------------
+        nodes_out = node_balances(case, par, E, seabed, poses, rotations, body_force,
+                                  body_moment, points, k_contact)
+        generalized, point_forces = nodes_out["generalized"], nodes_out["point_forces"]
+        wrenches, load_vectors = nodes_out["wrenches"], nodes_out["load_vectors"]
+        body_scale, hull_range = nodes_out["body_scale"], nodes_out["hull_range"]
+        self.load_names = nodes_out["load_names"]
 
         # -- residuals ----------------------------------------------------------------------
         node_res, node_force, node_moment = [], [], []
@@ -542,238 +470,6 @@ class EquilibriumProblem:
             profile = [tuple(flat[width * r: width * (r + 1)]) for r in range(rows)]
         return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
                     headings=headings, factor=E["load_factor"])
-
-    #: Jacobian smoothing relative to the residual: ``eps = SMOOTHING * L * min(1, |g|)``
-    #: [m], with ``L`` the length scale and ``|g|`` the largest scaled residual.
-    SMOOTHING = 0.01
-
-    def smoothing(self, g) -> float:
-        """The Jacobian smoothing ``eps`` [m] for a (scaled) residual vector ``g``."""
-        size = float(np.max(np.abs(g))) if np.size(g) else 0.0
-        if not np.isfinite(size):
-            size = 1.0
-        return self.SMOOTHING * self.length_scale * min(1.0, size)
-
-    #: A weak spring on every node unknown in the step Jacobian (scaled units), where
-    #: the scene has complementarities: a body that nothing holds in some direction at
-    #: the current point (slack hawsers, open contacts, a hawser's sideways stiffness
-    #: T/D at zero tension) moves with its unbalanced force instead of making the step
-    #: singular; elsewhere it changes the step by parts in 1e9.
-    REGULARISATION = 1e-9
-
-    def regularisation(self, value: float | None = None) -> ca.DM:
-        """The sparse matrix subtracted from the step Jacobian (``value``, default
-        :data:`REGULARISATION`, on the balance row of every node unknown); empty without
-        complementarities."""
-        n_lines = self.n_x - self.n_q
-        rows = [n_lines + j for j in range(self.n_q)] if self.smoothed else []
-        sp = ca.Sparsity.triplet(self.n_x, self.n_x, rows, list(range(len(rows))))
-        return ca.DM(sp, self.REGULARISATION if value is None else value)
-
-    def step_sparsity(self) -> ca.Sparsity:
-        """The sparsity of the step Jacobian (the Jacobian's and the regularisation's)."""
-        sp = self.jacobian.sparsity_out(0)
-        if self.smoothed:
-            sp = sp + self.smoothed_jacobian.sparsity_out(0) + self.regularisation().sparsity()
-        return sp
-
-    def step_jacobian(self, x, p, g) -> np.ndarray:
-        """The Jacobian a Newton step uses at ``x`` with residual ``g``: the exact one, or,
-        where the scene has complementarities, that of their smoothed form with ``eps``
-        tied to ``|g|`` (Jacobian smoothing; :mod:`moorsolve.physics.contact`) less the
-        weak spring of :meth:`regularisation`."""
-        if not self.smoothed:
-            return np.asarray(self.jacobian(x, p))
-        J = self.smoothed_jacobian(x, p, self.smoothing(g)) - self.regularisation()
-        return np.asarray(ca.densify(J))
-
-    # -- certificate ------------------------------------------------------------------
-    def certify(self, x, p, tol: float) -> tuple:
-        """``(certified, force_N, moment_Nm, relative)`` of the scaled point ``x``."""
-        if not np.all(np.isfinite(x)):
-            return False, math.inf, math.inf, math.inf
-        return self.judge(*(float(v) for v in self.certificate(x, p)), tol=tol)
-
-    def contact_certificate(self, x, p) -> dict:
-        """``penetration_m`` and ``complementarity_N`` of the certificate at ``x`` (None
-        each in a scene without contacts)."""
-        if not self.contacts:
-            return dict(penetration_m=None, complementarity_N=None)
-        values = [float(v) for v in self.certificate(x, p)]
-        return dict(penetration_m=values[3], complementarity_N=values[4])
-
-    def judge(self, force: float, moment: float, t_max: float, penetration: float = 0.0,
-              complementarity: float = 0.0, *, tol: float):
-        """``(certified, force, moment, relative)`` from the certificate's numbers.
-
-        The force (and a contact's complementarity residual, a reaction across an open gap)
-        must be within ``tol`` of the largest force in the balance (the largest line
-        tension or contact reaction, or a body's weight, buoyancy or applied load where
-        larger), the moment within ``tol`` of that force times the scene's moment arm, and
-        the largest penetration of a contact within ``tol`` of the length scale.
-        """
-        scale = t_max if t_max > 0 else self.force_scale
-        relative = max(force, complementarity) / scale
-        moment_ok = moment <= tol * scale * self.moment_scale / self.force_scale
-        ok = bool(math.isfinite(relative) and math.isfinite(moment) and relative <= tol
-                  and moment_ok and penetration <= tol * self.length_scale)
-        return ok, force, moment, relative
-
-    def judge_rows(self, cert: np.ndarray, tol: float) -> tuple:
-        """:meth:`judge` of every row of ``cert`` (a certificate a row, as the kernel
-        returns it): arrays ``(certified, force, moment, relative)``."""
-        cert = np.asarray(cert, dtype=float)
-        force, moment, t_max = cert[:, 0], cert[:, 1], cert[:, 2]
-        zero = np.zeros(len(cert))
-        penetration = cert[:, 3] if cert.shape[1] > 3 else zero
-        complementarity = cert[:, 4] if cert.shape[1] > 4 else zero
-        scale = np.where(t_max > 0, t_max, self.force_scale)
-        with np.errstate(invalid="ignore"):
-            relative = np.maximum(force, complementarity) / scale
-            ok = (np.isfinite(relative) & np.isfinite(moment) & (relative <= tol)
-                  & (moment <= tol * scale * self.moment_scale / self.force_scale)
-                  & (penetration <= tol * self.length_scale))
-        return ok, force, moment, relative
-
-    # -- everything a Result needs, in one evaluation -------------------------------------
-    def post_function(self) -> ca.Function:
-        """``post(x, p)``: the certificate ``[force, moment, t_max]``, the condensed
-        stiffness of the free body DOFs (:func:`.stability.stiffness_graph`) with its
-        stability test (:func:`.stability.clearly_stable_graph`) and the outputs of
-        :attr:`report`, :attr:`segment_report` and :attr:`node_report` (see
-        :data:`POST_OUTPUTS`), all dense: what certifying, the stability check and the
-        Result need from a solved point, in one call. Compiled with the Newton kernel."""
-        with self._lock:
-            if self._post is None:
-                from .stability import clearly_stable_graph, stiffness_graph
-                with SYMBOLIC_LOCK:
-                    x = ca.MX.sym("x", self.n_x)
-                    p = ca.MX.sym("p", self.n_p)
-                    K = stiffness_graph(self, self.jacobian(x, p))
-                    outs = [ca.vertcat(*self.certificate(x, p)), K,
-                            clearly_stable_graph(self, K),
-                            *self.report(x, p), self.segment_report(x, p),
-                            self.node_report(x, p)]
-                    self._post = ca.Function("moorsolve_post", [x, p],
-                                             [ca.densify(o) for o in outs],
-                                             ["x", "p"], list(POST_OUTPUTS))
-            return self._post
-
-    def post(self, x, p) -> dict:
-        """:meth:`post_function` at the scaled point ``x``: numpy arrays by name, through
-        the compiled kernel's library when it is built, else interpreted."""
-        kernel = self._newton
-        if kernel is not None and kernel.compiled:
-            return kernel.post(x, p)
-        try:
-            values = self.post_function()(x, p)
-        except RuntimeError:
-            # A singular condensed block stops the interpreted QR solve: report the
-            # stiffness as unknown (the stability check then condenses it itself).
-            n_b = sum(owner == "body" for owner, _, _ in self.nodes)
-            values = [ca.vertcat(*self.certificate(x, p)), np.full((n_b, n_b), np.nan), 0.0,
-                      *self.report(x, p), self.segment_report(x, p), self.node_report(x, p)]
-        return {name: np.asarray(v, dtype=float)
-                for name, v in zip(POST_OUTPUTS, values)}
-
-    # -- solvers --------------------------------------------------------------------
-    def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
-        """An IPOPT solver for the feasibility NLP, cached per setting.
-
-        A CasADi solver object is not safe to run from two threads at once: callers hold
-        :attr:`lock` while they run it.
-        """
-        key = (tol, max_iter, max_time_s)
-        with self._lock:
-            if key not in self._nlp_solvers:
-                nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
-                if self.smoothed:
-                    # IPOPT solves the smoothed complementarities (a smoothing parameter
-                    # appended to p, nlp_parameters); the polish makes them exact. Among
-                    # the equilibria it takes the one nearest its start (also appended),
-                    # which keeps it from wandering through open contacts and slack
-                    # hawsers, and pins a degree of freedom nothing holds.
-                    start = ca.SX.sym("start", self.n_x)
-                    nlp["p"] = ca.vertcat(self._p, self.smoothing_symbol, start)
-                    nlp["g"] = self._g_smooth
-                    nlp["f"] = self.IPOPT_PROXIMITY * ca.sumsqr(self._xs - start)
-                opts = {
-                    "print_time": False,
-                    "error_on_fail": False,
-                    # A NaN or inf met on the way (absurd input) is reported by the
-                    # certificate and ConvergenceError; CasADi's per-evaluation warnings are
-                    # noise.
-                    "show_eval_warnings": False, "calc_lam_p": False,
-                    "ipopt": {
-                        "print_level": 0, "sb": "yes", "tol": tol,
-                        "constr_viol_tol": tol, "max_iter": max_iter,
-                        "max_wall_time": max_time_s, "nlp_scaling_method": "none",
-                        "mu_strategy": "adaptive",
-                    },
-                }
-                with SYMBOLIC_LOCK:
-                    self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
-            return self._nlp_solvers[key]
-
-    #: The smoothings IPOPT solves with in turn, relative to the length scale (the polish
-    #: that follows makes the complementarities exact).
-    IPOPT_SMOOTHING = (1e-3, 1e-5)
-
-    #: Weight of the distance from the start in IPOPT's objective (scaled unknowns).
-    IPOPT_PROXIMITY = 1e-6
-
-    def ipopt_smoothings(self) -> tuple:
-        """The smoothings [m] IPOPT solves with in turn (one run, unsmoothed-free, without
-        complementarities)."""
-        if not self.smoothed:
-            return (None,)
-        return tuple(s * self.length_scale for s in self.IPOPT_SMOOTHING)
-
-    def nlp_parameters(self, p, start, smoothing=None) -> np.ndarray:
-        """The parameters of the IPOPT problem for the problem's parameters ``p``, the
-        (scaled) start ``start`` and a smoothing [m]."""
-        if not self.smoothed:
-            return p
-        return np.concatenate([p, [smoothing], start])
-
-    def newton(self):
-        """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
-        with self._lock:
-            if self._newton is None:
-                from .newton import NewtonKernel
-                with SYMBOLIC_LOCK:
-                    self._newton = NewtonKernel(self)
-            return self._newton
-
-    def kernel_pool(self):
-        """Clones of the Newton kernel, one per concurrently running caller (sweeps)."""
-        with self._lock:
-            if self._kernel_pool is None:
-                from .newton import KernelPool
-                self._kernel_pool = KernelPool(self.newton())
-            return self._kernel_pool
-
-    def bounds(self) -> tuple:
-        lb = np.full(self.n_x, -np.inf)
-        ub = np.full(self.n_x, np.inf)
-        for j, (_, _, dof) in enumerate(self.nodes):
-            if dof == "pitch":
-                # z-y-x angles are singular at +-90 deg of pitch.
-                lb[j], ub[j] = -0.49 * math.pi, 0.49 * math.pi
-        # No bound on a line's u: every block continues its spans monotonically for u < 0
-        # (loose line on a boundary, or, for a line with nothing to lie on, no root there),
-        # so H = max(u, 0) = 0 is an interior root, not a bound IPOPT must reach (a folded
-        # line hit IPOPT's iteration limit at that bound, issue 20). A hawser's u is its
-        # tension and a rigid contact's unknown its reaction (Fischer-Burmeister
-        # complementarities): neither pulls, and the bound keeps a Newton step from making
-        # them pull where the smoothed Jacobian would.
-        for i, kind in enumerate(self.kinds):
-            if kind.single and kind.neutral:
-                lb[self.line_offsets[i]] = 0.0
-        for point, io in zip(self.contacts, self.contact_offsets):
-            if point.n_unknowns:
-                lb[io] = 0.0
-        return lb, ub
 
     def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:
         """The parameter vector of ``case`` (same structure) for this problem."""
