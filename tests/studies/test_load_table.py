@@ -14,7 +14,7 @@ import moorsolve
 from moorsolve.cli import main
 from moorsolve.model.paths import with_values
 from moorsolve.studies.load_table import TableAxis, parse_header
-from moorsolve.studies.sweep import SweepPlan
+from moorsolve.studies.sweep_plan import SweepPlan
 
 from conftest import CASES
 

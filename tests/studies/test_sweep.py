@@ -9,7 +9,7 @@ import pytest
 import moorsolve
 from moorsolve.errors import CaseError, ConvergenceError
 from moorsolve.model.paths import with_values
-from moorsolve.studies.sweep import snake_order
+from moorsolve.studies.sweep_grid import snake_order
 from conftest import ROOT
 
 CASES = ROOT / "cases"

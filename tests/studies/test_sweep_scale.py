@@ -15,7 +15,7 @@ from moorsolve.errors import CaseError
 from moorsolve.model.paths import parse_assignment, parse_values
 from conftest import ROOT
 
-sweep_module = importlib.import_module("moorsolve.studies.sweep")
+sweep_module = importlib.import_module("moorsolve.studies.sweep_plan")
 CASES = ROOT / "cases"
 BUOY = CASES / "buoy_vida.yaml"
 GRID = {"environment.wind.toward_deg": list(range(0, 360, 30)),

@@ -1,0 +1,204 @@
+"""Solving a chunk of sweep points: the compiled kernel where it certifies a stable point,
+full solves for the rest, and the columns they fill."""
+
+from __future__ import annotations
+
+
+import numpy as np
+
+from ..errors import ConvergenceError
+from ..physics.kinematics import wrap_degrees
+from ..solve.cache import get_problem
+from ..solve.equilibrium import over_mbl, solve, turn_jumps
+from ..solve.stability import assess
+
+# ---- solving a chunk ------------------------------------------------------------------------
+
+
+#: Per body of a network case: its absolute pose columns ``<body>.<field>``.
+_POSE_FIELDS = ("x_m", "y_m", "z_m", "roll_deg", "pitch_deg", "yaw_deg")
+
+
+class _Table:
+    """Results of ``n`` points, one array per column, filled by row."""
+
+    def __init__(self, n: int, names: list[str], bodies: tuple = (), contacts: list[str] = ()):
+        self.names = names
+        self.bodies = tuple(bodies)
+        self.poses = np.full((n, 6 * len(self.bodies)), np.nan)
+        #: Fenders and guides: their reaction [N] per point.
+        self.contacts = list(contacts)
+        self.reactions = np.full((n, len(self.contacts)), np.nan)
+        self.done = np.zeros(n, bool)
+        self.converged = np.zeros(n, bool)
+        self.reason = [""] * n
+        self.solver = [""] * n
+        self.iterations = np.zeros(n, int)
+        self.residual = np.full((n, 3), np.nan)      # force, moment, relative
+        self.body = np.full((n, 3), np.nan)
+        self.t_fair = np.full((n, len(names)), np.nan)
+        self.t_anchor = np.full((n, len(names)), np.nan)
+
+    def from_result(self, i: int, result, reason: str = "", converged=None) -> None:
+        c = result.certificate
+        self.done[i] = True
+        self.converged[i] = not reason if converged is None else converged
+        self.reason[i], self.solver[i] = reason, result.solver
+        self.iterations[i] = c.iterations
+        self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
+        if result.body is not None:
+            self.body[i] = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
+        for k, b in enumerate(result.bodies[:len(self.bodies)]):
+            self.poses[i, 6 * k: 6 * k + 6] = [b[f] for f in _POSE_FIELDS]
+        self.t_fair[i] = [leg.fairlead_tension_N for leg in result.legs]
+        self.t_anchor[i] = [leg.anchor_tension_N for leg in result.legs]
+        self.reactions[i] = ([f["reaction_N"] for f in result.fenders]
+                             + [g["reaction_N"] for g in result.guides])
+
+    def columns(self) -> dict:
+        out = {"converged": self.converged, "reason": self.reason, "solver": self.solver,
+               "iterations": self.iterations, "residual_N": self.residual[:, 0],
+               "residual_Nm": self.residual[:, 1], "residual_relative": self.residual[:, 2],
+               "x_m": self.body[:, 0], "y_m": self.body[:, 1], "yaw_deg": self.body[:, 2]}
+        for k, name in enumerate(self.bodies):
+            for j, field in enumerate(_POSE_FIELDS):
+                out[f"{name}.{field}"] = self.poses[:, 6 * k + j]
+        for k, name in enumerate(self.names):
+            out[f"{name}.fairlead_tension_N"] = self.t_fair[:, k]
+            out[f"{name}.anchor_tension_N"] = self.t_anchor[:, k]
+        for k, name in enumerate(self.contacts):
+            out[f"{name}.reaction_N"] = self.reactions[:, k]
+        return out
+
+
+def _kernel_pool(problem):
+    return problem.kernel_pool()
+
+
+def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                allow_overload=False, from_rest=False):
+    """The kernel at every point: from the previous point's solution (a grid's snake), or
+    with ``from_rest`` from the rest state as a single solve starts (a load table's rows,
+    which need not be neighbours: run as one batch, :func:`_solve_rows`). A point that
+    does not certify, is not clearly stable or (from rest) turns a body far is left for a
+    full solve."""
+    if from_rest:
+        _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                    allow_overload)
+        return
+    n_p = problem.n_p
+    # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
+    check_stability = _has_body_nodes(problem)
+    x_prev = x_rest.copy()
+    for row, i in enumerate(points):
+        p = vectors[i, :n_p]
+        x, _, iterations, cert, body, tf, ta, reactions, stable = kernel.raw(x_prev, p, tol)
+        ok, force, moment, relative = problem.judge(*cert, tol=tol)
+        if not ok:
+            continue            # left for the full solve
+        if check_stability and not (stable[0] > 0.5 or _stable(problem, x, p)):
+            continue            # the full solve looks for the stable equilibrium
+        x_prev[:] = x
+        table.done[row] = True
+        table.iterations[row] = iterations[0]
+        table.residual[row] = (force, moment, relative)
+        _record(table, [row], body[None, :], tf[None, :], ta[None, :], reactions[None, :],
+                vectors[i:i + 1, n_p:], has_body, allow_overload)
+
+
+def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
+                allow_overload):
+    """:func:`_solve_fast` for a load table: the kernel from the rest state at every row
+    in one batch (:meth:`~moorsolve.solve.newton.NewtonKernel.run_many`), judged and
+    recorded as arrays. A row is kept when it certifies, no angle turned
+    further than a single solve's Newton step takes (:func:`turn_jumps`), and the kernel's
+    stability test passes (else the full check, :func:`_stable`)."""
+    n_p = problem.n_p
+    out = kernel.run_many(x_rest, vectors[points, :n_p], tol)
+    x = out["x"]
+    ok, force, moment, relative = problem.judge_rows(out["certificate"], tol)
+    ok &= np.isfinite(x).all(axis=1) & ~turn_jumps(problem, x_rest, x)
+    if _has_body_nodes(problem):
+        doubtful = np.flatnonzero(ok & ~(out["clearly_stable"][:, 0] > 0.5))
+        for row in doubtful:
+            ok[row] = _stable(problem, x[row], vectors[points[row], :n_p])
+    rows = np.flatnonzero(ok)
+    table.done[rows] = True
+    table.iterations[rows] = out["iterations"][rows, 0]
+    table.residual[rows] = np.column_stack([force, moment, relative])[rows]
+    _record(table, rows, out["body"][rows], out["fairlead_tension"][rows],
+            out["anchor_tension"][rows], out["reactions"][rows],
+            vectors[points[rows], n_p:], has_body, allow_overload)
+
+
+def _record(table, rows, body, tf, ta, reactions, mbl, has_body, allow_overload) -> None:
+    """Write the kernel's outputs of certified ``rows`` (arrays with one row each) into
+    ``table``: body pose, tensions, reactions, and an overload against ``mbl``."""
+    if len(rows) == 0:
+        return
+    rows = np.asarray(rows)
+    for row in rows.tolist():
+        table.solver[row] = "newton"
+    if has_body:
+        table.body[rows] = np.column_stack(
+            [body[:, 0], body[:, 1], wrap_degrees(np.degrees(body[:, 2]))])
+    if table.bodies:
+        pose = body[:, 3:].reshape(len(rows), -1, 6).copy()
+        pose[:, :, 3:] = np.degrees(pose[:, :, 3:])
+        pose[:, :, 5] = wrap_degrees(pose[:, :, 5])
+        table.poses[rows] = pose.reshape(len(rows), -1)
+    table.t_fair[rows], table.t_anchor[rows] = tf, ta
+    table.reactions[rows] = reactions
+    over = np.maximum(tf, ta) > mbl
+    table.converged[rows] = allow_overload | ~over.any(axis=1)
+    for k in np.flatnonzero(over.any(axis=1)).tolist():
+        row = int(rows[k])
+        table.reason[row] = "overload: " + "; ".join(
+            f"leg {table.names[j]} would break: tension "
+            f"{max(tf[k, j], ta[k, j]) / 1e3:.1f} kN > MBL {mbl[k, j] / 1e3:.1f} kN"
+            for j in np.flatnonzero(over[k]))
+
+
+def _has_body_nodes(problem) -> bool:
+    return any(owner == "body" for owner, _, _ in problem.nodes)
+
+
+def _overload(result) -> str:
+    """The overload of an equilibrium accepted with ``allow_overload`` (else "")."""
+    over = over_mbl(result)
+    return "overload: " + "; ".join(over) if over else ""
+
+
+def _stable(problem, x, p) -> bool:
+    """Whether the kernel's point, which its own stability test did not call clearly
+    stable, is a stable equilibrium: the full check
+    (:func:`~moorsolve.solve.stability.assess`)."""
+    with problem.lock:
+        return assess(problem, x, p).stable
+
+
+def _solve_each(rows, points, table, point_case, tol, allow_overload=False,
+                from_rest=False):
+    """Full solves (IPOPT strategy), warm-started while the structure stays the same; with
+    ``from_rest`` each point solved as on its own (Newton strategy, no warm start)."""
+    previous = {}
+    for row in rows:
+        pc = point_case(int(points[row]))
+        key = id(get_problem(pc))        # a state is only meaningful to its own problem
+        try:
+            result = solve(pc, tol=tol, solver="newton" if from_rest else "ipopt",
+                           start=None if from_rest else previous.get(key),
+                           allow_overload=allow_overload)
+        except ConvergenceError as err:
+            if err.result is not None and err.result.converged:
+                table.from_result(row, err.result, reason=err.reason)   # e.g. overload
+            else:
+                table.done[row] = True
+                table.reason[row], table.solver[row] = err.reason, "ipopt"
+                table.iterations[row] = err.iterations
+                table.residual[row, :2] = (err.residual_N, err.residual_Nm)
+            continue
+        previous[key] = result.state
+        table.from_result(row, result, reason=_overload(result), converged=True)
+
+

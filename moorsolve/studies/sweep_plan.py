@@ -1,0 +1,255 @@
+"""The plan of a sweep: what defines its points, in what order, and how a chunk is solved."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import threading
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from ..errors import CaseError
+from ..model import Case
+from ..model.units import recording
+from ..solve.cache import get_problem
+from ..solve.equilibrium import rest_point
+from ..solve.start import initial_point
+from ..solve.problem import structure_key
+from .sweep_chunks import _Table, _kernel_pool, _solve_each, _solve_fast
+from .sweep_grid import (_GridColumn, _axes, _edits, _grid_columns, _label, _numeric, _plain,
+                         _plain_grid, _point_vector, _sha, snake_order)
+
+_PARALLEL_MIN_POINTS = 64
+_MIN_CHUNK = 64
+_MAX_CHUNKS = 64
+
+# Guards the plan's shared preparation and the remote plans of a Dask worker.
+_SOLVE_LOCK = threading.RLock()
+
+
+
+# ---- the plan: what defines the points ------------------------------------------------------
+
+
+class SweepPlan:
+    """The points of a sweep and how to solve any chunk of them.
+
+    Built identically from ``(case.source, grid, solver, tol)`` anywhere (a Dask worker
+    rebuilds it from :meth:`spec`).
+    """
+
+    def __init__(self, case: Case, grid: Mapping | None = None, *, table=None,
+                 solver: str = "newton", tol: float | None = None,
+                 chunk_size: int | None = None, allow_overload: bool = False):
+        from ..io import load_case
+        from ..model.paths import with_values
+
+        if solver not in ("newton", "ipopt"):
+            raise ValueError(f"solver {solver!r}: must be 'newton' or 'ipopt'")
+        if case.source is None:
+            raise CaseError("case", "a sweep edits the case-file data; load the case with "
+                                    "moorsolve.load_case (from a file or a dict)")
+        if (grid is None) == (table is None):
+            raise CaseError("grid", "give a grid of case paths or a load table (not both)")
+        self.case, self.solver = case, solver
+        self.allow_overload = bool(allow_overload)
+        self.grid = grid
+        self.table = None
+        if table is not None:
+            from .load_table import TableAxis
+            self.table = TableAxis(table)
+            self.axes = [(tuple(self.table.paths), self.table.rows)]
+        else:
+            self.axes = _axes(grid)
+        self.tol = case.solver.tol if tol is None else float(tol)
+        self.shape = tuple(len(values) for _, values in self.axes)
+        self.n_points = math.prod(self.shape)
+        self.names = [leg.name for leg in case.legs]
+        self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
+        self.contacts = ([f.name for f in case.contacts.fenders]
+                         + [g.name for g in case.contacts.guides])
+        self._with_values, self._load_case = with_values, load_case
+
+        base_key = structure_key(case)
+        base_vec = _point_vector(case)
+        if self.table is not None:
+            # Validated by column (load_table), not row by row; its columns as given.
+            loads = np.concatenate([get_problem(case).load_mask,
+                                    np.zeros(len(case.legs), dtype=bool)])
+            vecs, same = self.table.vectors(case, _point_vector, structure_key, loads)
+            axis_vectors, same = [vecs], [same]
+            self._grid = [[_GridColumn(header, [row[j] for row in self.table.rows],
+                                       all(_numeric(row[j]) for row in self.table.rows))
+                           for j, header in enumerate(self.table.headers)]]
+        else:
+            # Each axis value validated once, as a case of its own; what it converted to
+            # SI gives the grid's columns (numbers in SI, the unit in the name).
+            axis_vectors, same, self._grid = [], [], []
+            for paths, values in self.axes:
+                vecs, keys, quantities = [], [], []
+                for value in values:
+                    try:
+                        with recording() as converted:
+                            c = load_case(with_values(case.source, _edits(paths, value)),
+                                          keep_source=False)
+                    except CaseError as err:
+                        raise CaseError(f"grid[{_label(paths)!r}]",
+                                        f"value {value!r}: {err}") from None
+                    quantities.append(converted)
+                    vecs.append(_point_vector(c))
+                    keys.append(structure_key(c) == base_key)
+                axis_vectors.append(np.array(vecs))
+                same.append(all(keys))
+                self._grid.append(_grid_columns(case.source, paths, values, quantities))
+
+        fast = solver == "newton" and all(same)
+        masks = []
+        if fast:
+            for vecs in axis_vectors:
+                masks.append(np.any(vecs != base_vec, axis=0))
+            used = np.zeros_like(base_vec, dtype=bool)
+            for m in masks:
+                fast &= not np.any(used & m)
+                used |= m
+        self.fast = bool(fast)
+        self._axis_vectors, self._masks, self._base_vec = axis_vectors, masks, base_vec
+
+        self.indices = list(itertools.product(*[range(n) for n in self.shape]))
+        # A table's rows are solved in their order; a grid is walked in a snake.
+        order = list(range(self.n_points)) if self.table is not None else [
+            int(np.ravel_multi_index(idx, self.shape)) for idx in snake_order(self.shape)]
+        if chunk_size is None:
+            chunk_size = max(_MIN_CHUNK, -(-self.n_points // _MAX_CHUNKS))
+        if int(chunk_size) < 1:
+            raise ValueError(f"chunk_size {chunk_size}: must be >= 1")
+        chunk_size = int(chunk_size)
+        self.chunks = [order[a:a + chunk_size] for a in range(0, len(order), chunk_size)]
+        self._vectors = None
+        self._x_rest = None
+        self._problem = None
+
+    # -- identity ---------------------------------------------------------------------------
+
+    def spec(self) -> dict:
+        """Plain data from which a worker rebuilds this plan."""
+        return {"source": self.case.source, "grid": self._plain_points(),
+                "table": self.table is not None, "solver": self.solver, "tol": self.tol,
+                "chunks": self.chunks, "allow_overload": self.allow_overload}
+
+    @classmethod
+    def from_spec(cls, spec: dict) -> "SweepPlan":
+        from ..io import load_case
+        options = dict(solver=spec["solver"], tol=spec["tol"],
+                       allow_overload=spec["allow_overload"])
+        if spec.get("table"):
+            table = dict(zip(spec["grid"]["columns"], zip(*spec["grid"]["rows"])))
+            plan = cls(load_case(spec["source"]), table=table, **options)
+        else:
+            grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
+            plan = cls(load_case(spec["source"]), grid, **options)
+        plan.chunks = spec["chunks"]
+        return plan
+
+    def _plain_points(self):
+        return self.table.plain() if self.table is not None else _plain_grid(self.grid)
+
+    def fingerprint(self) -> dict:
+        """What a resumed sweep must share with the one that wrote the file."""
+        return {"case_sha256": _sha(self.case.source),
+                "grid_sha256": _sha(self._plain_points()),
+                "solver": self.solver, "tol": self.tol, "n_points": self.n_points,
+                "allow_overload": self.allow_overload}
+
+    def grid_columns(self) -> list[str]:
+        return [col.name for columns in self._grid for col in columns]
+
+    def result_columns(self) -> list[str]:
+        return list(_Table(0, self.names, self.body_names, self.contacts).columns())
+
+    def grid_record(self) -> dict:
+        """The grid (or the load table) as plain data, for the record beside an output
+        file."""
+        if self.table is not None:
+            return {"table": self.table.plain()}
+        return {_label(paths): _plain(values) for paths, values in self.axes}
+
+    # -- solving ------------------------------------------------------------------------------
+
+    def point_case(self, i: int) -> Case:
+        if self.table is not None:
+            edits = self.table.edits(i)
+        else:
+            edits = {}
+            for (paths, values), k in zip(self.axes, self.indices[i]):
+                edits.update(_edits(paths, values[k]))
+        return self._load_case(self._with_values(self.case.source, edits), keep_source=False)
+
+    def vectors(self) -> np.ndarray:
+        if self._vectors is None:
+            vectors = np.empty((self.n_points, self._base_vec.size))
+            vectors[:] = self._base_vec
+            index_array = np.array(self.indices, dtype=int).reshape(self.n_points,
+                                                                    len(self.axes))
+            for k, (vecs, mask) in enumerate(zip(self._axis_vectors, self._masks)):
+                vectors[:, mask] = vecs[index_array[:, k]][:, mask]
+            self._vectors = vectors
+        return self._vectors
+
+    def prepare(self) -> None:
+        """Build (and compile) what the chunks share, once, before they run."""
+        if self.fast and self._x_rest is None:
+            with _SOLVE_LOCK:
+                if self._x_rest is None:
+                    self._problem = problem = get_problem(self.case)
+                    _kernel_pool(problem)
+                    # A table's rows start as single solves do: from the rest state.
+                    self._x_rest = (rest_point(problem, self.case, self.tol,
+                                               problem.newton())
+                                    if self.table is not None
+                                    else initial_point(problem, self.case))
+            self.vectors()
+
+    def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
+        """Solve ``points`` (snake order) and return them with their result columns."""
+        points = np.asarray(points, dtype=int)
+        table = _Table(len(points), self.names, self.body_names, self.contacts)
+        if self.fast:
+            self.prepare()
+            problem = self._problem
+            pool = _kernel_pool(problem)
+            kernel = pool.acquire()
+            try:
+                _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
+                            self.tol, self.case.body is not None, self.allow_overload,
+                            self.table is not None)
+            finally:
+                pool.release(kernel)
+            retry = np.flatnonzero(~table.done).tolist()
+        else:
+            retry = list(range(len(points)))
+        _solve_each(retry, points, table, self.point_case, self.tol, self.allow_overload,
+                    self.table is not None and self.solver == "newton")
+        return points, table.columns()
+
+    # -- rows ---------------------------------------------------------------------------------
+
+    def frame(self, points, columns: dict, for_file: bool = False):
+        """A DataFrame of solved ``points`` indexed by ``point``. Grid values that are
+        quantities are SI numbers in columns named with their unit (``environment.wind.speed
+        [m/s]``; a list gives one column per item, ``body.loads.force[2] [N m]``); other
+        values keep the path as name, and ``for_file`` writes them as text (lists as JSON)."""
+        import pandas as pd
+
+        data = {}
+        for k, columns_k in enumerate(self._grid):
+            for col in columns_k:
+                cells = [col.values[self.indices[i][k]] for i in points]
+                data[col.name] = col.file_cells(cells) if for_file else cells
+        data.update(columns)
+        if for_file:
+            data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
+        index = pd.Index(np.asarray(points, dtype=int), name="point")
+        return pd.DataFrame(data, index=index)
+
+
