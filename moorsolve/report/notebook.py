@@ -128,14 +128,16 @@ def envelope_html(envelope) -> str:
     """An offset envelope as an HTML table, one row per heading."""
     e = envelope
     rows = []
-    for i, h in enumerate(e.heading_deg):
+    for i in range(len(e.heading_deg)):
+        h = e.file_heading(i)
         if not math.isfinite(e.worst_tension_N[i]):
             rows.append(([f"{h:g}", "-", "-", "-", "-", "-", e.reason[i]], "fail"))
             continue
-        rows.append(([f"{h:g}", f"{e.offset_m[i]:.3f}", f"{e.offset_direction_deg[i]:.1f}",
+        rows.append(([f"{h:g}", f"{e.offset_m[i]:.3f}", f"{e.file_direction(i):.1f}",
                       f"{e.yaw_deg[i]:.3f}", e.worst_leg[i],
                       f"{e.worst_tension_N[i] / 1e3:,.1f}", e.reason[i]],
                      "" if e.converged[i] else "fail"))
-    return html_table(["toward [deg]", "offset [m]", "direction [deg]", "yaw [deg]",
+    direction = "bearing [deg]" if e.compass.nautical else "direction [deg]"
+    return html_table([e.heading_label(), "offset [m]", direction, "yaw [deg]",
                        "worst leg", "worst tension [kN]", "note"], rows,
                       f"offset envelope of {e.case_name} ({', '.join(e.flows)} turned)")

@@ -22,7 +22,7 @@ import numpy as np
 from ..errors import CaseError
 from ..model import Case
 from ..physics.kinematics import wrap_degrees
-from ..model.directions import direction_edit, wrap_deg
+from ..model.directions import Compass, direction_edit, wrap_deg
 from .sweep import sweep
 
 FLOWS = ("wind", "current", "waves")
@@ -38,6 +38,11 @@ class Envelope:
     and ``worst_leg`` that leg. A heading without equilibrium has ``converged = False``,
     its ``reason`` and NaN values; an equilibrium that overloads a leg keeps its values
     with ``converged = False`` and the overload as ``reason``.
+
+    ``case_heading_deg`` is each heading as the case file writes its reference flow
+    (``heading_key``, ``toward_deg`` or ``from_deg``, in the file's compass convention), and
+    ``compass`` that convention: the text and HTML tables speak in the file's terms, so a
+    nautical case reads "wind from 045" and the offset as a bearing.
     """
 
     case_name: str
@@ -53,6 +58,23 @@ class Envelope:
     converged: np.ndarray
     reason: tuple
     table: object = dataclasses.field(repr=False, compare=False)
+    case_heading_deg: Optional[np.ndarray] = None
+    heading_key: str = "toward_deg"
+    compass: Compass = dataclasses.field(default_factory=Compass)
+
+    def heading_label(self) -> str:
+        """The heading column's name in the case file's terms."""
+        word = "from" if self.heading_key == "from_deg" else "toward"
+        scale = ", clockwise from N" if self.compass.nautical else ""
+        return f"{self.flows[0]} {word} [deg{scale}]"
+
+    def file_heading(self, i: int) -> float:
+        return float(self.heading_deg[i] if self.case_heading_deg is None
+                     else self.case_heading_deg[i])
+
+    def file_direction(self, i: int) -> float:
+        """The offset's direction in the file's compass (a bearing when nautical)."""
+        return self.compass.file_value(float(self.offset_direction_deg[i]), "toward_deg")
 
     def __repr__(self) -> str:
         ok = np.isfinite(self.worst_tension_N)
@@ -80,7 +102,10 @@ class Envelope:
         return self.row(int(np.argmax(offset)))
 
     def row(self, i: int) -> dict:
-        return {"heading_deg": float(self.heading_deg[i]), "offset_m": _f(self.offset_m[i]),
+        return {"heading_deg": float(self.heading_deg[i]),
+                "case_heading": {"key": self.heading_key, "deg": self.file_heading(i),
+                                 "convention": self.compass.convention},
+                "offset_m": _f(self.offset_m[i]),
                 "offset_direction_deg": _f(self.offset_direction_deg[i]),
                 "x_m": _f(self.x_m[i]), "y_m": _f(self.y_m[i]), "yaw_deg": _f(self.yaw_deg[i]),
                 "worst_tension_N": _f(self.worst_tension_N[i]), "worst_leg": self.worst_leg[i],
@@ -201,28 +226,39 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
         offset_direction_deg=np.round(np.degrees(np.arctan2(y, x)), 9) % 360.0,
         x_m=x, y_m=y, yaw_deg=yaw, worst_tension_N=worst,
         worst_leg=tuple(names[k] if ok else "" for k, ok in zip(worst_index, solved)),
-        converged=converged, reason=tuple(table["reason"]), table=table)
+        converged=converged, reason=tuple(table["reason"]), table=table,
+        case_heading_deg=np.array([row[0][1] for row in edits], dtype=float),
+        heading_key=paths[0].rsplit(".", 1)[1], compass=env.compass)
 
 
 def format_envelope(envelope: Envelope) -> str:
-    """The envelope as a fixed-width table, with its worst heading."""
+    """The envelope as a fixed-width table, with its worst heading, in the case's terms."""
     e = envelope
+    bearing = "brg deg" if e.compass.nautical else "dir deg"
     lines = [f"offset envelope: {e.case_name} ({', '.join(e.flows)} turned together)",
-             f"{'toward':>7} {'offset m':>9} {'dir deg':>8} {'yaw deg':>8} {'worst':>8} "
+             f"heading: {e.heading_label()}",
+             f"{'heading':>7} {'offset m':>9} {bearing:>8} {'yaw deg':>8} {'worst':>8} "
              f"{'T kN':>10}"]
-    for i, h in enumerate(e.heading_deg):
+    for i in range(len(e.heading_deg)):
+        h = e.file_heading(i)
         if not math.isfinite(e.worst_tension_N[i]):
             lines.append(f"{h:7.1f}  no equilibrium: {e.reason[i]}")
             continue
         note = "" if e.converged[i] else f"  ({e.reason[i]})"
-        lines.append(f"{h:7.1f} {e.offset_m[i]:9.3f} {e.offset_direction_deg[i]:8.1f} "
+        lines.append(f"{h:7.1f} {e.offset_m[i]:9.3f} {e.file_direction(i):8.1f} "
                      f"{e.yaw_deg[i]:8.3f} {e.worst_leg[i]:>8} "
                      f"{e.worst_tension_N[i] / 1e3:10.1f}{note}")
     if np.isfinite(e.worst_tension_N).any():
         w, o = e.worst(), e.largest_offset()
         lines.append(f"worst tension: {w['worst_leg']} {w['worst_tension_N'] / 1e3:.1f} kN "
-                     f"with the load toward {w['heading_deg']:g} deg")
+                     f"with the {e.flows[0]} {e.compass.describe(w['heading_deg'])}")
         lines.append(f"largest offset: {o['offset_m']:.3f} m toward "
-                     f"{o['offset_direction_deg']:.1f} deg with the load toward "
-                     f"{o['heading_deg']:g} deg")
+                     f"{_direction_words(e, o['offset_direction_deg'])} with the {e.flows[0]} "
+                     f"{e.compass.describe(o['heading_deg'])}")
     return "\n".join(lines)
+
+
+def _direction_words(e: Envelope, toward_deg: float) -> str:
+    if e.compass.nautical:
+        return f"{e.compass.file_value(toward_deg, 'toward_deg'):05.1f} deg (clockwise from north)"
+    return f"{toward_deg:.1f} deg"

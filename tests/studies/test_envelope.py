@@ -114,3 +114,35 @@ def test_envelope_command_writes_a_png_and_json(tmp_path, capsys):
     assert capsys.readouterr().err.startswith("moorsolve: bad input: --flows")
     assert main(["envelope", str(BUOY), "--plot", str(tmp_path / "env.txt")]) == 2
     assert not (tmp_path / "env.txt").exists()
+
+
+def test_a_nautical_case_reads_its_envelope_in_compass_bearings():
+    """The same scene written with nautical ``from_deg`` headings: the envelope solves the
+    same equilibria, and its tables speak the file's terms (the wind's bearing it comes
+    from, the offset as a bearing)."""
+    base = _square_buoy()
+    source = dict(base.source)
+    env = dict(source["environment"])
+    env["directions"] = "nautical"
+    wind = dict(env["wind"])
+    toward = wind.pop("toward_deg", 0.0)
+    wind["from_deg"] = (90.0 - toward + 180.0) % 360.0      # the same flow, as a bearing
+    env["wind"] = wind
+    source["environment"] = env
+    nautical = moorsolve.load_case(source)
+    plain = moorsolve.offset_envelope(base, step_deg=45)
+    e = moorsolve.offset_envelope(nautical, step_deg=45)
+    np.testing.assert_allclose(e.worst_tension_N, plain.worst_tension_N, rtol=1e-9)
+    assert e.heading_key == "from_deg" and e.compass.nautical
+    # Internal heading h (toward, CCW from +x) is the bearing the wind comes from: 270 - h.
+    np.testing.assert_allclose(e.case_heading_deg, (270.0 - e.heading_deg) % 360.0, atol=1e-9)
+    for i in range(len(e.heading_deg)):
+        assert e.file_direction(i) == pytest.approx(
+            (90.0 - e.offset_direction_deg[i]) % 360.0, abs=1e-9)
+    text = moorsolve.studies.envelope.format_envelope(e)
+    assert "wind from [deg, clockwise from N]" in text and "brg deg" in text
+    assert "clockwise from north" in text.splitlines()[-1]
+    row = e.to_dict()["headings"][0]
+    assert row["case_heading"] == {"key": "from_deg", "deg": float(e.case_heading_deg[0]),
+                                   "convention": "nautical"}
+    assert "wind from [deg, clockwise from N]" in e._repr_html_()
