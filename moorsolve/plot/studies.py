@@ -164,7 +164,7 @@ def plot_envelope(envelope, axes=None, marks=None):
 
     e = envelope
     if axes is None:
-        fig = plt.figure(figsize=(10, 5.2), layout="constrained")
+        fig = plt.figure(figsize=(10, 5.6), layout="constrained")
         axes = (fig.add_subplot(1, 2, 1, projection="polar"),
                 fig.add_subplot(1, 2, 2, projection="polar"))
     ax_off, ax_t = axes
@@ -183,11 +183,32 @@ def plot_envelope(envelope, axes=None, marks=None):
                     markeredgecolor="C3", markeredgewidth=1.8)
             what = (f"largest offset {values[k]:.3f} m" if unit == "m"
                     else f"worst tension {values[k]:,.0f} kN ({e.worst_leg[k]})")
-            ax.set_xlabel(f"ringed: {what}, load toward {h:g} deg", fontsize=9)
+            ax.set_xlabel(f"ringed: {what},\n{_heading_words(e, k)}", fontsize=9)
         _mark_headings(ax, marks, r_max)
         ax.set_ylim(0, r_max * 1.02)
-        ax.set_title(f"{label} [{unit}] against heading (toward)", fontsize=10)
+        if e.compass.nautical:
+            _bearing_ticks(ax, e.compass.north_deg)
+            ax.set_title(f"{label} [{unit}] against the bearing the load goes toward",
+                         fontsize=10)
+        else:
+            ax.set_title(f"{label} [{unit}] against heading (toward)", fontsize=10)
     return axes
+
+
+def _heading_words(e, k: int) -> str:
+    """Heading ``k`` as the case file writes it, short: ``wind from 045 deg``."""
+    word = "from" if e.heading_key == "from_deg" else "toward"
+    if e.compass.nautical:
+        return f"{e.flows[0]} {word} {e.file_heading(k):03.0f} deg (compass)"
+    return f"{e.flows[0]} {word} {e.file_heading(k):g} deg"
+
+
+def _bearing_ticks(ax, north_deg):
+    """Compass bearings (clockwise from north) on a polar axis drawn in the model's frame, so
+    that the picture stays the plan view and only its labels change."""
+    bearings = np.arange(0.0, 360.0, 45.0)
+    ax.set_xticks(np.radians((north_deg - bearings) % 360.0))
+    ax.set_xticklabels([("N " if b == 0 else "") + f"{b:03.0f}" for b in bearings])
 
 
 def plot_polar_field(heading_deg, radius, values, ax=None, radius_label="",

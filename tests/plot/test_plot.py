@@ -213,7 +213,7 @@ def test_envelope_rings_what_each_plot_shows():
     far, worst = env.largest_offset(), env.worst()
     assert f"largest offset {far['offset_m']:.3f} m" in ax_off.get_xlabel()
     assert f"toward {far['heading_deg']:g} deg" in ax_off.get_xlabel()
-    assert f"({worst['worst_leg']}), load toward {worst['heading_deg']:g} deg" \
+    assert f"({worst['worst_leg']}),\nwind toward {worst['heading_deg']:g} deg" \
         in ax_t.get_xlabel()
     ring = [line for line in ax_t.lines if line.get_markersize() == 12][0]
     assert ring.get_xdata()[0] == pytest.approx(math.radians(worst["heading_deg"]))
