@@ -27,6 +27,7 @@ the outputs, and so are the body position and the leg tensions a sweep records.
 from __future__ import annotations
 
 import logging
+import math
 
 import casadi as ca
 import numpy as np
@@ -306,6 +307,23 @@ class NewtonKernel:
         other._library, other._lib, other._post = self._library, None, None
         return other
 
+    def _interpreted(self, x0: np.ndarray, p: np.ndarray, tol: float) -> list[np.ndarray]:
+        """The kernel run by CasADi's interpreter. Its sparse QR refuses an exactly
+        singular step matrix (a slack line whose blocks lose rank mid-iteration) by failing
+        the whole evaluation, where the compiled code takes a non-finite step that the line
+        search rejects: both end as a stall at the start point, which every caller treats
+        as not certified (and falls back to IPOPT)."""
+        try:
+            return [np.asarray(v, dtype=float).ravel() for v in self.function(x0, p, tol)]
+        except RuntimeError as error:
+            log.debug("interpreted Newton kernel failed (%s): reported as a stall", error)
+        fn = self.function
+        out = [np.full(fn.numel_out(k), math.inf if name == "certificate" else math.nan)
+               for k, name in enumerate(_OUTPUTS)]
+        out[0] = np.array(x0, dtype=float).ravel()
+        out[1][:], out[2][:], out[-1][:] = STALLED, 0, 0
+        return out
+
     def post(self, x: np.ndarray, p: np.ndarray) -> dict:
         """The problem's post function (:meth:`EquilibriumProblem.post_function`) at
         ``x``, compiled: fresh numpy arrays by output name, in their CasADi shapes."""
@@ -335,7 +353,7 @@ class NewtonKernel:
         """Run the kernel; its outputs in order, as views of this kernel's buffers
         (overwritten by the next call) when compiled. For tight loops."""
         if not self.compiled:
-            return [np.asarray(v, dtype=float).ravel() for v in self.function(x0, p, tol)]
+            return self._interpreted(x0, p, tol)
         lib = self._lib
         lib.inputs[0][:] = x0
         lib.inputs[1][:] = p
@@ -354,8 +372,7 @@ class NewtonKernel:
             lib()
             values = lib.copy_outputs()
         else:
-            values = [np.asarray(v, dtype=float).ravel()
-                      for v in self.function(x0, p, tol)]
+            values = self._interpreted(x0, p, tol)
         out = dict(zip(names, values))
         out["status"] = int(out["status"][0])
         out["iterations"] = int(out["iterations"][0])

@@ -8,8 +8,8 @@ import pytest
 import moorsolve
 from moorsolve.solve.cache import get_problem
 from moorsolve.solve.start import initial_point
-from moorsolve.solve.newton import CONVERGED, NewtonKernel
-from conftest import ROOT
+from moorsolve.solve.newton import CONVERGED, STALLED, NewtonKernel
+from conftest import ROOT, TESTS
 
 CASES = sorted(ROOT.joinpath("cases").glob("*.yaml"))
 DOCK = ROOT / "cases" / "floating_dock.yaml"
@@ -89,6 +89,27 @@ def test_newton_falls_back_to_ipopt_and_says_so():
         problem._newton = saved
     assert result.converged and result.solver == "ipopt"
     assert any("Newton" in note for note in result.notes)
+
+
+def test_a_singular_step_is_a_stall_not_a_crash():
+    """tests/data/network/singular_newton_step.yaml: three platforms whose Newton step
+    from the closed-form start meets an exactly singular Jacobian. The interpreted
+    kernel's sparse QR failed the whole evaluation (a RuntimeError out of ``solve``); it
+    must end as the compiled kernel does, a stall at its start that is not certified, and
+    ``solve`` must still find the equilibrium IPOPT finds."""
+    case = moorsolve.load_case(TESTS / "data" / "network" / "singular_newton_step.yaml")
+    problem = get_problem(case)
+    x0 = initial_point(problem, case)
+    out = NewtonKernel(problem, compile=False).solve(x0, problem.parameters(case, 0.0), 1e-9)
+    assert out["status"] in (CONVERGED, STALLED)
+    if out["status"] == STALLED:
+        assert not problem.judge(*out["certificate"].tolist(), tol=1e-9)[0]
+    fast = moorsolve.solve(case, solver="newton")
+    ref = moorsolve.solve(case, solver="ipopt")
+    assert fast.converged and ref.converged
+    for a, b in zip(fast.bodies, ref.bodies):
+        for key in ("x_m", "y_m", "z_m"):
+            assert a[key] == pytest.approx(b[key], abs=1e-6)
 
 
 def test_unknown_solver_is_rejected():
