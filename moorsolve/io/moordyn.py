@@ -65,9 +65,10 @@ def line_type_data(scene: MDScene, report: ImportReport,
             weight = 0.0
         if lt.stretch is not None:
             entry = {"weight_in_water": weight, "stretch": lt.stretch}
-            stiffness = (f"EA from the curve file {lt.ea_token.split('|')[0]!r}: a table law "
-                         f"of {len(lt.stretch['strain'])} rows (moorsolve interpolates them by "
-                         "a monotone cubic, MoorDyn linearly)")
+            source = ("the SYROPE rope's static law" if lt.ea_token.upper().startswith("SYROPE:")
+                      else f"EA from the curve file {lt.ea_token.split('|')[0]!r}")
+            stiffness = (f"{source}: a table law of {len(lt.stretch['strain'])} rows "
+                         "(moorsolve interpolates them by a monotone cubic, MoorDyn linearly)")
         else:
             entry = {"weight_in_water": weight, "ea": lt.ea}
             static = (" (the static part of " + repr(lt.ea_token) + ")"

@@ -30,7 +30,7 @@ from pathlib import Path
 from ..errors import CaseError
 
 __all__ = ["MAX_POINTS", "is_number", "read_curve", "curve_text", "curve_file_name",
-           "sample_law"]
+           "sample_law", "sample_table"]
 
 #: MoorDyn's ``nCoef``: the most points a curve file may hold.
 MAX_POINTS = 30
@@ -111,3 +111,19 @@ def sample_law(law, mbl: float | None) -> tuple:
     eps_max = law.n * math.sqrt(mbl) if mbl else 0.2
     strain = [eps_max * i / (MAX_POINTS - 1) for i in range(MAX_POINTS)]
     return strain, [(e / law.n) ** 2 for e in strain]
+
+
+def sample_table(law) -> tuple:
+    """``(strain, tension)``: a table law of more rows than MoorDyn reads (a SYROPE rope's
+    working and original curves together) cut to ``MAX_POINTS`` of its own rows: the row
+    that linear interpolation between its neighbours misses least is dropped, one at a time
+    (Visvalingam's rule), so kinks (the end of a working curve) and the end rows stay."""
+    strain, tension = list(law.strain), list(law.tension)
+    while len(strain) > MAX_POINTS:
+        def miss(k):
+            e0, e1, e2 = strain[k - 1], strain[k], strain[k + 1]
+            t0, t2 = tension[k - 1], tension[k + 1]
+            return abs(tension[k] - (t0 + (t2 - t0) * (e1 - e0) / (e2 - e0))) / t2
+        k = min(range(1, len(strain) - 1), key=miss)
+        del strain[k], tension[k]
+    return strain, tension

@@ -66,6 +66,7 @@ SECTION_NAMES = (
     ("EXTERNAL LOADS", ("EXTERNAL LOADS",)),
     ("CONTROL", ("CONTROL",)),
     ("FAILURE", ("FAILURE",)),
+    ("syrope_ic", ("SYROPE IC",)),
     ("options", ("OPTIONS",)),
     ("outputs", ("OUTPUT",)),
 )
@@ -124,6 +125,7 @@ class MoorDynFile:
     version_reason: str = ""
     notes: list = field(default_factory=list)
     counts: dict = field(default_factory=dict)
+    syrope_ic: list = field(default_factory=list)   # [(line, text)] of SYROPE IC's rows
 
     @property
     def name(self) -> str:
@@ -265,7 +267,9 @@ def parse_moordyn_text(text: str, path: str = "moordyn.dat") -> MoorDynFile:
     md = MoorDynFile(path=path, version=version, header=header, tables=tables,
                      options=options, outputs=outputs, sections=sections,
                      section_lines={k: b["line"] for k, b in blocks.items()},
-                     version_reason=reason, notes=notes, counts=counts)
+                     version_reason=reason, notes=notes, counts=counts,
+                     syrope_ic=[(n, t) for n, t in blocks.get("syrope_ic", {}).get("lines", [])
+                                if t.strip() and not _is_comment(t)])
     _check_counts(md)
     return md
 

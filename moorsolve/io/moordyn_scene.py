@@ -38,6 +38,7 @@ from pathlib import Path
 from .moordyn_options import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, KNOWN_OPTIONS,
                               read_environment)
 from .moordyn_curves import read_curve
+from .moordyn_syrope import apply_syrope, is_syrope, read_syrope
 from .moordyn_parse import MoorDynFile, Row, number_token
 
 __all__ = ["MDLineType", "MDRodType", "MDBody", "MDRod", "MDPoint", "MDLine", "MDScene",
@@ -70,6 +71,7 @@ class MDLineType:
     columns: dict                     # dynamic columns by moorsolve name (ba, ei, cd, ...)
     layout: int                       # 1: v1's 9 columns, 2: v2's 10, 11 or 13
     stretch: dict = None              # the table law of an EA curve file (moordyn_curves)
+    syrope: object = None             # a SYROPE rope's data until its lines get their laws
 
 
 @dataclass(frozen=True)
@@ -252,9 +254,17 @@ def _line_types(md: MoorDynFile, scene_notes: list) -> dict:
         if mass < 0:
             raise md.error(row.line, f"column 'Mass/m': {row.values[2]!r} must be >= 0")
         ea_token = row.values[3]
-        if ea_token.upper().startswith("SYROPE:"):
-            raise md.error(row.line, f"column 'EA': {ea_token!r} is MoorDyn's SYROPE fibre-rope "
-                                     "model, which has no static counterpart in a case")
+        def error(message, line=row.line):
+            return md.error(line, message)
+        if is_syrope(ea_token):
+            # Each line gets its law from its Tmax0 (moordyn_syrope.apply_syrope).
+            keys = _LT_V1 if layout == 1 else _LT_V2
+            columns = {_V1_TO_V2.get(k, k): t for k, t in zip(keys, row.values[4:])}
+            types[name] = MDLineType(name=name, line=row.line, diameter=diameter, mass=mass,
+                                     ea=None, ea_token=ea_token, columns=columns,
+                                     layout=layout,
+                                     syrope=read_syrope(Path(md.path).parent, ea_token, error))
+            continue
         parts = ea_token.split("|")
         if len(parts) > 3:
             raise md.error(row.line, f"column 'EA': {ea_token!r} has more than 3 '|'-separated "
@@ -522,6 +532,8 @@ def read_scene(md: MoorDynFile) -> MDScene:
     points = _points(md, bodies)
     lines = _lines(md, types, points, rods)
     depth, gravity, rho, options = read_environment(md, points, read, converted, ignored)
+    if md.syrope_ic or any(t.syrope is not None for t in types.values()):
+        types, lines = apply_syrope(md, types, lines, converted, ignored)
     for p in list(points.values()):
         if p.on_seabed:
             points[p.id] = replace(p, position=p.position[:2] + (-depth,))

@@ -36,7 +36,8 @@ from pathlib import Path
 
 from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
-from .moordyn_curves import MAX_POINTS, curve_file_name, curve_text, is_number, sample_law
+from .moordyn_curves import (MAX_POINTS, curve_file_name, curve_text, is_number, sample_law,
+                             sample_table)
 from .output_files import write_text
 from .rotations import apply_transpose, moordyn_angles, moordyn_matrix, yawed
 
@@ -115,15 +116,16 @@ def _curve(lt, prefix: str, curves: dict) -> tuple:
     """The EA token and the stiffness (for the time step) of a line type with a stretch law:
     a curve file's name, its text put into ``curves``."""
     law = lt.stretch
-    if law.model == "table":
-        if law.rows > MAX_POINTS:
-            raise CaseError(f"line_types.{lt.name}.stretch.tension",
-                            f"{law.rows} rows; MoorDyn reads at most {MAX_POINTS} points")
+    title = f"{lt.name}: {law.describe()}"
+    if law.model == "table" and law.rows <= MAX_POINTS:
         strain, tension = law.strain, law.tension
+    elif law.model == "table":
+        strain, tension = sample_table(law)
+        title += f", {MAX_POINTS} of its rows (MoorDyn reads at most {MAX_POINTS})"
     else:
         strain, tension = sample_law(law, lt.mbl)
     name = curve_file_name(prefix, lt.name)
-    curves[name] = curve_text(f"{lt.name}: {law.describe()}", strain, tension)
+    curves[name] = curve_text(title, strain, tension)
     stiffest = max((t1 - t0) / (e1 - e0) for e0, e1, t0, t1 in
                    zip(strain, strain[1:], tension, tension[1:]))
     return name, stiffest
