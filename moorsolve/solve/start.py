@@ -86,6 +86,10 @@ def _scales(case: Case) -> tuple:
     tensions += [math.hypot(max(u, 0.0), V) for u, V in rest_line_states(case)]
     tensions += [line_load(case, line)[0] * line.length for line in case.lines
                  if discretised(case, line)]
+    # A free point's net weight (a clump, a buoy, a pendulum's bob) hangs on its lines.
+    env = case.environment
+    tensions += [abs(env.gravity * (p.mass - env.water_density * p.volume))
+                 for p in case.points if p.free]
     # A weightless line (a hawser) has no weight to set a tension: one percent of its
     # axial stiffness, a typical working strain.
     tensions += [HAWSER_STRAIN * start_ea(line.line_type) for line in case.lines

@@ -316,3 +316,30 @@ def test_every_leg_slack_at_rest_then_loaded(length, force, solver):
     assert pull[0] == pytest.approx(-force, rel=1e-9)
     assert abs(pull[1]) < 1e-9 * force
     assert result.body["x_m"] > 0 and result.stability.stable
+
+
+@pytest.mark.parametrize("weight", [-1.6e-5, 1.6e-5, 0.0])
+@pytest.mark.parametrize("solver", ["ipopt", "newton"])
+def test_a_pendulum_on_a_near_neutral_line_hangs_straight_down(weight, solver):
+    """A 1e5 kg bob on a 100.5 m line whose weight in water is a millionth of its weight in
+    air (MoorDyn's pendulum test has one), starting slack and off to the side: the scene's
+    force scale came from the line weights alone (1e-3 N here) and the solve gave up with a
+    3.97e9 N residual. The bob hangs below the fixed point at the stretched length."""
+    mass, ea, length = 1.0e5, 1.0e9, 100.5
+    case = load_case({
+        "name": "pendulum",
+        "environment": {"depth": 500.0, "water_density": 1000.0, "gravity": 9.80665},
+        "line_types": {"main": {"weight_in_water": weight, "ea": ea}},
+        "points": [{"name": "top", "position": [0.0, 0.0, 0.0]},
+                   {"name": "bob", "position": [10.0, 0.0, -100.0], "free": True,
+                    "mass": mass}],
+        "lines": [{"name": "rod", "from": "top", "to": "bob",
+                   "segments": [{"type": "main", "length": length}]}]})
+    result = solve(case, solver=solver)
+    tension = mass * 9.80665
+    bob = result.points[0]
+    assert result.converged
+    assert bob["x_m"] == pytest.approx(0.0, abs=1e-9)
+    # Weight w L = 1.6e-3 N along the line changes the stretch by ~1e-13 m: below the digits.
+    assert bob["z_m"] == pytest.approx(-length * (1.0 + tension / ea), abs=1e-9)
+    assert result.lines[0].fairlead_tension_N == pytest.approx(tension, rel=1e-9)
