@@ -50,6 +50,10 @@ __all__ = ["MoorDynError", "MoorDynFile", "MoorDynImport", "Row", "read_moordyn"
 
 # ---- line types and the environment -------------------------------------------------------
 
+#: A line type whose weight in water is below this share of its weight in air is taken as
+#: neutrally buoyant.
+NEUTRAL_SHARE = 1e-6
+
 
 def line_type_data(scene: MDScene, report: ImportReport,
                    kept: str = "kept in the moordyn block for export") -> tuple:
@@ -58,10 +62,14 @@ def line_type_data(scene: MDScene, report: ImportReport,
     types, passthrough = {}, {}
     for lt in scene.line_types.values():
         weight = g * (lt.mass - rho * math.pi * lt.diameter ** 2 / 4.0)
-        if weight and abs(weight) < MIN_WEIGHT:
+        if weight and abs(weight) < max(MIN_WEIGHT, NEUTRAL_SHARE * g * lt.mass):
+            # A line within a millionth of neutral (MoorDyn's pendulum tests: "the same
+            # density as water") is neutral: its catenary would carry its weight to no
+            # digit that matters, and lose precision doing it.
             report.converted.append(f"line type {lt.name}: weight in water {weight:.3g} N/m, "
-                                    f"below the case's {MIN_WEIGHT:g} N/m: a neutrally buoyant "
-                                    "line, taken as 0")
+                                    f"{abs(weight) / (g * lt.mass):.2g} of its weight in air "
+                                    f"(below {NEUTRAL_SHARE:g}, or below the case's "
+                                    f"{MIN_WEIGHT:g} N/m): a neutrally buoyant line, taken as 0")
             weight = 0.0
         if lt.stretch is not None:
             entry = {"weight_in_water": weight, "stretch": lt.stretch}

@@ -620,10 +620,30 @@ def _diagnose(problem, case, result) -> str:
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
         found = audit_findings(result, case, boundaries_only=True)
-        reasons.append(f"the solver stopped with status {result.certificate.status}"
+        cert = result.certificate
+        short = (f", but its point is not certified: relative residual {cert.relative:.2g} "
+                 f"above the tolerance {cert.tolerance:.2g}"
+                 if cert.status in SUCCESS_STATUSES and math.isfinite(cert.relative) else "")
+        reasons.append(f"the solver stopped with status {cert.status}{short}"
                        + (f"; at the best point reached: {'; '.join(found)}" if found else "")
-                       + _along_a_boundary(case, result))
+                       + _along_a_boundary(case, result) + _near_neutral(case, result))
     return "; ".join(reasons)
+
+
+def _near_neutral(case, result) -> str:
+    """Name a line whose whole weight in water is below a millionth of the largest tension:
+    its catenary loses precision (``x ~ (H/w) asinh``, a difference of nearly equal terms)
+    for a weight that changes no reported digit."""
+    tensions = [max(lr.fairlead_tension_N, lr.anchor_tension_N) for lr in result.legs]
+    top = max((t for t in tensions if math.isfinite(t)), default=0.0)
+    for line in case.lines:
+        weight = sum(abs(s.line_type.weight_in_water) * s.length for s in line.segments)
+        if 0 < weight < 1e-5 * top:
+            return (f" (line {line.name} weighs {weight:.3g} N in water, under 1e-5 of "
+                    f"the {top:.4g} N it carries: a catenary that light cannot be resolved to "
+                    "the certificate's digits; give its line type weight_in_water 0, a "
+                    "neutrally buoyant line)")
+    return ""
 
 
 def _along_a_boundary(case, result) -> str:

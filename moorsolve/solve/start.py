@@ -91,10 +91,12 @@ def _scales(case: Case) -> tuple:
     tensions += [abs(env.gravity * (p.mass - env.water_density * p.volume))
                  for p in case.points if p.free]
     # A weightless line (a hawser) has no weight to set a tension: one percent of its
-    # axial stiffness, a typical working strain.
-    tensions += [HAWSER_STRAIN * start_ea(line.line_type) for line in case.lines
-                 if line.line_type.weight_in_water == 0 and line.line_type.elastic
-                 and not line.multi_segment]
+    # axial stiffness, a typical working strain; but only where nothing in the scene weighs
+    # (a 10 kg bob on a stiff weightless line would be solved against 1e7 N otherwise).
+    if not any(t > 0 for t in tensions):
+        tensions += [HAWSER_STRAIN * start_ea(line.line_type) for line in case.lines
+                     if line.line_type.weight_in_water == 0 and line.line_type.elastic
+                     and not line.multi_segment]
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
 

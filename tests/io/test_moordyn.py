@@ -387,3 +387,43 @@ def test_cli_import_export_round_trip(tmp_path, capsys):
                  "--equilibrium"]) == 0
     assert "wrote" in capsys.readouterr().out
     assert read_moordyn(out).version == 1
+
+
+@pytest.mark.parametrize("mass, neutral", [(7.853982, True), (7.853981633974483, True),
+                                           (7.86, False), (7.84, False)])
+def test_a_line_within_a_millionth_of_neutral_imports_as_neutral(tmp_path, mass, neutral):
+    """A 0.1 m line in fresh water displaces pi/4 0.01 1000 = 7.853981634 kg/m: a Mass/m
+    within a millionth of it (MoorDyn's pendulum tests write 7.85398) is a neutral line, said
+    in the report; a line visibly heavier or lighter keeps its weight."""
+    text = f"""--------------------- MoorDyn Input File ---------------------------------
+A bob hanging from a fixed point on a line about as dense as the water
+----------------------- LINE TYPES ----------------------------------------
+TypeName   Diam    Mass/m     EA         BA/-zeta    EI         Cd     Ca     CdAx    CaAx
+(name)     (m)     (kg/m)     (N)        (N-s/-)     (N-m^2)    (-)    (-)    (-)     (-)
+main       0.1     {mass}     1.0E9      -0.01       0          0.0    0.0    0.0     0.0
+---------------------- POINTS --------------------------------------------
+ID    Type      X       Y       Z       Mass   Volume  CdA    Ca
+(#)   (-)       (m)     (m)     (m)     (kg)   (m^3)   (m^2)  (-)
+1     Fixed     0       0       0       0      0       0      0
+2     Free      10      0       -100    1E3    0       0      0
+---------------------- LINES ---------------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (#)      (#)       (m)       (-)     (-)
+1     main       1        2         100.5     20      -
+---------------------- OPTIONS -------------------------------------------
+1000.0        WtrDnsty      water density (kg/m^3)
+500           WtrDpth       water depth (m)
+------------------------- need this line ---------------------------------
+"""
+    path = tmp_path / "bob.dat"
+    path.write_text(text)
+    imported = moorsolve.io.moordyn.convert_moordyn(read_moordyn(path))
+    weight = imported.data["line_types"]["main"]["weight_in_water"]
+    said = any("a neutrally buoyant line, taken as 0" in c for c in imported.report.converted)
+    assert (weight == 0.0) == neutral and said == neutral
+    if not neutral:
+        assert weight == pytest.approx(9.80665 * (mass - 2.5 * math.pi), rel=1e-9)
+    result = moorsolve.solve(moorsolve.load_case(imported.data))
+    assert result.converged
+    bob = result.points[0]
+    assert bob["x_m"] == pytest.approx(0.0, abs=1e-6)
