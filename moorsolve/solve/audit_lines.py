@@ -54,6 +54,8 @@ class _LineData:
     wmax: np.ndarray
     clumps: np.ndarray         # sum of joint clump weights
     multi: np.ndarray          # more than one segment
+    segments: np.ndarray       # 0, 1, ... per flat segment, and the line of each
+    seg_line: np.ndarray
 
 
 _DATA = LockedLRU(256)
@@ -92,7 +94,8 @@ def _line_data(lines) -> _LineData:
         wmax=np.array([float(np.max(aw[o:o + m])) for o, m in zip(seg_off, nseg)]),
         clumps=np.array([float(sum(c.weight for c in line.joint_clumps if c is not None))
                          for line in lines]),
-        multi=nseg > 1)
+        multi=nseg > 1, segments=np.arange(len(segs)),
+        seg_line=np.repeat(np.arange(len(lines)), nseg))
     _DATA.put(id(lines), (lines, data))
     return data
 
@@ -112,20 +115,22 @@ class _Profiles:
     profile has none), and per line its first and last point."""
 
     def __init__(self, legs):
-        profs = [leg.profile for leg in legs]
-        xs = [np.asarray(p["x_m"], float).ravel() for p in profs]
+        # A lazy profile's dict at once (a Mapping's lookups cost more than the checks).
+        profs = [p.as_dict() if hasattr(p, "as_dict") else p
+                 for p in (leg.profile for leg in legs)]
+        xs = [np.ravel(p["x_m"]) for p in profs]
         self.m = np.array([len(x) for x in xs], int)
         self.o = np.concatenate([[0], np.cumsum(self.m)[:-1]]).astype(int)
         self.last = self.o + self.m - 1
-        self.x = np.concatenate(xs)
-        self.y = np.concatenate([np.asarray(p["y_m"], float).ravel() for p in profs])
-        self.z = np.concatenate([np.asarray(p["z_m"], float).ravel() for p in profs])
-        self.T = np.concatenate([np.asarray(p["tension_N"], float).ravel() for p in profs])
+        self.x = np.concatenate(xs).astype(float, copy=False)
+        self.y, self.z, self.T = (np.concatenate([np.ravel(p[k]) for p in profs]).astype(
+            float, copy=False) for k in ("y_m", "z_m", "tension_N"))
         self.raw_s = [np.asarray(p["s_m"], float) if "s_m" in p else None for p in profs]
         self.has_s = np.array([s is not None and s.size == k
                                for s, k in zip(self.raw_s, self.m)], bool)
-        self.s = np.concatenate([s.ravel() if ok else np.full(k, np.nan)
-                                 for s, ok, k in zip(self.raw_s, self.has_s, self.m)])
+        self.s = (np.concatenate([s.ravel() for s in self.raw_s]) if self.has_s.all() else
+                  np.concatenate([s.ravel() if ok else np.full(k, np.nan)
+                                  for s, ok, k in zip(self.raw_s, self.has_s, self.m)]))
         self.line = np.repeat(np.arange(len(legs)), self.m)
         N = self.x.size
         # Step k joins point k to k + 1; a line's last point starts no step.
@@ -179,16 +184,16 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
         return [f"leg {leg.name}: the profile has no points"
                 for leg, k in zip(legs, P.m) if k == 0]
     (FT, AT, H, FV, AH, AV, grounded), anchor, fairlead = _legs_arrays(legs)
-    lumped = np.array([is_lumped(case, lc) for lc in case.lines[:n]], bool)
+    lumped = (np.zeros(n, bool) if env.current is None else
+              np.array([is_lumped(case, lc) for lc in case.lines[:n]], bool))
     L = data.L[:n]
     o, last, m = P.o, P.last, P.m
 
     absT = np.abs(P.T)
     tmax_prof = np.maximum.reduceat(absT, o) if P.T.size else np.zeros(n)
     t_max = np.fmax(tmax_prof, np.fmax(np.fmax(FT, AT), np.fmax(data.wsum[:n], 1e-300)))
-    seg_line = np.repeat(np.arange(len(data.nseg)), data.nseg)
-    at_tmax = _strain(data, np.arange(seg_line.size),
-                      np.concatenate([t_max, np.zeros(len(data.nseg) - n)])[seg_line])
+    at_tmax = _strain(data, data.segments,
+                      np.concatenate([t_max, np.zeros(len(data.nseg) - n)])[data.seg_line])
     strain_max = np.maximum.reduceat(at_tmax, data.seg_off)[:n]
     size = np.maximum(np.maximum(L * (1.0 + strain_max), env.depth), 1.0)
     tol = tol_rel * size
@@ -197,10 +202,10 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
               & np.isfinite(size) & (m > 0))
 
     # Ends, continuity and coverage.
-    first_pt = np.column_stack([P.x[o], P.y[o], P.z[o]])
-    last_pt = np.column_stack([P.x[last], P.y[last], P.z[last]])
-    miss_a = np.linalg.norm(first_pt - anchor, axis=1)
-    miss_f = np.linalg.norm(last_pt - fairlead, axis=1)
+    miss_a = np.sqrt((P.x[o] - anchor[:, 0]) ** 2 + (P.y[o] - anchor[:, 1]) ** 2
+                     + (P.z[o] - anchor[:, 2]) ** 2)
+    miss_f = np.sqrt((P.x[last] - fairlead[:, 0]) ** 2 + (P.y[last] - fairlead[:, 1]) ** 2
+                     + (P.z[last] - fairlead[:, 2]) ** 2)
     nx = P.nxt
     dx, dy, dz = P.x[nx] - P.x, P.y[nx] - P.y, P.z[nx] - P.z
     step = np.sqrt(dx * dx + dy * dy + dz * dz)
@@ -248,8 +253,16 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
              bad_ta=bad_ta, bad_tf=bad_tf, t_max=t_max, size=size, f_tol=f_tol,
              on_boundary=on_boundary, directions=directions, vertical=vertical,
              horizontal=horizontal)
+    # Sentences only for the lines some check flags (or that _messages must look at).
+    flagged = (~finite | (miss_a > tol) | (miss_f > tol) | (below > tol) | (above > tol)
+               | bad_ta | bad_tf | (P.has_s & (broken | uncovered))
+               | np.array([bool(leg.joints) or bool(d or vt or hz) for leg, d, vt, hz
+                           in zip(legs, directions, vertical, horizontal)], bool))
+    if env.seabed.sloped:
+        flagged |= ~lumped
     out = []
-    for i, leg in enumerate(legs):
+    for i in np.flatnonzero(flagged):
+        leg = legs[i]
         found = _messages(i, leg, env, P, v) if finite[i] else [
             "the profile has non-finite points or tensions"]
         out += [f"leg {leg.name}: {p}" for p in found]
@@ -360,42 +373,43 @@ def _end_directions(data, P, on_boundary, tol, anchor, fairlead, ends) -> list[l
     two = P.m >= 2
     if not np.any(two):
         return out
-    pts = np.column_stack([P.x, P.y, P.z])
-    checks = (
-        ("fairlead", P.last, P.last - 1, np.column_stack([-H * ux, -H * uy, -FV]), FT,
-         P.last - 1),
-        ("anchor", P.o, P.o + 1, np.column_stack([AH * ux, AH * uy, AV]), AT, P.o),
-    )
-    for name, i, j, force, T, k in checks:
-        i, j, k = (np.where(two, a, P.o) for a in (i, j, k))
-        chord = pts[j] - pts[i]
-        length = np.linalg.norm(chord, axis=1)
-        skip = ((T <= 0) | (length <= tol) | (on_boundary[i] & on_boundary[j]) | ~two
-                | ~P.has_s | (data.nseg[:n] == 0))
-        if name == "anchor":
-            skip |= (AV == 0.0) & on_boundary[i]
-        direction = force / np.maximum(np.linalg.norm(force, axis=1), 1e-300)[:, None]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            cosine = np.clip(np.sum(direction * chord, axis=1) / length, -1.0, 1.0)
-        angle = np.arccos(cosine)
-        seg = np.zeros(n, int)
-        for li in np.flatnonzero(data.multi[:n] & ~skip):
-            seg[li] = min(np.searchsorted(data.ends[li], P.s[k[li]] + 1e-12) - 1,
-                          data.nseg[li] - 1)
-        # A negative index is the line's last segment, as indexing a per-line array gives.
-        seg = np.where(seg < 0, seg + data.nseg[:n], seg)
-        gseg = data.seg_off[:n] + seg
-        above = (pts[i, 2] + pts[j, 2]) / 2 > 0
-        w = np.abs(np.where(above, data.in_air[gseg], data.weight[gseg]))
-        ds = np.abs(P.s[j] - P.s[i])
-        skip |= T <= w * ds
-        with np.errstate(invalid="ignore", divide="ignore"):
-            turning = w * ds / (T - w * ds) + 1e-6
-        for li in np.flatnonzero(~skip & (angle > turning)):
-            out[li].append(f"the force at the {name} points "
-                           f"{math.degrees(angle[li]):.3g} deg away from the line's direction "
-                           f"there (at most {math.degrees(turning[li]):.2g} deg over one "
-                           "profile step)")
+    # Both ends in one pass: rows 0..n-1 the fairleads, n..2n-1 the anchors.
+    lines = np.concatenate([np.arange(n), np.arange(n)])
+    two2 = np.concatenate([two, two])
+    i = np.where(two2, np.concatenate([P.last, P.o]), P.o[lines])
+    j = np.where(two2, np.concatenate([P.last - 1, P.o + 1]), P.o[lines])
+    k = np.where(two2, np.concatenate([P.last - 1, P.o]), P.o[lines])
+    force = np.column_stack([np.concatenate([-H * ux, AH * ux]),
+                             np.concatenate([-H * uy, AH * uy]), np.concatenate([-FV, AV])])
+    T = np.concatenate([FT, AT])
+    cx, cy, cz = P.x[j] - P.x[i], P.y[j] - P.y[i], P.z[j] - P.z[i]
+    length = np.sqrt(cx * cx + cy * cy + cz * cz)
+    is_anchor = np.arange(2 * n) >= n
+    skip = ((T <= 0) | (length <= tol[lines]) | (on_boundary[i] & on_boundary[j]) | ~two2
+            | ~P.has_s[lines] | (is_anchor & (AV[lines] == 0.0) & on_boundary[i]))
+    norm = np.maximum(np.sqrt(np.sum(force * force, axis=1)), 1e-300)
+    dot = (force[:, 0] * cx + force[:, 1] * cy + force[:, 2] * cz) / norm
+    cosine = np.minimum(np.maximum(dot / np.where(skip, 1.0, length), -1.0), 1.0)
+    angle = np.arccos(cosine)
+    seg = np.zeros(2 * n, int)
+    for row in np.nonzero(data.multi[lines] & ~skip)[0]:
+        li = lines[row]
+        seg[row] = min(np.searchsorted(data.ends[li], P.s[k[row]] + 1e-12) - 1,
+                       data.nseg[li] - 1)
+    # A negative index is the line's last segment, as indexing a per-line array gives.
+    seg = np.where(seg < 0, seg + data.nseg[lines], seg)
+    gseg = data.seg_off[lines] + seg
+    above = (P.z[i] + P.z[j]) / 2 > 0
+    w = np.abs(np.where(above, data.in_air[gseg], data.weight[gseg]))
+    ds = np.abs(P.s[j] - P.s[i])
+    skip |= T <= w * ds
+    turning = w * ds / np.where(skip, 1.0, T - w * ds) + 1e-6
+    for row in np.nonzero(~skip & (angle > turning))[0]:
+        name = "anchor" if row >= n else "fairlead"
+        out[lines[row]].append(f"the force at the {name} points "
+                               f"{math.degrees(angle[row]):.3g} deg away from the line's "
+                               f"direction there (at most {math.degrees(turning[row]):.2g} deg "
+                               "over one profile step)")
     return out
 
 
