@@ -138,7 +138,7 @@ def _audit_body(result, case) -> list[str]:
             force += f
             moment += m
             scale = max(scale, float(np.linalg.norm(f)))
-        generalized = np.concatenate([force, _angle_axes(q[4], q[5]).T @ moment])
+        generalized = np.concatenate([force, _angle_axes(R, q[5]).T @ moment])
         if body.stiffness is not None:
             q0 = np.array(list(body.position) + [math.radians(a) for a in
                                                  body.orientation_deg])
@@ -204,11 +204,12 @@ def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
     return rz @ ry @ rx
 
 
-def _angle_axes(pitch: float, yaw: float) -> np.ndarray:
-    """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles)."""
-    rz = _rotation(0.0, 0.0, yaw)
-    return np.column_stack([rz @ _rotation(0.0, pitch, 0.0) @ [1.0, 0.0, 0.0],
-                            rz @ [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+def _angle_axes(R: np.ndarray, yaw: float) -> np.ndarray:
+    """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles), for the
+    body's rotation ``R`` (:func:`_rotation`): ``Rz Ry e_x`` (R's first column, as ``Rx``
+    keeps ``e_x``), ``Rz e_y`` and ``e_z``."""
+    return np.array([[R[0, 0], -math.sin(yaw), 0.0], [R[1, 0], math.cos(yaw), 0.0],
+                     [R[2, 0], 0.0, 1.0]])
 
 
 def _hydrostatic_wrenches(body, origin, R, env):
