@@ -140,9 +140,9 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         examination (``Result.stability`` is then None), for sweeps that only want numbers.
     audit : bool
         Check the reported quantities independently before returning
-        (:mod:`moorsolve.solve.audit`; the default). It draws every line's profile and
-        costs about ten times a compiled Newton solve: ``False`` skips it for loops that
-        need the speed (the certificate, the stability check and the warnings stay).
+        (:mod:`moorsolve.solve.audit`; the default). It draws every line's profile and,
+        with them, costs a few times a compiled Newton solve: ``False`` skips it for loops
+        that need the speed (the certificate, the stability check and the warnings stay).
 
     Returns
     -------

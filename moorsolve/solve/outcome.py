@@ -24,6 +24,7 @@ from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
 from .prepared import line_facts
+from .profile_batch import ProfileBatch
 from .problem import LINE_COLUMNS, ROTATIONS
 from .result import LazyProfile, LegList, LegResult, Result
 from .stretch_params import numeric_law
@@ -49,6 +50,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
 
     def make_legs():
         table, seg_table, node_table = (np.atleast_2d(t) for t in tables)
+        batch = ProfileBatch(_PROFILE_POINTS)
         for i, (line, kind) in enumerate(zip(case.lines, problem.kinds)):
             row = dict(zip(LINE_COLUMNS, table[i].tolist()))
             u = float(xp[problem.line_offsets[i]])
@@ -60,7 +62,8 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                         for r in seg_table if int(r[0]) == i]
                 lr = _multi_result(case, line, kind, row, rows, u)
             else:
-                lr = _single_result(case, line, kind, row, u, problem.contact_stiffness)
+                lr = _single_result(case, line, kind, row, u, problem.contact_stiffness,
+                                    batch)
             if fibre:
                 lr = dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
             yield lr
@@ -218,7 +221,7 @@ def _weightless_slack(line, row, u, stiffness) -> bool:
     return stretched - math.hypot(row["X"], row["Z"]) > u / stiffness
 
 
-def _single_result(case, line, kind, row, u, stiffness) -> LegResult:
+def _single_result(case, line, kind, row, u, stiffness, batch=None) -> LegResult:
     env = case.environment
     lt = line.line_type
     if kind.neutral and _weightless_slack(line, row, u, stiffness):
@@ -268,8 +271,18 @@ def _single_result(case, line, kind, row, u, stiffness) -> LegResult:
         _add_wall_tension(profile, line, env)
         return profile
 
-    # Drawn when first read (a floating line's touch-up point reads it now).
-    profile = LazyProfile(draw)
+    # Drawn when first read (a floating line's touch-up point reads it now); a Hooke line
+    # on a flat seabed or clear of it with the result's others like it, at once.
+    block = kind.block
+    if (batch is not None and not (block.neutral or block.air or kind.lifted or kind.surface
+                                   or kind.sloped) and numeric_law(lt) is None):
+        profile = LazyProfile(batch.add(
+            dict(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea, mu=mu,
+                 contact=block.contact, lower=lower, upper=upper, flipped=kind.flipped,
+                 length=line.length),
+            draw, lambda prof: _add_wall_tension(prof, line, env)))
+    else:
+        profile = LazyProfile(draw)
     fields = _end_fields(line.name, a, b, fa, fb)
     fields.update(floating_length_m=floating,
                   touchup_from_anchor_m=_first_at_surface(profile, a) if floating > 0 else 0.0)

@@ -48,6 +48,10 @@ class LazyProfile(Mapping):
     def __repr__(self) -> str:
         return f"LazyProfile({sorted(self)})"
 
+    def as_dict(self) -> dict:
+        """The drawn profile itself (drawn now if it was not): read it, do not change it."""
+        return self._data.value()
+
 
 class LegList(Sequence):
     """The legs of a Result, made from the solved arrays on first access (all at once)."""

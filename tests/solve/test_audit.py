@@ -22,6 +22,7 @@ from moorsolve.cli import main
 from moorsolve.report.text import format_table
 from moorsolve.solve import outcome
 from moorsolve.solve.audit import AuditFailure, audit
+from moorsolve.solve.profile_batch import ProfileBatch
 from conftest import ROOT
 
 CASES = ROOT / "cases"
@@ -145,6 +146,8 @@ def test_solve_raises_when_the_reported_profile_is_wrong(monkeypatch):
         prof = real(*args, **kwargs)
         return dict(prof, z=prof["z"] + 1.0)
     monkeypatch.setattr(outcome, "leg_profile", broken)
+    # Each line drawn by its own (broken) drawing, not with the others (profile_batch).
+    monkeypatch.setattr(ProfileBatch, "add", lambda self, params, fallback, finish: fallback)
     with pytest.raises(ConvergenceError, match="independent audit: leg A: the profile starts"):
         solve(one_leg(100.0, [0, 0], [80.0, 0, 0.0], 100.0))
 
