@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ..errors import CaseError
+from .bathymetry import read_bathymetry
 from .moordyn_parse import MoorDynFile, number_token
 
 __all__ = ["DEFAULT_GRAVITY", "DEFAULT_WATER_DENSITY", "KNOWN_OPTIONS", "read_environment"]
@@ -44,8 +46,8 @@ def read_environment(md: MoorDynFile, points: dict, read: list, converted: list,
         if key is None:
             options.append([opt, token])
             if low == "seafloorfile":
-                ignored.append(f"line {number}: SeafloorFile {token!r}: bathymetry is not "
-                               "applied by this import; the seabed is flat at the water depth")
+                values["bathymetry"] = _seafloor(md, base, token, number, converted,
+                                                 ignored)
             elif low in _FRICTION:
                 ignored.append(f"line {number}: {opt} {token}: MoorDyn's seabed friction is "
                                "dynamic (and MoorPy ignores it); the case's seabed is "
@@ -103,7 +105,29 @@ def read_environment(md: MoorDynFile, points: dict, read: list, converted: list,
             values[key] = default
             converted.append(f"no {what}: MoorDyn's default {key.replace('_', ' ')} "
                              f"{default:g} {'m/s^2' if key == 'gravity' else 'kg/m^3'}")
-    return depth, values["gravity"], values["water_density"], options
+    return depth, values["gravity"], values["water_density"], options, values.get("bathymetry")
+
+
+def _seafloor(md: MoorDynFile, base: Path, token: str, number: int, converted: list,
+              ignored: list):
+    """``(absolute path, grid)`` of the SeafloorFile, read relative to the input file (or,
+    as MoorDyn-C does, the working directory); None, reported, when there is no such file
+    (a file shared without its grid): the seabed is then flat at the water depth."""
+    path = Path(token) if Path(token).is_absolute() else base / token
+    if not path.is_file() and Path(token).is_file():
+        path = Path(token)      # MoorDyn-C reads it from the working directory
+    if not path.is_file():
+        ignored.append(f"line {number}: SeafloorFile {token!r}: no such file beside the input "
+                       "file (MoorDyn would stop here); the seabed is flat at the water depth")
+        return None
+    try:
+        grid = read_bathymetry(path, field="SeafloorFile")
+    except CaseError as exc:
+        raise md.error(number, f"SeafloorFile {token!r}: {exc.detail}") from None
+    converted.append(f"line {number}: SeafloorFile {token!r}: a bathymetry grid of "
+                     f"{len(grid['x'])} x {len(grid['y'])} depths, "
+                     f"environment.seabed.bathymetry (interpolated bilinearly, as MoorDyn does)")
+    return str(path.resolve()), grid
 
 
 def _source(md: MoorDynFile, key: str) -> str:

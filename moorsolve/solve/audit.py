@@ -154,11 +154,25 @@ def _audit_line(leg_case, leg, env, tol_rel, lumped, boundaries_only=False) -> l
             consistency.append(f"the profile covers {s[0]:.4g} m to {s[-1]:.4g} m of a "
                                f"{L:.4g} m line")
     bed = env.seabed_z(pts[:, 0], pts[:, 1])
+    below_tol = tol
+    if leg.seabed_plane is not None:
+        # On a grid the line lies on its own plane (solve/bathymetry.py): on the plane to
+        # the audit's tolerance, and off the grid's surface by at most the seabed tolerance.
+        z0, gx, gy = leg.seabed_plane
+        plane = z0 + gx * pts[:, 0] + gy * pts[:, 1]
+        under = float(np.max(plane - pts[:, 2]))
+        if under > tol:
+            out.append(f"the line passes {under:.3g} m below its seabed plane")
+        below_tol = max(tol, env.seabed.tolerance)
     below = float(np.max(bed - pts[:, 2]))
-    if below > tol:
+    if below > below_tol:
         k = int(np.argmax(bed - pts[:, 2]))
         out.append(f"the line passes {below:.3g} m below the seabed (at "
-                   f"{pts[k, 0]:.2f}, {pts[k, 1]:.2f}, {pts[k, 2]:.2f} m)")
+                   f"{pts[k, 0]:.2f}, {pts[k, 1]:.2f}, {pts[k, 2]:.2f} m)"
+                   + (f"; the bathymetry's tolerance is {env.seabed.tolerance:g} m"
+                      if leg.seabed_plane is not None else ""))
+    if leg.seabed_plane is not None:
+        bed = plane         # where the model puts grounded line
     ceiling = max(0.0, anchor[2], fairlead[2])
     above = float(np.max(pts[:, 2])) - ceiling
     if above > tol:
@@ -278,7 +292,7 @@ def _audit_vertical_balance(leg_case, leg, env, pts, s, ends, weights, on_bed, o
     within ``s = sqrt(2 T tight / w)`` of the lift-off looks supported, so each end of a
     supported run may shift the weight found by ``sqrt(2 T tight w)``.
     """
-    if any(g != 0.0 for g in env.seabed.gradient) and leg.grounded_length_m > 0:
+    if env.seabed.sloped and leg.grounded_length_m > 0:
         return []           # the slope's reaction has a horizontal part; not checked here
     mid = (s[1:] + s[:-1]) / 2
     seg = np.clip(np.searchsorted(ends, mid) - 1, 0, len(weights) - 1)
