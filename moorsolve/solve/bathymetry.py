@@ -120,9 +120,12 @@ def solve_on_grid(case, kinds, solve_once, start=None):
     planes = initial_planes(case, kinds)
     lengths = np.array([line.length for line in case.lines])
     previous = None
+    iterations, seconds = 0, 0.0
     for rounds in range(1, MAX_ROUNDS + 1):
         result = solve_once(planes, start)
         start = result.state
+        iterations += result.certificate.iterations
+        seconds += result.certificate.solve_time_s
         reach = np.array([_touchdown_reach(line, leg)
                           for line, leg in zip(case.lines, result.legs)])
         if previous is not None and np.all(np.abs(reach - previous) <= TOUCHDOWN_REL * lengths):
@@ -133,7 +136,9 @@ def solve_on_grid(case, kinds, solve_once, start=None):
         previous, planes = reach, new
     else:
         rounds = -MAX_ROUNDS
-    return finish(case, result, planes, rounds)
+    # The certificate is the last solve's; its effort is all of them.
+    cert = dataclasses.replace(result.certificate, iterations=iterations, solve_time_s=seconds)
+    return finish(case, dataclasses.replace(result, certificate=cert), planes, rounds)
 
 
 def finish(case, result, planes, rounds):

@@ -164,3 +164,13 @@ def test_stiffness_on_a_plane_grid_is_the_planes():
     Ka = np.asarray(stiffness(solve(load_case(plane)))[0])
     Kb = np.asarray(stiffness(solve(load_case(grid)))[0])
     np.testing.assert_allclose(Kb, Ka, rtol=0, atol=1e-9 * np.max(np.abs(Ka)))
+
+
+def test_design_optimisation_on_a_grid_is_refused_by_name():
+    from moorsolve.errors import CaseError
+    from moorsolve.io.study_file import load_study
+
+    case = load_case(CASES / "dock_bathymetry.yaml")
+    with pytest.raises(CaseError, match="bathymetry grid are not modelled") as err:
+        load_study(CASES / "studies" / "floating_dock_chain.yaml", case)
+    assert err.value.field == "variables"
