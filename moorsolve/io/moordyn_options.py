@@ -59,8 +59,13 @@ def read_environment(md: MoorDynFile, points: dict, read: list, converted: list,
             continue
         value = number_token(token)
         if key == "depth" and value is None and (base / token).is_file():
-            ignored.append(f"line {number}: {opt} {token!r} is a bathymetry file: not applied by "
-                           "this import; the seabed is flat at the depth of the deepest point")
+            # MoorDyn-F takes a WtrDpth that names a file as its bathymetry grid.
+            found = _seafloor(md, base, token, number, converted, ignored)
+            values["bathymetry"] = found
+            grid_depth = max(max(row) for row in found[1]["depth"])
+            values["depth"], where["depth"] = grid_depth, number
+            converted.append(f"line {number}: {opt} {token!r} names the grid: the case's "
+                             f"reference depth is its deepest node, {grid_depth:g} m")
             options.append([opt, token])
             continue
         if value is None or not math.isfinite(value):

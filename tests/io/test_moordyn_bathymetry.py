@@ -14,6 +14,7 @@ from moorsolve.io import read_import
 from moorsolve.io.bathymetry import read_bathymetry
 from moorsolve.io.moordyn import MoorDynError
 from moorsolve.io.moordyn_write import export_moordyn
+from moorsolve.solve.audit import AuditFailure
 from conftest import DATA
 
 FOLDER = DATA / "moordyn_bathymetry"
@@ -105,3 +106,29 @@ def test_agrees_with_moorpy_on_a_planar_grid():
     for line, leg in zip(ms.lineList, res.legs):
         assert leg.anchor_tension_N == pytest.approx(line.TA, rel=1e-7)
         assert leg.fairlead_tension_N == pytest.approx(line.TB, rel=1e-7)
+
+
+def test_wtrdpth_naming_the_grid_is_moordyn_f_bathymetry(tmp_path):
+    text = FILE.read_text()
+    text = text.replace("100           WtrDpth", "seafloor.txt  WtrDpth")
+    text = text.replace("seafloor.txt  SeafloorFile  bathymetry\n", "")
+    (tmp_path / "seafloor.txt").write_text((FOLDER / "seafloor.txt").read_text())
+    # Anchors on the seabed by MoorDyn-F's word: put on the grid's surface.
+    path = tmp_path / "wtrdpth.dat"
+    path.write_text(text.replace(" -100    0 ", " seabed  0 "))
+    imp = read_import(path)
+    assert imp.data["environment"]["depth"] == 104.0          # the grid's deepest node
+    assert imp.data["environment"]["seabed"]["bathymetry"] == str(tmp_path / "seafloor.txt")
+    assert any("WtrDpth 'seafloor.txt' names the grid" in e for e in imp.report.converted)
+    case = moorsolve.load_case(imp.data)
+    assert [line.a.position[2] for line in case.lines] == pytest.approx([-97.6, -101.2, -101.2])
+    assert moorsolve.solve(case).certificate.certified
+    # Written at z = -100, two anchors lie 1.2 m above this grid: MoorDyn-F keeps them there,
+    # so does the import. Their chains reach the seabed from a fixed point above it, which
+    # is modelled on a flat seabed at the height under that point; here the seabed rises
+    # under them, and the audit refuses the answer rather than certify a line through it.
+    path.write_text(text)
+    case = moorsolve.load_case(read_import(path).data)
+    assert [line.a.position[2] for line in case.lines] == pytest.approx([-97.6, -100, -100])
+    with pytest.raises(AuditFailure, match="L2: the line passes 1.06 m below its seabed plane"):
+        moorsolve.solve(case)
