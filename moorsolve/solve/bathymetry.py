@@ -164,6 +164,12 @@ def finish(case, result, planes, rounds):
     return dataclasses.replace(result, legs=tuple(legs), notes=tuple(notes))
 
 
+def plane_slices(problem) -> list:
+    """Where each line's plane sits in ``problem``'s parameters, in line order (a problem
+    is shared by scenes of one structure, whatever their lines are called)."""
+    return [problem.layout.slice(f"line[{line.name}].seabed") for line in problem.case.lines]
+
+
 def result_parameters(problem, result, case=None) -> np.ndarray:
     """``problem``'s parameters for ``case`` (default ``result.case``) with each line's
     seabed plane where ``result``'s solve left it: what the stiffness and sensitivities
@@ -172,8 +178,8 @@ def result_parameters(problem, result, case=None) -> np.ndarray:
     p = problem.parameters(case)
     if case.environment.seabed.bathymetry is None:
         return p
-    for line, leg in zip(case.lines, result.legs):
+    for where, leg in zip(plane_slices(problem), result.legs):
         if leg.seabed_plane is not None:
             z0, gx, gy = leg.seabed_plane
-            p[problem.layout.slice(f"line[{line.name}].seabed")] = (-z0, gx, gy)
+            p[where] = (-z0, gx, gy)
     return p

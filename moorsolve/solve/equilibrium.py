@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from .bathymetry import solve_on_grid
+from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
 from .audit import audit as audit_result
 from .audit import audit_findings, result_warnings
@@ -176,8 +176,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         return result
     p_full = problem.parameters(case, 1.0)
     if _planes is not None:
-        for line, plane in zip(case.lines, _planes):
-            p_full[problem.layout.slice(f"line[{line.name}].seabed")] = plane
+        for where, plane in zip(plane_slices(problem), _planes):
+            p_full[where] = plane
     if start is not None and np.shape(start) != (problem.n_x,):
         start = None
     with problem.lock:

@@ -20,6 +20,7 @@ from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
+from .bathymetry import plane_slices
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
@@ -47,6 +48,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     xp = x * problem.x_scale
     tables = post["lines"], post["segments"], post["nodes"]
     grid = case.environment.seabed.bathymetry is not None
+    planes = plane_slices(problem) if grid else None
     p = np.ravel(np.asarray(p, float))
 
     def make_legs():
@@ -63,8 +65,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                 lr = _multi_result(case, line, kind, row, rows, u)
             else:
                 # On a grid the line's own plane (solve/bathymetry.py) gives its slope.
-                plane = (p[problem.layout.slice(f"line[{line.name}].seabed")][1:]
-                         if grid else None)
+                plane = p[planes[i]][1:] if grid else None
                 lr = _single_result(case, line, kind, row, u, problem.contact_stiffness,
                                     plane)
             if fibre:

@@ -174,3 +174,43 @@ def test_design_optimisation_on_a_grid_is_refused_by_name():
     with pytest.raises(CaseError, match="bathymetry grid are not modelled") as err:
         load_study(CASES / "studies" / "floating_dock_chain.yaml", case)
     assert err.value.field == "variables"
+
+
+def test_damaged_conditions_share_a_problem_whatever_the_lines_are_called():
+    """A problem serves every scene of its structure: a damaged condition (a line removed)
+    reuses one built for other line names, and each line keeps its own plane by position."""
+    from moorsolve.checks import run_checks
+
+    case = load_case(CASES / "dock_bathymetry.yaml")
+    report = run_checks(case)
+    assert all(c.solved for c in report.conditions)
+    intact = solve(case)
+    for condition in report.conditions[1:]:
+        for leg in condition.result.legs:
+            z0, gx, gy = leg.seabed_plane
+            ax, ay, az = leg.anchor
+            assert z0 + gx * ax + gy * ay == pytest.approx(az, abs=1e-9)
+            assert leg.seabed_deviation_m < case.environment.seabed.tolerance
+    assert report.conditions[0].result.legs[7].seabed_plane == pytest.approx(
+        intact.legs[7].seabed_plane, abs=1e-12)
+
+
+def test_a_sweep_on_a_grid_solves_each_point_with_settled_planes():
+    """Sweeps take full solves on a grid (the kernel alone would keep the first planes)."""
+    import moorsolve
+
+    case = load_case(CASES / "dock_bathymetry.yaml")
+    out = moorsolve.sweep(case, {"environment.wind.toward_deg": [70.0, 90.0]})
+    for k, heading in enumerate((70.0, 90.0)):
+        data = yaml.safe_load((CASES / "dock_bathymetry.yaml").read_text())
+        data["environment"]["wind"]["toward_deg"] = heading
+        one = solve(_load_beside(data))
+        for leg in one.legs:
+            got = np.asarray(out[f"{leg.name}.fairlead_tension_N"])[k]
+            assert got == pytest.approx(leg.fairlead_tension_N, rel=1e-7)
+
+
+def _load_beside(data):
+    """A case dict of cases/ with its grid file named absolutely."""
+    data["environment"]["seabed"]["bathymetry"] = str(CASES / "dock_bathymetry_seafloor.txt")
+    return load_case(data)
