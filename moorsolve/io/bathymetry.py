@@ -214,7 +214,7 @@ def resolve_in_case(data, base: Path):
     path = Path(name)
     if not path.is_absolute():
         path = base / path
-    grid = read_bathymetry(path)
+    grid = {**read_bathymetry(path), "source": str(path)}
     grid_source = {**seabed, "bathymetry": grid}
     named = {**seabed, "bathymetry": str(path)}
     built = {**data, "environment": {**env, "seabed": grid_source}}

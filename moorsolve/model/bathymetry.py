@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ..errors import CaseError
 from .fields import MAX_DEPTH, check_list, check_mapping, field_path
@@ -38,7 +38,15 @@ class Bathymetry:
     x: tuple
     y: tuple
     depth: tuple
-    source: str = "inline"
+    #: Not compared: the same grid read from another file is the same seabed.
+    source: str = field(default="inline", compare=False)
+
+    def __repr__(self) -> str:
+        # A survey grid has thousands of depths: the shape and the range, not the values.
+        flat = [d for row in self.depth for d in row]
+        return (f"Bathymetry({len(self.x)} x {len(self.y)} nodes, x {self.x[0]:g} to "
+                f"{self.x[-1]:g} m, y {self.y[0]:g} to {self.y[-1]:g} m, depth {min(flat):g} "
+                f"to {max(flat):g} m, {self.source})")
 
     def __hash__(self) -> int:
         # The axes and the outer rows: cheap for a large grid (equality still compares all).
@@ -118,7 +126,8 @@ def _axis(raw, path: str, name: str) -> tuple:
 
 
 def bathymetry_from_mapping(raw, path: str, source: str = "inline") -> Bathymetry:
-    """The validated :class:`Bathymetry` of ``{x: [...], y: [...], depth: [[...], ...]}``.
+    """The validated :class:`Bathymetry` of ``{x: [...], y: [...], depth: [[...], ...]}``
+    (and an optional ``source``, the grid's origin for reports).
 
     ``depth`` has one row per y value, each with one depth per x value, every depth finite,
     positive (below the datum) and at most :data:`~.fields.MAX_DEPTH`.
@@ -127,7 +136,13 @@ def bathymetry_from_mapping(raw, path: str, source: str = "inline") -> Bathymetr
         raise CaseError(path, f"{show_value(raw)} is not a grid: give a file name (a MoorDyn "
                               "SeafloorFile, .csv or .nc) or {x: [...], y: [...], "
                               "depth: [[...], ...]}")
-    m = check_mapping(raw, path, required=("x", "y", "depth"))
+    m = check_mapping(raw, path, required=("x", "y", "depth"), optional=("source",))
+    if "source" in m:
+        # Where the grid came from (the file the case named), for reports.
+        if not isinstance(m["source"], str):
+            raise CaseError(field_path(path, "source"), f"{show_value(m['source'])} is not "
+                                                        "a text naming the grid's origin")
+        source = m["source"]
     xs = _axis(m["x"], field_path(path, "x"), "x")
     ys = _axis(m["y"], field_path(path, "y"), "y")
     if len(xs) * len(ys) > MAX_NODES:

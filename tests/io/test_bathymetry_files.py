@@ -97,6 +97,7 @@ def test_a_case_file_reads_its_grid_relative_to_itself(tmp_path, monkeypatch):
     case = load_case(folder / "case.yaml")
     grid = case.environment.seabed.bathymetry
     assert grid.x == tuple(X) and grid.depth[1] == tuple(DEPTH[1])
+    assert grid.source == str(folder / "bath.txt") and "3 x 2 nodes" in repr(grid)
     # The anchor given as [x, y] sits on the interpolated surface: at (-40, 0), fx = 0.2,
     # fy = 0.4: 40*0.8*0.6 + 41*0.2*0.6 + 42*0.8*0.4 + 44.5*0.2*0.4 = 41.12 m deep.
     assert case.lines[0].a.position[2] == pytest.approx(-41.12, abs=1e-12)
