@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import csv
 import math
+from os import PathLike
 from pathlib import Path
 
 from ..errors import CaseError
@@ -209,7 +210,7 @@ def resolve_in_case(data, base: Path):
     env = data.get("environment") if hasattr(data, "get") else None
     seabed = env.get("seabed") if hasattr(env, "get") else None
     name = seabed.get("bathymetry") if hasattr(seabed, "get") else None
-    if not isinstance(name, str):
+    if not isinstance(name, (str, PathLike)):
         return data, data
     path = Path(name)
     if not path.is_absolute():

@@ -41,6 +41,15 @@ class Bathymetry:
     #: Not compared: the same grid read from another file is the same seabed.
     source: str = field(default="inline", compare=False)
 
+    def __post_init__(self):
+        import numpy as np  # here: the model is imported by `moorsolve --help`, numpy is not
+
+        # The arrays the interpolation reads, made once (read-only: safe across threads).
+        arrays = {k: np.array(getattr(self, k), float) for k in ("x", "y", "depth")}
+        for a in arrays.values():
+            a.setflags(write=False)
+        object.__setattr__(self, "_arrays", arrays)
+
     def __repr__(self) -> str:
         # A survey grid has thousands of depths: the shape and the range, not the values.
         flat = [d for row in self.depth for d in row]
@@ -53,9 +62,8 @@ class Bathymetry:
         return hash((self.x, self.y, self.depth[0], self.depth[-1]))
 
     def _cell(self, v, axis):
-        import numpy as np  # here: the model is imported by `moorsolve --help`, numpy is not
+        import numpy as np
 
-        axis = np.asarray(axis, float)
         v = np.clip(np.asarray(v, float), axis[0], axis[-1])
         if axis.size == 1:
             return np.zeros(v.shape, int), np.zeros(v.shape), v, 1.0
@@ -66,9 +74,10 @@ class Bathymetry:
     def _corners(self, x, y):
         import numpy as np
 
-        d = np.asarray(self.depth, float)
-        i, fx, _, wx = self._cell(x, self.x)
-        j, fy, _, wy = self._cell(y, self.y)
+        grid = self._arrays
+        d = grid["depth"]
+        i, fx, _, wx = self._cell(x, grid["x"])
+        j, fy, _, wy = self._cell(y, grid["y"])
         i1 = np.minimum(i + 1, d.shape[1] - 1)
         j1 = np.minimum(j + 1, d.shape[0] - 1)
         return (d[j, i], d[j, i1], d[j1, i], d[j1, i1]), fx, fy, wx, wy
