@@ -122,7 +122,8 @@ def solve_on_grid(case, kinds, solve_once, start=None):
     previous = None
     iterations, seconds = 0, 0.0
     for rounds in range(1, MAX_ROUNDS + 1):
-        result = solve_once(planes, start)
+        used = planes           # the planes of this solve (what its legs lie on)
+        result = solve_once(used, start)
         start = result.state
         iterations += result.certificate.iterations
         seconds += result.certificate.solve_time_s
@@ -138,7 +139,7 @@ def solve_on_grid(case, kinds, solve_once, start=None):
         rounds = -MAX_ROUNDS
     # The certificate is the last solve's; its effort is all of them.
     cert = dataclasses.replace(result.certificate, iterations=iterations, solve_time_s=seconds)
-    return finish(case, dataclasses.replace(result, certificate=cert), planes, rounds)
+    return finish(case, dataclasses.replace(result, certificate=cert), used, rounds)
 
 
 def finish(case, result, planes, rounds):

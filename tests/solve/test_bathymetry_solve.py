@@ -214,3 +214,28 @@ def _load_beside(data):
     """A case dict of cases/ with its grid file named absolutely."""
     data["environment"]["seabed"]["bathymetry"] = str(CASES / "dock_bathymetry_seafloor.txt")
     return load_case(data)
+
+
+def test_planes_that_do_not_settle_are_said_so(monkeypatch):
+    """With the iteration cut to one solve, the touchdown on a curved seabed is still moving:
+    the note says so, and the deviation measures how far the chain is off the surface."""
+    import importlib
+
+    bathymetry = importlib.import_module("moorsolve.solve.bathymetry")
+    monkeypatch.setattr(bathymetry, "MAX_ROUNDS", 1)
+    res = solve(load_case(_one_leg(_bank(0.05), tolerance=1.0)))
+    leg = res.legs[0]
+    assert any("did not settle in 1 solves" in n for n in res.notes)
+    # The reported plane is the one the chain lies on (the first: to under the fairlead).
+    z0, gx, gy = leg.seabed_plane
+    x, z = np.asarray(leg.profile["x_m"]), np.asarray(leg.profile["z_m"])
+    grounded = x < leg.touchdown_from_anchor_m - 1e-6
+    np.testing.assert_allclose(z[grounded], (z0 + gx * x)[grounded], atol=1e-9)
+    # Unsettled, the plane's far end is not where the chain leaves the surface: the
+    # touchdown point is off the grid by far more than once settled.
+    monkeypatch.undo()
+    case = load_case(_one_leg(_bank(0.05)))
+    settled = solve(case).legs[0]
+    off = [abs(lg.touchdown_point[2] - case.environment.seabed_z(*lg.touchdown_point[:2]))
+           for lg in (leg, settled)]
+    assert off[0] > 1e-4 and off[1] < 1e-6 * 460
