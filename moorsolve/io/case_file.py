@@ -18,6 +18,7 @@ import yaml
 from ..errors import CaseError, UnusedInputWarning
 from ..model import Case
 from ..model.build import build_case
+from .bathymetry import resolve_in_case
 from ..model.fields import FAIRLEAD_Z_MAX
 from ..model.units import show_value
 from ..model.usage import unused_inputs
@@ -138,13 +139,17 @@ def load_case(source, *, keep_source: bool = True) -> Case:
             raise CaseError("", f"{show_value(source)} is not a usable path") from None
         data = _read_yaml(path)
         default_name = path.stem or "case"
+        base = path.parent
     elif isinstance(source, Mapping):
-        data, default_name = source, "case"
+        data, default_name, base = source, "case", Path.cwd()
     else:
         raise CaseError("", f"{show_value(source)} is not a case: give a path to a YAML file or a "
                             "dict")
+    # A bathymetry file is read here (io), relative to the case file; the source keeps
+    # its absolute name, so a sweep's edited copy reads it from anywhere.
+    built, data = resolve_in_case(data, base)
     try:
-        case = build_case(data, default_name)
+        case = build_case(built, default_name)
     except RecursionError:
         # A self-referencing or absurdly nested dict; report it as bad input.
         raise CaseError("", "the case is nested too deeply") from None

@@ -194,6 +194,8 @@ def case_environment(scene: MDScene, report: ImportReport) -> dict:
     case's defaults, their weights and buoyancies being given as zero where they arise."""
     env = {"depth": scene.depth, "water_density": scene.water_density,
            "gravity": scene.gravity}
+    if scene.bathymetry is not None:
+        env["seabed"] = {"bathymetry": scene.bathymetry}
     for key, default, what in (("gravity", DEFAULT_GRAVITY, "weightless: every weight is 0"),
                                ("water_density", DEFAULT_WATER_DENSITY,
                                 "dry: every buoyancy is 0")):

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from ..errors import CaseError
 from ..model import DOFS
+from .bathymetry import seafloor_option
 from .moordyn_write import _default_num_segs, _g, _line_type_rows
 
 __all__ = ["network_to_moordyn"]
@@ -40,9 +41,9 @@ def network_to_moordyn(case, result=None, *, curves: dict | None = None,
     ``curves`` receives the tension-strain curve files of stretch-law line types
     (:func:`moorsolve.io.moordyn_write.case_to_moordyn`)."""
     env = case.environment
-    if env.seabed.sloped:
-        raise CaseError("environment.seabed.gradient", "MoorDyn's seabed is flat; a sloped "
-                                                       "seabed cannot be written")
+    if env.seabed.sloped and env.seabed.bathymetry is None:
+        raise CaseError("environment.seabed.gradient", "MoorDyn's seabed is flat or a grid; "
+                                                       "a sloped plane cannot be written")
     notes = []
     type_rows, _, _ = _line_type_rows(case, {}, 2, curve_prefix, curves)
     poses = {b["name"]: b for b in (result.bodies if result is not None else ())}
@@ -153,6 +154,7 @@ def network_to_moordyn(case, result=None, *, curves: dict | None = None,
     out.append(f"{_g(env.gravity)} g")
     out.append(f"{_g(env.water_density)} rho")
     out.append(f"{_g(env.depth)} WtrDpth")
+    out += [f"{name} {key}" for key, name in seafloor_option(env, curves, curve_prefix)]
     out.append("0.001 dtM")
     out.append("3.0e6 kBot")
     out.append("3.0e5 cBot")

@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ..errors import CaseError
+from .bathymetry import read_bathymetry
 from .moordyn_parse import MoorDynFile, number_token
 
 __all__ = ["DEFAULT_GRAVITY", "DEFAULT_WATER_DENSITY", "KNOWN_OPTIONS", "read_environment"]
@@ -44,8 +46,8 @@ def read_environment(md: MoorDynFile, points: dict, read: list, converted: list,
         if key is None:
             options.append([opt, token])
             if low == "seafloorfile":
-                ignored.append(f"line {number}: SeafloorFile {token!r}: bathymetry is not "
-                               "applied by this import; the seabed is flat at the water depth")
+                values["bathymetry"] = _seafloor(md, base, token, number, converted,
+                                                 ignored)
             elif low in _FRICTION:
                 ignored.append(f"line {number}: {opt} {token}: MoorDyn's seabed friction is "
                                "dynamic (and MoorPy ignores it); the case's seabed is "
@@ -57,8 +59,13 @@ def read_environment(md: MoorDynFile, points: dict, read: list, converted: list,
             continue
         value = number_token(token)
         if key == "depth" and value is None and (base / token).is_file():
-            ignored.append(f"line {number}: {opt} {token!r} is a bathymetry file: not applied by "
-                           "this import; the seabed is flat at the depth of the deepest point")
+            # MoorDyn-F takes a WtrDpth that names a file as its bathymetry grid.
+            found = _seafloor(md, base, token, number, converted, ignored)
+            values["bathymetry"] = found
+            grid_depth = max(max(row) for row in found[1]["depth"])
+            values["depth"], where["depth"] = grid_depth, number
+            converted.append(f"line {number}: {opt} {token!r} names the grid: the case's "
+                             f"reference depth is its deepest node, {grid_depth:g} m")
             options.append([opt, token])
             continue
         if value is None or not math.isfinite(value):
@@ -103,7 +110,29 @@ def read_environment(md: MoorDynFile, points: dict, read: list, converted: list,
             values[key] = default
             converted.append(f"no {what}: MoorDyn's default {key.replace('_', ' ')} "
                              f"{default:g} {'m/s^2' if key == 'gravity' else 'kg/m^3'}")
-    return depth, values["gravity"], values["water_density"], options
+    return depth, values["gravity"], values["water_density"], options, values.get("bathymetry")
+
+
+def _seafloor(md: MoorDynFile, base: Path, token: str, number: int, converted: list,
+              ignored: list):
+    """``(absolute path, grid)`` of the SeafloorFile, read relative to the input file (or,
+    as MoorDyn-C does, the working directory); None, reported, when there is no such file
+    (a file shared without its grid): the seabed is then flat at the water depth."""
+    path = Path(token) if Path(token).is_absolute() else base / token
+    if not path.is_file() and Path(token).is_file():
+        path = Path(token)      # MoorDyn-C reads it from the working directory
+    if not path.is_file():
+        ignored.append(f"line {number}: SeafloorFile {token!r}: no such file beside the input "
+                       "file (MoorDyn would stop here); the seabed is flat at the water depth")
+        return None
+    try:
+        grid = read_bathymetry(path, field="SeafloorFile")
+    except CaseError as exc:
+        raise md.error(number, f"SeafloorFile {token!r}: {exc.detail}") from None
+    converted.append(f"line {number}: SeafloorFile {token!r}: a bathymetry grid of "
+                     f"{len(grid['x'])} x {len(grid['y'])} depths, "
+                     f"environment.seabed.bathymetry (interpolated bilinearly, as MoorDyn does)")
+    return str(path.resolve()), grid
 
 
 def _source(md: MoorDynFile, key: str) -> str:

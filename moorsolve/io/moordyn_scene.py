@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field, replace
+from typing import Optional
 from pathlib import Path
 
 from .moordyn_options import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, KNOWN_OPTIONS,
@@ -161,6 +162,24 @@ class MDScene:
     read: list = field(default_factory=list)
     converted: list = field(default_factory=list)
     ignored: list = field(default_factory=list)
+    bathymetry: Optional[str] = None  # the SeafloorFile's absolute path
+
+
+def _onto_grid(points: dict, depth: float, grid: dict, converted: list) -> None:
+    """Fixed points on MoorDyn's flat seabed (z = -depth, or 'seabed') or below the grid's
+    surface are put on that surface: they are anchors on the bathymetry."""
+    from ..model.bathymetry import bathymetry_from_mapping
+
+    surface = bathymetry_from_mapping(grid, "SeafloorFile")
+    for p in list(points.values()):
+        if p.kind != "fixed":
+            continue
+        x, y, z = p.position
+        bed = surface.height(x, y)
+        if z != bed and (abs(z + depth) <= 1e-9 * depth or z < bed):
+            points[p.id] = replace(p, position=(x, y, bed))
+            converted.append(f"point {p.id} (line {p.line}): z = {z:g} m is put on the "
+                             f"bathymetry's surface, z = {bed:.6g} m")
 
 
 # ---- values ------------------------------------------------------------------------------
@@ -531,16 +550,20 @@ def read_scene(md: MoorDynFile) -> MDScene:
     rods = _rods(md, rod_types, bodies)
     points = _points(md, bodies)
     lines = _lines(md, types, points, rods)
-    depth, gravity, rho, options = read_environment(md, points, read, converted, ignored)
+    depth, gravity, rho, options, seafloor = read_environment(md, points, read, converted,
+                                                              ignored)
     if md.syrope_ic or any(t.syrope is not None for t in types.values()):
         types, lines = apply_syrope(md, types, lines, converted, ignored)
     for p in list(points.values()):
         if p.on_seabed:
             points[p.id] = replace(p, position=p.position[:2] + (-depth,))
             converted.append(f"point {p.id} (line {p.line}): Z 'seabed' is z = {-depth:g} m")
+    if seafloor is not None:
+        _onto_grid(points, depth, seafloor[1], converted)
     scene = MDScene(file=md, depth=depth, gravity=gravity, water_density=rho, line_types=types,
                     rod_types=rod_types, bodies=bodies, rods=rods, points=points, lines=lines,
-                    options=options, read=read, converted=converted, ignored=ignored)
+                    options=options, read=read, converted=converted, ignored=ignored,
+                    bathymetry=None if seafloor is None else seafloor[0])
     scene.read += [f"MoorDyn v{md.version} file ({md.version_reason})"]
     counts = [(len(types), "line type", "line types"), (len(rod_types), "rod type", "rod types"),
               (len(bodies), "body", "bodies"), (len(rods), "rod", "rods"),

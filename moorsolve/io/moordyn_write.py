@@ -36,6 +36,7 @@ from pathlib import Path
 
 from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
+from .bathymetry import seafloor_option
 from .moordyn_curves import (MAX_POINTS, curve_file_name, curve_text, is_number, sample_law,
                              sample_table)
 from .output_files import write_text
@@ -288,7 +289,9 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
     ------
     CaseError
         Something MoorDyn cannot hold: an inextensible line, a buoyant line without a
-        diameter, a sloped seabed, line drag in a current.
+        diameter, a sloped plane seabed (a bathymetry grid is written as a SeafloorFile,
+        ``<prefix>seafloor.txt``, put into ``curves`` to be written beside the file), line
+        drag in a current.
     """
     if getattr(case, "form", "legs") == "network":
         if version == 1:
@@ -301,9 +304,10 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
     if version not in (1, 2):
         raise CaseError("--version", f"{version!r} must be 1 or 2")
     env = case.environment
-    if env.seabed.sloped:
+    if env.seabed.sloped and env.seabed.bathymetry is None:
         raise CaseError("environment.seabed.gradient", "a sloped seabed cannot be written as "
-                                                       "MoorDyn's flat WtrDpth; use a flat seabed")
+                                                       "MoorDyn's flat WtrDpth; use a flat "
+                                                       "seabed or a bathymetry grid")
     stored_legs = block.get("legs", {})
     type_rows, masses, stiffness = _line_type_rows(case, block, version, curve_prefix, curves)
     notes = []
@@ -467,6 +471,8 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
                       ("water_density", "rhoW" if version == 1 else "rho")):
         if key not in present:
             options.append([name, _g(env_values[key])])
+    options = [o for o in options if o[0].lower() != "seafloorfile"]
+    options += seafloor_option(env, curves, curve_prefix)
 
     # ---- front matter ----
     header = [h for h in block.get("header", []) if not h.startswith("moorsolve:")]

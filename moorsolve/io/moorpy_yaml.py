@@ -409,6 +409,10 @@ def export_moorpy(case, out) -> dict:
     from .case_file import load_case
     if isinstance(case, (str, PathLike)):
         case = load_case(case)
+    if case.environment.seabed.bathymetry is not None:
+        raise CaseError("environment.seabed.bathymetry", "MoorPy's YAML has no bathymetry "
+                        "entry (MoorPy takes a grid as System(bathymetry=<SeafloorFile>)); "
+                        "export-moordyn writes the grid as a SeafloorFile")
     if case.environment.seabed.sloped:
         raise CaseError("environment.seabed.gradient", "MoorPy's YAML has a flat water_depth; "
                                                        "use a flat seabed")

@@ -169,6 +169,12 @@ def _variables(raw, path: str, case: Case) -> tuple:
     if not isinstance(raw, Mapping) or not raw:
         raise CaseError(path, f"{show_value(raw)} must be a mapping of variable names to "
                               "{type, legs, lower, upper}, with at least one variable")
+    if case.environment.seabed.bathymetry is not None:
+        # Each line's seabed plane follows its touchdown (solve/bathymetry.py), which the
+        # optimiser's one NLP over design and state does not iterate.
+        raise CaseError(path, "design variables on a bathymetry grid are not modelled yet "
+                              "(the lines' seabed planes move with the design); give the "
+                              "seabed as a plane (environment.seabed.gradient) to optimise")
     legs_by_name = {leg.name: leg for leg in case.legs}
     taken: dict = {}
     out = []

@@ -18,7 +18,9 @@ Schema (SI units, ``[...]`` lists)::
       air_density: > 0 [kg/m^3]                default 1.225
       gravity: > 0 [m/s^2]                     default 9.80665
       seabed: {friction: >= 0,                 default 0
-               gradient: [dz/dx, dz/dy]}       default flat; seabed z = -depth + gx x + gy y
+               gradient: [dz/dx, dz/dy],       default flat; seabed z = -depth + gx x + gy y
+               bathymetry: file or {x, y, depth}  a grid instead of the gradient
+               tolerance: > 0 m}               default 0.1 m; with a bathymetry grid
       directions: mathematical | nautical      default mathematical (ccw from +x); nautical:
       north_deg: [deg]                         clockwise from north, north at north_deg
                                                (ccw from +x, default 90); see directions.py
@@ -90,6 +92,7 @@ from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS
                      MAX_SPEED, MIN_DEPTH, check_bounds, check_list,
                      check_mapping, check_name, check_rows, field_path,
                      nullable_quantity, optional_quantity, quantity)
+from .bathymetry import bathymetry_from_mapping, check_scene as check_bathymetry
 from .moordyn_block import validate_moordyn_block
 from .units import format_si, show_value
 
@@ -167,8 +170,15 @@ def _environment(raw, path: str) -> Environment:
     seabed = Seabed()
     if "seabed" in m:
         sub = field_path(path, "seabed")
-        s = check_mapping(m["seabed"], sub, optional=("friction", "gradient"))
+        s = check_mapping(m["seabed"], sub,
+                          optional=("friction", "gradient", "bathymetry", "tolerance"))
         gradient = (0.0, 0.0)
+        if "gradient" in s and "bathymetry" in s:
+            raise CaseError(field_path(sub, "bathymetry"), "give either a bathymetry grid or "
+                            "a plane gradient, not both (a grid can hold a plane)")
+        if "tolerance" in s and "bathymetry" not in s:
+            raise CaseError(field_path(sub, "tolerance"), "applies to a bathymetry grid only "
+                            "(how far below the grid's surface a line may pass)")
         if "gradient" in s:
             gpath = field_path(sub, "gradient")
             items = check_list(s["gradient"], gpath, "[dz/dx, dz/dy]")
@@ -180,8 +190,18 @@ def _environment(raw, path: str) -> Environment:
             if math.hypot(*gradient) > MAX_GRADIENT:
                 raise CaseError(gpath, f"slope {math.hypot(*gradient):.4g} must be <= "
                                        f"{MAX_GRADIENT} (45 deg)")
+        grid = None
+        if "bathymetry" in s:
+            bpath = field_path(sub, "bathymetry")
+            raw = s["bathymetry"]
+            if isinstance(raw, str):
+                raise CaseError(bpath, f"file {raw!r} was not read: a bathymetry file is read "
+                                       "by load_case (relative to the case file)")
+            grid = bathymetry_from_mapping(raw, bpath)
         seabed = Seabed(friction=optional_quantity(s, sub, "friction", "dimensionless", 0.0, ge=0),
-                        gradient=gradient)
+                        gradient=gradient, bathymetry=grid,
+                        tolerance=optional_quantity(s, sub, "tolerance", "length", 0.1, gt=0,
+                                                    le=MAX_DEPTH))
     compass = _compass(m, path)
     wind = None if m.get("wind") is None else _flow(m["wind"], field_path(path, "wind"), compass)
     current = (None if m.get("current") is None
@@ -334,6 +354,7 @@ def build_case(data, default_name: str = "case") -> Case:
         body = None if m.get("body") is None else _body(m["body"], "body")
         lines = _legs(m["legs"], "legs", environment, line_types, body is not None)
         bodies, points = (() if body is None else (body,)), ()
+    check_bathymetry(environment, lines, points, contacts, network)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
     checks = None if m.get("checks") is None else _checks(m["checks"], "checks", lines)
     moordyn = (None if m.get("moordyn") is None

@@ -44,8 +44,8 @@ def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool)
     bed = environment.seabed_z(fairlead[0], fairlead[1])
     if bed >= 0:
         raise CaseError(fpath, f"the sloped seabed is at z = {format_si(bed, 'length')} under "
-                               "this fairlead, not under water; reduce environment.seabed."
-                               "gradient or move the leg")
+                               "this fairlead, not under water; lower the seabed "
+                               "(environment.seabed) or move the leg")
     if fz < bed - seabed_tol:
         raise CaseError(field_path(fpath, 2), f"fairlead z = {format_si(fz, 'length')} is below "
                                          f"the seabed (z = {format_si(bed, 'length')}); it "
@@ -61,8 +61,8 @@ def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool)
     bed = environment.seabed_z(anchor[0], anchor[1])
     if bed >= 0:
         raise CaseError(apath, f"the sloped seabed is at z = {format_si(bed, 'length')} at "
-                               "this anchor, not under water; reduce environment.seabed."
-                               "gradient or move the anchor")
+                               "this anchor, not under water; lower the seabed "
+                               "(environment.seabed) or move the anchor")
     if len(anchor) == 2:
         anchor = anchor + (bed,)
     else:
@@ -86,8 +86,8 @@ def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool)
     segments, clumps = _segments(m["segments"], spath, environment, line_types)
     if sloped and len(segments) > 1:
         raise CaseError(spath, f"{len(segments)} segments on a sloped seabed: multi-segment legs "
-                               "need a flat seabed (environment.seabed.gradient [0, 0]); a "
-                               "sloped seabed takes one-segment legs")
+                               "need a flat seabed (environment.seabed.gradient [0, 0], no "
+                               "bathymetry); a sloped seabed or a grid takes one-segment legs")
     if not any(seg.line_type.elastic for seg in segments):
         # Body at zero offset: the body-frame fairlead is its global position.
         distance = math.dist(anchor, fairlead)

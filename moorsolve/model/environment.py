@@ -13,6 +13,7 @@ from typing import Optional
 
 
 from ..constants import AIR_DENSITY, SEAWATER_DENSITY, STANDARD_GRAVITY
+from .bathymetry import Bathymetry
 from .directions import Compass
 
 
@@ -72,15 +73,26 @@ class Seabed:
 
     ``friction`` is the Coulomb coefficient for line on seabed (0 = none). ``gradient`` is
     ``(dz/dx, dz/dy)`` of a plane seabed: its height is ``-depth + gx x + gy y``, so
-    ``depth`` is the water depth at the origin; ``(0, 0)`` is flat.
+    ``depth`` is the water depth at the origin; ``(0, 0)`` is flat. ``bathymetry`` (a
+    :class:`~.bathymetry.Bathymetry` grid, instead of a gradient) gives the seabed's height
+    everywhere; ``tolerance`` [m] is then how far below that surface a line may pass (a
+    grounded run lies on one plane per line: :mod:`moorsolve.solve.bathymetry`).
     """
 
     friction: float = 0.0
     gradient: tuple = (0.0, 0.0)
+    bathymetry: Optional[Bathymetry] = None
+    tolerance: float = 0.1
 
     @property
     def sloped(self) -> bool:
-        return any(g != 0.0 for g in self.gradient)
+        return self.bathymetry is not None or any(g != 0.0 for g in self.gradient)
+
+    def slope_at(self, x: float, y: float) -> tuple:
+        """``(dz/dx, dz/dy)`` of the seabed at ``(x, y)``."""
+        if self.bathymetry is not None:
+            return self.bathymetry.gradient(x, y)
+        return tuple(self.gradient)
 
 
 @dataclass(frozen=True)
@@ -90,7 +102,8 @@ class Environment:
     ``water_level`` is the still-water level above the case's datum (a tide) [m]: the
     seabed (at ``-depth`` on the datum), fixed points, walls and piles are given on the datum,
     and floating bodies' hydrostatics act about this level. 0 (the default) puts the still
-    water at z = 0.
+    water at z = 0. With a bathymetry grid ``depth`` stays the reference depth (the scale
+    of tolerances and warnings); the seabed's height is the grid's (:meth:`seabed_z`).
     """
 
     depth: float
@@ -106,6 +119,9 @@ class Environment:
     water_level: float = 0.0
 
     def seabed_z(self, x: float, y: float) -> float:
-        """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed)."""
+        """Height of the seabed [m] at ``(x, y)`` (``-depth`` on a flat seabed); floats or
+        numpy arrays."""
+        if self.seabed.bathymetry is not None:
+            return self.seabed.bathymetry.height(x, y)
         gx, gy = self.seabed.gradient
         return -self.depth + gx * x + gy * y

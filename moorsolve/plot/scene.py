@@ -129,6 +129,8 @@ def scene_of(result, removed_from=None) -> Scene:
         gx, gy = env.seabed.gradient
 
         def seabed_z(x, y):
+            if env.seabed.bathymetry is not None:     # the grid's interpolated surface
+                return np.asarray(env.seabed_z(np.asarray(x, float), np.asarray(y, float)))
             return -env.depth + gx * np.asarray(x, float) + gy * np.asarray(y, float)
         sloped = env.seabed.sloped
         compass = env.compass

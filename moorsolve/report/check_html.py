@@ -213,7 +213,11 @@ def _case_section(report: CheckReport, case) -> list:
     if env.waves is not None:
         flows.append(f"waves Hs {env.waves.hs:.2f} m {env.compass.describe(env.waves.toward_deg)}")
     seabed = f"friction {env.seabed.friction:.2f}"
-    if env.seabed.sloped:
+    grid = env.seabed.bathymetry
+    if grid is not None:
+        seabed += (f", bathymetry grid {len(grid.x)} x {len(grid.y)} nodes, depths "
+                   f"{min(map(min, grid.depth)):.2f} to {max(map(max, grid.depth)):.2f} m")
+    elif env.seabed.sloped:
         seabed += (f", sloped: z = -{env.depth:.2f} + {env.seabed.gradient[0]:g} x + "
                    f"{env.seabed.gradient[1]:g} y")
     out = ["<h2>1. Case</h2>", _table(None, [

@@ -221,6 +221,19 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
     # The seabed and the surface.
     bed = np.asarray(env.seabed_z(P.x, P.y), float) * np.ones_like(P.z)
     below = np.maximum.reduceat(bed - P.z, o)
+    below_tol, under_plane = tol, np.full(n, -np.inf)
+    planes = [leg.seabed_plane for leg in legs]
+    if any(p is not None for p in planes):
+        # On a grid each line lies on its own plane (solve/bathymetry.py): on the plane to
+        # the audit's tolerance, off the grid's surface by at most the seabed tolerance;
+        # grounded runs are then judged on the plane.
+        has = np.array([p is not None for p in planes])
+        coef = np.array([p if p is not None else (0.0, 0.0, 0.0) for p in planes], float)
+        z0, gx, gy = coef[P.line, 0], coef[P.line, 1], coef[P.line, 2]
+        plane = z0 + gx * P.x + gy * P.y
+        under_plane = np.where(has, np.maximum.reduceat(plane - P.z, o), -np.inf)
+        below_tol = np.where(has, np.maximum(tol, env.seabed.tolerance), tol)
+        bed = np.where(has[P.line], plane, bed)
     ceiling = np.maximum(np.maximum(anchor[:, 2], fairlead[:, 2]), 0.0)
     above = np.maximum.reduceat(P.z, o) - ceiling
 
@@ -250,11 +263,14 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
     v = dict(tol=tol, lumped=lumped, boundaries_only=boundaries_only, miss_a=miss_a,
              miss_f=miss_f, broken=broken, excess=excess, step=step, ds=ds,
              uncovered=uncovered, L=L, below=below, bed=bed, above=above, ceiling=ceiling,
+             below_tol=below_tol, under_plane=under_plane, grid=np.asarray(
+                 env.seabed_z(P.x, P.y), float) * np.ones_like(P.z),
              bad_ta=bad_ta, bad_tf=bad_tf, t_max=t_max, size=size, f_tol=f_tol,
              on_boundary=on_boundary, directions=directions, vertical=vertical,
              horizontal=horizontal)
     # Sentences only for the lines some check flags (or that _messages must look at).
-    flagged = (~finite | (miss_a > tol) | (miss_f > tol) | (below > tol) | (above > tol)
+    flagged = (~finite | (miss_a > tol) | (miss_f > tol) | (below > below_tol)
+               | (under_plane > tol) | (above > tol)
                | bad_ta | bad_tf | (P.has_s & (broken | uncovered))
                | np.array([bool(leg.joints) or bool(d or vt or hz) for leg, d, vt, hz
                            in zip(legs, directions, vertical, horizontal)], bool))
@@ -289,13 +305,17 @@ def _messages(i, leg, env, P, v) -> list[str]:
             s = P.s[sl]
             consistency.append(f"the profile covers {s[0]:.4g} m to {s[-1]:.4g} m of a "
                                f"{v['L'][i]:.4g} m line")
-    below = v["below"][i]
-    if below > tol:
-        depth = (v["bed"] - P.z)[sl]
+    if v["under_plane"][i] > tol:
+        out.append(f"the line passes {v['under_plane'][i]:.3g} m below its seabed plane")
+    below, on_grid = v["below"][i], leg.seabed_plane is not None
+    if below > v["below_tol"][i]:
+        depth = (v["grid"] - P.z)[sl]
         k = int(np.argmax(depth))
         x, y, z = P.x[sl][k], P.y[sl][k], P.z[sl][k]
         out.append(f"the line passes {below:.3g} m below the seabed (at "
-                   f"{x:.2f}, {y:.2f}, {z:.2f} m)")
+                   f"{x:.2f}, {y:.2f}, {z:.2f} m)"
+                   + (f"; the bathymetry's tolerance is {env.seabed.tolerance:g} m"
+                      if on_grid else ""))
     above, ceiling = v["above"][i], v["ceiling"][i]
     if above > tol:
         out.append(f"the line rises {above:.3g} m above the surface" if ceiling == 0.0 else
@@ -448,7 +468,7 @@ def _vertical_balance(data, P, env, legs, on_bed, on_top, t_max, size, gseg_cont
     scale = np.maximum(np.maximum(t_max, data.wsum_ends[:n]), 1e-300)
     tight = 1e-12 * size
     allowance = (2 + changes) * np.sqrt(2.0 * t_max * tight * data.wmax[:n])
-    sloped_grounded = any(g != 0.0 for g in env.seabed.gradient) & (grounded > 0)
+    sloped_grounded = env.seabed.sloped & (grounded > 0)
     frictionless = (env.seabed.friction == 0.0) | (grounded == 0.0)
     vertical, horizontal = [[] for _ in range(n)], [[] for _ in range(n)]
     # On a slope the reaction has a horizontal part: a grounded line is not checked here.

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
+from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
 from .audit import audit as audit_result
 from .audit import audit_findings, result_warnings
@@ -115,7 +116,7 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
 
 def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
           allow_overload: bool = False, start: np.ndarray | None = None,
-          stability: bool = True, audit: bool = True) -> Result:
+          stability: bool = True, audit: bool = True, _planes=None) -> Result:
     """Static equilibrium of ``case``, certified.
 
     Parameters
@@ -157,13 +158,26 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     -----
     Safe to call from many threads at once: the solvers of one problem are used by one
     thread at a time (:attr:`EquilibriumProblem.lock`); different problems run in parallel.
+    On a bathymetry grid the solve is repeated until every line's seabed plane settles
+    (:mod:`moorsolve.solve.bathymetry`); ``_planes`` is one round's planes.
     """
     if solver not in SOLVERS:
         raise ValueError(f"solver {solver!r}: must be one of {', '.join(SOLVERS)}")
     opts = case.solver
     tol = opts.tol if tol is None else tol
     problem = get_problem(case)
+    if case.environment.seabed.bathymetry is not None and _planes is None:
+        def once(planes, warm):
+            return solve(case, tol=tol, solver=solver, allow_overload=allow_overload,
+                         start=warm, stability=stability, audit=False, _planes=planes)
+        result = solve_on_grid(case, problem.kinds, once, start)
+        if audit:
+            audit_result(result, case)
+        return result
     p_full = problem.parameters(case, 1.0)
+    if _planes is not None:
+        for where, plane in zip(plane_slices(problem), _planes):
+            p_full[where] = plane
     if start is not None and np.shape(start) != (problem.n_x,):
         start = None
     with problem.lock:

@@ -9,7 +9,8 @@ place that knows the order. The vector is, in blocks:
 2. ``LINE_PARAMS`` for every line: end A's and end B's coordinates as the case gives them
    (global for a fixed end; body frame for a body end; a free point's start position), its
    total length, its first segment's weight and compliance, and the seabed friction.
-3. ``SEABED_PARAMS``: depth at the origin and the seabed's gradient.
+3. ``SEABED_PARAMS``: depth at the origin and the seabed's gradient; on a bathymetry grid,
+   then every line's own seabed plane (``line[L].seabed``, :mod:`.bathymetry`).
 4. For every multi-segment line, ``SEGMENT_PARAMS`` per segment and the net clump weight of
    each joint; for every lumped-node line ``DISCRETE_PARAMS`` per segment and its clumps;
    the current profile's rows when a lumped-node line sees it.
@@ -37,6 +38,7 @@ import numpy as np
 
 from ..model import Case
 from . import prepared
+from .bathymetry import PLANE, initial_planes
 from .stretch_params import law_slot
 
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
@@ -94,6 +96,8 @@ leg_parameters = line_parameters
 def segment_parameters(case: Case, kinds) -> np.ndarray:
     """Blocks 3 and 4: the seabed, multi-segment and lumped-node line data, the profile."""
     values = [case.environment.depth, *case.environment.seabed.gradient]
+    if case.environment.seabed.bathymetry is not None:
+        values += initial_planes(case, kinds).ravel().tolist()
     discrete_profile = False
     for line, kind in zip(case.lines, kinds):
         if kind.multi:
@@ -243,6 +247,10 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
             add(f"line[{line.name}].{key}")
     for key in SEABED_PARAMS:
         add(f"seabed.{key}")
+    if case.environment.seabed.bathymetry is not None:
+        # Each line's own seabed plane (solve/bathymetry.py), only on a grid.
+        for line in case.lines:
+            add(f"line[{line.name}].seabed", len(PLANE))
     for line, kind in zip(case.lines, kinds):
         if kind.multi:
             for k in range(len(line.segments)):

@@ -20,6 +20,7 @@ from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
+from .bathymetry import plane_slices
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
 from .lines import SEGMENT_COLUMNS
@@ -47,6 +48,9 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     poses, point_pos, load_vec = post["poses"], post["points"], post["loads"]
     xp = x * problem.x_scale
     tables = post["lines"], post["segments"], post["nodes"]
+    grid = case.environment.seabed.bathymetry is not None
+    planes = plane_slices(problem) if grid else None
+    p = np.ravel(np.asarray(p, float))
 
     def make_legs():
         table, seg_table, node_table = (np.atleast_2d(t) for t in tables)
@@ -62,8 +66,10 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                         for r in seg_table if int(r[0]) == i]
                 lr = _multi_result(case, line, kind, row, rows, u)
             else:
+                # On a grid the line's own plane (solve/bathymetry.py) gives its slope.
+                plane = p[planes[i]][1:] if grid else None
                 lr = _single_result(case, line, kind, row, u, problem.contact_stiffness,
-                                    batch)
+                                    batch, plane)
             if fibre:
                 lr = dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
             yield lr
@@ -221,7 +227,7 @@ def _weightless_slack(line, row, u, stiffness) -> bool:
     return stretched - math.hypot(row["X"], row["Z"]) > u / stiffness
 
 
-def _single_result(case, line, kind, row, u, stiffness, batch=None) -> LegResult:
+def _single_result(case, line, kind, row, u, stiffness, batch=None, plane=None) -> LegResult:
     env = case.environment
     lt = line.line_type
     if kind.neutral and _weightless_slack(line, row, u, stiffness):
@@ -235,7 +241,8 @@ def _single_result(case, line, kind, row, u, stiffness, batch=None) -> LegResult
     grounded, susp_x, X, Z = row["grounded"], row["suspended_x"], row["X"], row["Z"]
     ux, uy = ((upper[0] - lower[0]) / X, (upper[1] - lower[1]) / X) if X > 1e-9 else (1.0, 0.0)
     mu = env.seabed.friction if kind.friction else 0.0
-    slope = env.seabed.gradient[0] * ux + env.seabed.gradient[1] * uy if kind.sloped else 0.0
+    gx, gy = env.seabed.gradient if plane is None else plane
+    slope = gx * ux + gy * uy if kind.sloped else 0.0
     floating = row["floating"]
 
     def draw() -> dict:

@@ -190,6 +190,8 @@ class EquilibriumProblem(Certification, SolverAccess):
             effects.append("seabed_friction")
         if any(k.sloped for k in kinds):
             effects.append("sloped_seabed")
+        if case.environment.seabed.bathymetry is not None:
+            effects.append("bathymetry")
         types = [seg.line_type for line in case.lines for seg in line.segments]
         if any(lt.weight_in_water < 0 for lt in types):
             effects.append("buoyant_line")
@@ -234,6 +236,7 @@ class EquilibriumProblem(Certification, SolverAccess):
 
         E = {k: p[layout.index("env." + k)] for k in ENV_PARAMS}
         seabed = {k: p[layout.index("seabed." + k)] for k in SEABED_PARAMS}
+        grid = case.environment.seabed.bathymetry is not None
 
         # -- node positions -------------------------------------------------------------
         poses, rotations = [], []
@@ -257,16 +260,16 @@ class EquilibriumProblem(Certification, SolverAccess):
         body_index = {b.name: i for i, b in enumerate(case.bodies)}
         point_index = {pt.name: i for i, pt in enumerate(case.free_points)}
 
-        def end_position(end, coords):
+        def end_position(end, coords, bed=seabed):
             if end.body is not None:
                 bi = body_index[end.body]
                 r = ca.vertcat(*poses[bi][:3])
                 return r + rotations[bi] @ coords
             if end.point is not None:
                 return points[point_index[end.point]]["position"]
-            if end.on_seabed:
+            if end.on_seabed and bed:
                 return ca.vertcat(coords[0], coords[1],
-                                  seabed_height(seabed, coords[0], coords[1]))
+                                  seabed_height(bed, coords[0], coords[1]))
             return coords
 
         def apply(end, position, force):
@@ -290,8 +293,17 @@ class EquilibriumProblem(Certification, SolverAccess):
             P = {k: par(f"line[{line.name}].{k}") for k in LINE_PARAMS}
             coords_a = ca.vertcat(P["anchor_x"], P["anchor_y"], P["anchor_z"])
             coords_b = ca.vertcat(P["fair_x"], P["fair_y"], P["fair_z"])
-            pos_a = end_position(line.a, coords_a)
-            pos_b = end_position(line.b, coords_b)
+            bed = seabed
+            if grid:
+                # The line's own plane passes through the seabed under its lower end; an
+                # end resting on the seabed elsewhere keeps the grid's height (its case z).
+                plane = ca.vertsplit(par(f"line[{line.name}].seabed"))
+                bed = dict(zip(SEABED_PARAMS, plane))
+            lower_end = line.b if kind.flipped else line.a
+            pos_a = end_position(line.a, coords_a,
+                                 bed if lower_end is line.a or not grid else {})
+            pos_b = end_position(line.b, coords_b,
+                                 bed if lower_end is line.b or not grid else {})
             lower, upper = (pos_b, pos_a) if kind.flipped else (pos_a, pos_b)
             iu = self.line_offsets[i]
             if kind.discrete:
@@ -303,7 +315,7 @@ class EquilibriumProblem(Certification, SolverAccess):
                                     seabed, lower, upper)
                 seg_rows += block.segment_rows
             else:
-                block = single_block(self, i, kind, xs, x, iu, P, seabed, lower, upper)
+                block = single_block(self, i, kind, xs, x, iu, P, bed, lower, upper)
             line_res += block.residuals
             apply(line.a, pos_a, block.force_a)
             apply(line.b, pos_b, block.force_b)
@@ -505,7 +517,7 @@ def structure_key(case: Case) -> tuple:
         case.environment.wind is not None, case.environment.current is not None,
         case.environment.waves is not None,
         case.environment.air_density, case.environment.water_density,
-        case.environment.gravity,
+        case.environment.gravity, case.environment.seabed.bathymetry is not None,
     ))
 
 

@@ -163,6 +163,11 @@ class LegResult:
     fibre_grounded_m: Optional[float] = None
     floating_length_m: float = 0.0
     touchup_from_anchor_m: float = 0.0
+    #: On a bathymetry grid: the line's seabed plane ``(z0, dz/dx, dz/dy)``, height
+    #: ``z0 + gx x + gy y`` (:mod:`.bathymetry`), and how far the grid's surface departs
+    #: from the line where it matters [m] (None on a plane seabed).
+    seabed_plane: Optional[tuple] = None
+    seabed_deviation_m: Optional[float] = None
 
     def __repr__(self) -> str:
         from ..report.notebook import leg_repr
@@ -206,6 +211,10 @@ class LegResult:
             d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
         if self.anchor_force is not None:
             d["anchor_force_N"] = [float(v) for v in self.anchor_force]
+        if self.seabed_plane is not None:
+            d["seabed_plane"] = [float(v) for v in self.seabed_plane]
+        if self.seabed_deviation_m is not None:
+            d["seabed_deviation_m"] = self.seabed_deviation_m
         if self.fibre_grounded_m is not None:
             d["fibre_grounded_length_m"] = self.fibre_grounded_m
         if self.segments:

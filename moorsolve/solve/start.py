@@ -131,8 +131,14 @@ def _compute_rest_states(case: Case) -> list:
         if block.sloped and X > 0:
             # As on a flat seabed under the upper end's height above the slope (a shear of
             # the line's plane), the touchdown's vertical force shifted by H t.
-            g = case.environment.seabed.gradient
-            t = (g[0] * (upper[0] - lower[0]) + g[1] * (upper[1] - lower[1])) / X
+            env = case.environment
+            if env.seabed.bathymetry is not None:
+                # The first seabed plane's slope (solve/bathymetry.py): the chord to the
+                # seabed under the upper end.
+                t = (env.seabed_z(upper[0], upper[1]) - env.seabed_z(lower[0], lower[1])) / X
+            else:
+                g = env.seabed.gradient
+                t = (g[0] * (upper[0] - lower[0]) + g[1] * (upper[1] - lower[1])) / X
             u, V = initial_state(dataclasses.replace(block, sloped=False), X, Z - t * X,
                                  line.length, lt.weight_in_water, start_ea(lt))
             states.append((u, V + max(u, 0.0) * t))

@@ -24,6 +24,7 @@ import casadi as ca
 import numpy as np
 
 from ..model import Case
+from ..solve.bathymetry import result_parameters
 from ..solve.cache import get_problem
 from ..solve.problem import LINE_COLUMNS
 from ..solve.result import Result
@@ -369,7 +370,7 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
         if parameters else np.zeros((problem.n_p, 0))
     G_x, G_p, Y_x, Y_p = (np.asarray(v) for v in
                           _sensitivity_function(problem)(result.state,
-                                                         problem.parameters(case)))
+                                                         result_parameters(problem, result)))
     dx = -np.linalg.solve(G_x, G_p @ C)
     dy = Y_x[rows] @ dx + Y_p[rows] @ C
     return Sensitivity(outputs=outputs, parameters=parameters, matrix=dy)

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..model import DOFS, Body, BodyLoads, Case, Contacts, End
 from ..model.build_network import rotation
+from ..solve.bathymetry import result_parameters
 from ..solve.cache import get_problem
 from ..solve.equilibrium import solve
 from ..solve.result import Result
@@ -154,7 +155,7 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     problem = get_problem(free)
     x = np.concatenate([np.concatenate([poses[name][:3], np.zeros(3)])
                         / problem.x_scale[:6], held_result.state])
-    p = problem.parameters(free)
+    p = result_parameters(problem, held_result, free)
     return _condensed_wrench_stiffness(problem, x, p)
 
 
@@ -191,7 +192,7 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
     bodies' own angles]."""
     result = as_result(result_or_case, solver)
     problem = get_problem(result.case)
-    K, keep = condensed_stiffness(problem, result.state, problem.parameters(result.case))
+    K, keep = condensed_stiffness(problem, result.state, result_parameters(problem, result))
     dofs = [f"{result.case.bodies[problem.nodes[j][1]].name}.{problem.nodes[j][2]}"
             for j in keep]
     return K, dofs
@@ -243,7 +244,8 @@ def mooring_force(case: Case, position: Sequence[float], *, body: Optional[str] 
     held = posed_case(case, poses)
     result = solve(held, solver=solver, start=start, allow_overload=True, stability=False)
     problem = get_problem(held)
-    wrenches = np.asarray(problem.report(result.state, problem.parameters(held))[5]).ravel()
+    wrenches = np.asarray(problem.report(result.state,
+                                          result_parameters(problem, result))[5]).ravel()
     w = wrenches[6 * names.index(name): 6 * names.index(name) + 6]
     force = w if np.size(position) == 6 else np.array([w[0], w[1], w[5]])
     return force, result

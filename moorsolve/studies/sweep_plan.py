@@ -103,7 +103,10 @@ class SweepPlan:
                 same.append(all(keys))
                 self._grid.append(_grid_columns(case.source, paths, values, quantities))
 
-        fast = solver == "newton" and all(same)
+        # On a bathymetry grid every point re-seats its lines' seabed planes (solve/
+        # bathymetry.py): full solves, not the kernel on fixed parameters.
+        fast = (solver == "newton" and all(same)
+                and case.environment.seabed.bathymetry is None)
         masks = []
         if fast:
             for vecs in axis_vectors:

@@ -224,7 +224,9 @@ def test_windows_file_crlf_latin1_sections_and_forces():
     assert set(md.sections) == {"FAILURE", "EXTERNAL LOADS"}
     imp = convert_moordyn(md)
     text = imp.report.text()
-    assert "SeafloorFile 'bathymetry.txt': bathymetry is not applied" in text
+    # The file names a grid it was not shipped with: reported, the seabed flat.
+    assert "SeafloorFile 'bathymetry.txt': no such file beside the input file" in text
+    assert "seabed" not in imp.data["environment"]
     assert "FAILURE (line" in text and "EXTERNAL LOADS (line" in text
     assert "OUTPUTS (line" in text and "6 output channel(s)" in text
     legs = imp.data["moordyn"]["legs"]
