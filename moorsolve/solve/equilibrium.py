@@ -16,7 +16,8 @@ Strategy, from REFERENCE.md section 1's measured pitfalls:
    was found.
 
 A point that is not certified raises :class:`ConvergenceError` with the physical reason
-found by :func:`_diagnose` and the best residual reached.
+found by :func:`.diagnosis.diagnose` and the best residual reached (step 4 in
+:mod:`.polish`).
 """
 
 from __future__ import annotations
@@ -26,28 +27,28 @@ import logging
 import math
 import time
 
-import casadi as ca
 import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
 from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
+from .diagnosis import SUCCESS_STATUSES, diagnose, over_mbl, unbalanced_force
 from .audit import audit as audit_result
-from .audit import audit_findings, result_warnings
-from .newton import CONVERGED, FLAT, STATUS_TEXT, STEP_LIMIT
+from .audit import result_warnings
+from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
+from .polish import polish
 from .prepared import geometry_key, line_facts
 from .layout import LOAD_FACTOR_INDEX
 from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
-from .start import end_positions, initial_point
+from .start import initial_point
 
 log = logging.getLogger(__name__)
 
 _LOAD_STEPS = (0.25, 0.5, 0.75, 1.0)
-_POLISH_STEPS = 30
 SOLVERS = ("ipopt", "newton")
 
 #: IPOPT's return statuses that are failures even when the point happens to certify.
@@ -230,8 +231,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         if not math.isfinite(force_res):
             # A line whose span cannot be closed by a finite force (an inextensible line
             # pulled straight): report the largest unbalanced force on the bodies instead.
-            force_res = _unbalanced_force(problem, result.state, p_full)
-        raise ConvergenceError(_diagnose(problem, case, result), residual_N=force_res,
+            force_res = unbalanced_force(problem, result.state, p_full)
+        raise ConvergenceError(diagnose(problem, case, result), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
     if outside:
@@ -269,8 +270,6 @@ def _may_warn(problem, case, post) -> bool:
 
 
 #: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
-SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
-                    STATUS_TEXT[CONVERGED])
 
 
 def explain_status(status: str, certified: bool, polish_steps: int) -> str:
@@ -490,192 +489,6 @@ def _stable_point(problem, case, x, p, tol, stats, post=None):
 # ---- polish and certificate -----------------------------------------------------------
 
 
-def polish(problem, x, p, lb, ub, stats, tol):
-    """Newton steps on the square residual system until the point certifies at ``tol``,
-    kept only while they reduce the residual (with complementarities, as the compiled
-    kernel: a step along the exact direction that does not grow it where the smoothed one
-    finds no descent; :mod:`.newton`)."""
-    if not np.all(np.isfinite(x)):
-        return x
-    g = np.asarray(problem.residual(x, p)).ravel()
-    norm = np.max(np.abs(g)) if g.size else 0.0
-    for _ in range(_POLISH_STEPS):
-        # Stop once certified. Not on a merely small residual: where a span depends on a
-        # tension only to second order (a fairlead on the seabed: Z ~ V^2) Newton halves
-        # the tension's error per step while the residual is already below 1e-15.
-        if norm == 0.0 or problem.certify(x, p, tol)[0]:
-            break
-        J = problem.step_jacobian(x, p, g)
-        if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
-            break           # absurd input (a 1e30 coefficient): nothing to polish
-        found = _search(problem, x, p, g, norm, lb, ub, J, flat=False, tries=6)
-        if found is None and problem.smoothed:
-            spring = max(problem.REGULARISATION, float(np.max(np.abs(g))))
-            J = np.asarray(problem.jacobian(x, p)) - np.asarray(
-                ca.densify(problem.regularisation(spring)))
-            found = _search(problem, x, p, g, norm, lb, ub, J, flat=True, tries=24)
-        stats["iterations"] += 1
-        stats["polish_steps"] = stats.get("polish_steps", 0) + 1
-        if found is None:
-            break
-        x, g, norm = found
-    return x
-
-
-def _search(problem, x, p, g, norm, lb, ub, J, *, flat: bool, tries: int):
-    """Backtracking along the Newton step of ``J``: ``(x, g, |g|)`` where the residual
-    fell (or, with ``flat``, did not grow), else None."""
-    try:
-        step = np.linalg.solve(J, g)
-    except np.linalg.LinAlgError:
-        try:
-            step, *_ = np.linalg.lstsq(J, g, rcond=None)
-        except np.linalg.LinAlgError:
-            return None
-    if flat:
-        step = step * min(1.0, STEP_LIMIT / max(float(np.max(np.abs(step))), 1e-300))
-    alpha = 1.0
-    for _ in range(tries):
-        x_new = np.clip(x - alpha * step, lb, ub)
-        g_new = np.asarray(problem.residual(x_new, p)).ravel()
-        n_new = np.max(np.abs(g_new))
-        if np.isfinite(n_new) and (n_new < norm or (flat and n_new <= (1 + FLAT) * norm
-                                                    and np.any(x_new != x))):
-            return x_new, g_new, n_new
-        alpha *= 0.5
-    return None
-def _unbalanced_force(problem, x, p) -> float:
-    """The largest unbalanced force [N] on a free translation of a body or a free point."""
-    unbalanced = np.asarray(problem.report(x, p)[1], dtype=float).ravel()
-    values, k = [], 0
-    for body_index, body in enumerate(problem.case.bodies):
-        values += [abs(v) for v in unbalanced[6 * body_index: 6 * body_index + 3]]
-        k = 6 * (body_index + 1)
-    values += [abs(v) for v in unbalanced[k:]]
-    finite = [v for v in values if math.isfinite(v)]
-    return max(finite, default=math.inf)
-
-
-_FA = slice(LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FAx") + 3)
-_FB = slice(LINE_COLUMNS.index("FBx"), LINE_COLUMNS.index("FBx") + 3)
-
-
-def over_mbl(result: Result, problem=None, post=None) -> list:
-    """``"leg NAME would break ..."`` for every line above its minimum breaking load; a line
-    whose unstretched length is shorter than the distance between its ends at the case-file
-    pose (neither end a free point) says it cannot reach, with the shortfall in metres.
-
-    ``problem`` and ``post`` (the arrays the result was made from) let one-segment lines
-    be judged from their end forces without making the legs.
-    """
-    if problem is not None and post is not None and problem.all_single:
-        mbl = line_facts(result.case).mbl
-        if not np.isfinite(mbl).any():
-            return []
-        f = post["lines"]
-        tension = np.maximum(np.sqrt(np.square(f[:, _FA]).sum(axis=1)),
-                             np.sqrt(np.square(f[:, _FB]).sum(axis=1)))
-        lines = result.case.lines
-        over = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
-    else:
-        over = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
-                for leg in result.legs if leg.utilisation is not None and leg.utilisation > 1]
-    out = []
-    rest = _rest_chords(result.case) if (over and result.case is not None) else {}
-    for name, tension_N, mbl_N in over:
-        tension = f"{tension_N / 1e3:.1f} kN > MBL {mbl_N / 1e3:.1f} kN"
-        length, chord = rest.get(name, (math.inf, 0.0))
-        if chord > length:
-            out.append(f"leg {name} cannot reach its fairlead: it is "
-                       f"{chord - length:.2f} m short (unstretched length {length:.2f} m, "
-                       f"anchor to fairlead {chord:.2f} m at rest); stretched to reach, "
-                       f"it would break: tension {tension}")
-        else:
-            out.append(f"leg {name} would break: tension {tension}")
-    return out
-
-
-def _rest_chords(case: Case) -> dict:
-    """``name -> (unstretched length, end-to-end distance at the case-file pose)`` of every
-    line whose ends are both fixed in the scene or on a body."""
-    free = {p.name for p in case.points if p.free}
-    out = {}
-    for line in case.lines:
-        if line.a.point in free or line.b.point in free:
-            continue
-        a, b = end_positions(case, line)
-        out[line.name] = (line.length, math.dist(a, b))
-    return out
-
-
-def _diagnose(problem, case, result) -> str:
-    """The physical reason an equilibrium was not found, at the best point reached."""
-    reasons = []
-    for line, lr in zip(case.lines, result.legs):
-        lt = line.line_type
-        chord = math.dist(lr.anchor, lr.fairlead)
-        fixed = line.a.fixed and (line.b.fixed or line.b.body is not None)
-        if fixed and not any(s.line_type.elastic for s in line.segments) \
-                and chord > line.length * (1 + 1e-9):
-            reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
-                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
-                           f"by {chord - line.length:.2f} m")
-        elif fixed and not lt.elastic and chord > line.length * (1 - 1e-4):
-            reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
-                           f"{line.length:.3f} m): an inextensible line would need an "
-                           f"unbounded tension; give the line type an ea")
-    reasons += over_mbl(result)
-    if result.bodies and problem.load_names:
-        total = np.sum([v[:2] for v in result.loads.values()], axis=0)
-        if np.hypot(*total) > 0:
-            heading = math.degrees(math.atan2(total[1], total[0])) % 360.0
-            reasons.append(f"the legs could not balance the body load of "
-                           f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
-                           f"(the lines may be too weak, too short or all on one side)")
-    if not reasons:
-        found = audit_findings(result, case, boundaries_only=True)
-        cert = result.certificate
-        short = (f", but its point is not certified: relative residual {cert.relative:.2g} "
-                 f"above the tolerance {cert.tolerance:.2g}"
-                 if cert.status in SUCCESS_STATUSES and math.isfinite(cert.relative) else "")
-        reasons.append(f"the solver stopped with status {cert.status}{short}"
-                       + (f"; at the best point reached: {'; '.join(found)}" if found else "")
-                       + _along_a_boundary(case, result) + _near_neutral(case, result))
-    return "; ".join(reasons)
-
-
-def _near_neutral(case, result) -> str:
-    """Name a line whose whole weight in water is below a millionth of the largest tension:
-    its catenary loses precision (``x ~ (H/w) asinh``, a difference of nearly equal terms)
-    for a weight that changes no reported digit."""
-    tensions = [max(lr.fairlead_tension_N, lr.anchor_tension_N) for lr in result.legs]
-    top = max((t for t in tensions if math.isfinite(t)), default=0.0)
-    for line in case.lines:
-        weight = sum(abs(s.line_type.weight_in_water) * s.length for s in line.segments)
-        if 0 < weight < 1e-5 * top:
-            return (f" (line {line.name} weighs {weight:.3g} N in water, under 1e-5 of "
-                    f"the {top:.4g} N it carries: a catenary that light cannot be resolved to "
-                    "the certificate's digits; give its line type weight_in_water 0, a "
-                    "neutrally buoyant line)")
-    return ""
-
-
-def _along_a_boundary(case, result) -> str:
-    """Name a segment lying along the seabed or the surface over its whole length between
-    two ends both on it: its height equation is degenerate there (``Z ~ V|V|`` at ``V = 0``),
-    which limits how closely its state can be certified."""
-    for line, lr in zip(case.lines, result.legs):
-        for k, seg in enumerate(lr.segments):
-            lying = max(seg.get("grounded_length_m", 0.0), seg.get("floating_length_m", 0.0))
-            if lying >= seg["length_m"] * (1 - 1e-9):
-                where = "surface" if seg.get("floating_length_m", 0.0) > 0 else "seabed"
-                return (f" (leg {line.name}: segment {k + 1} lies along the {where} over its "
-                        "whole length between two ends on it, where its height equation is "
-                        "degenerate: join it with the segment beside it, or move an end off "
-                        f"the {where})")
-    return ""
-
-
-__all__ = ["solve", "rest_point", "turn_jump", "turn_jumps", "polish", "over_mbl", "get_problem",
+__all__ = ["solve", "rest_point", "turn_jump", "turn_jumps", "polish", "get_problem",
            "initial_point",
            "SOLVERS", "YAW_JUMP"]

@@ -23,7 +23,7 @@ from ..physics.wall_tension import wall_tension
 from .bathymetry import plane_slices
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
-from .lines import SEGMENT_COLUMNS
+from .line_kinds import SEGMENT_COLUMNS
 from .prepared import line_facts
 from .profile_batch import ProfileBatch
 from .problem import LINE_COLUMNS, ROTATIONS

@@ -87,7 +87,7 @@ _KINDS = LockedLRU(256)
 
 
 def _kinds_context(case) -> tuple:
-    """Everything besides the lines that :func:`~.lines.line_kind` reads: the seabed, the
+    """Everything besides the lines that :func:`~.line_kinds.line_kind` reads: the seabed, the
     current (whether there is one, its profile's length), the elements of a lumped line
     and every body's case pose (which end of a line hanging between bodies is lower)."""
     env = case.environment
@@ -100,9 +100,9 @@ def _kinds_context(case) -> tuple:
 
 @per_case
 def line_kinds_of(case) -> tuple:
-    """:func:`~.lines.line_kinds` of ``case``, as a tuple, computed once per case and per
+    """:func:`~.line_kinds.line_kinds` of ``case``, as a tuple, computed once per case and per
     lines tuple in the same context."""
-    from .lines import line_kinds
+    from .line_kinds import line_kinds
 
     key = (id(case.lines), _kinds_context(case))
     hit = _KINDS.get(key)

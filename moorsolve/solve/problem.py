@@ -44,8 +44,8 @@ from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, SEABED_PARAMS,
                      build_layout, parameter_vector)
 from .contact import add_contacts, contact_points, element_reactions
 from .stretch_params import line_laws
-from .lines import (LineKind, closing_force, line_kinds, multi_block, plane_geometry,
-                    seabed_height, single_block)
+from .line_kinds import LineKind, line_kinds
+from .lines import closing_force, multi_block, plane_geometry, seabed_height, single_block
 from .prepared import HashedKey, line_ends_of, line_kinds_of, per_case
 
 #: Columns of the lines table of ``EquilibriumProblem.report``: the horizontal and vertical

@@ -19,7 +19,7 @@ from ..physics.catenary import LegKind
 from ..physics.closed_form import initial_state
 from ..physics.profile import leg_profile
 from .layout import parameter_vector
-from .lines import _can_ground, discretised, line_kind
+from .line_kinds import _can_ground, discretised, line_kind
 from .concurrency import LockedLRU
 from .prepared import geometry_key, line_kinds_of, per_case
 from .stretch_params import start_ea

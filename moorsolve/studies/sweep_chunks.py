@@ -9,7 +9,8 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..physics.kinematics import wrap_degrees
 from ..solve.cache import get_problem
-from ..solve.equilibrium import over_mbl, solve, turn_jumps
+from ..solve.diagnosis import over_mbl
+from ..solve.equilibrium import solve, turn_jumps
 from ..solve.stability import assess
 
 # ---- solving a chunk ------------------------------------------------------------------------

@@ -19,7 +19,8 @@ import pytest
 import moorsolve
 from moorsolve.model import BodyLoads
 from moorsolve.solve.cache import get_problem
-from moorsolve.solve.equilibrium import over_mbl, rest_point
+from moorsolve.solve.diagnosis import over_mbl
+from moorsolve.solve.equilibrium import rest_point
 from moorsolve.solve.result import DeferredStability
 from moorsolve.solve.stability import assess, condensed_stiffness
 

@@ -20,7 +20,7 @@ from moorsolve.physics.catenary import LegKind
 from moorsolve.solve.cache import get_problem
 from moorsolve.solve.layout import (ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS,
                                     parameter_vector)
-from moorsolve.solve.lines import MultiLegKind
+from moorsolve.solve.line_kinds import MultiLegKind
 from conftest import ROOT
 
 CASES = ROOT / "cases"

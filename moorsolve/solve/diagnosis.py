@@ -1,0 +1,159 @@
+"""Why a solve failed, and the checks that make a converged point a refusal.
+
+:func:`diagnose` turns a point that did not certify into the reasons an engineer can act
+on (a line that cannot reach, one that would break, a load the lines cannot balance, a
+solver that stopped, a segment lying along a boundary, a line too light to resolve);
+:func:`over_mbl` lists the lines above their breaking load; :func:`unbalanced_force` the
+residual reached.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..model import Case
+from .audit import audit_findings
+from .newton import CONVERGED, STATUS_TEXT
+from .prepared import line_facts
+from .problem import LINE_COLUMNS
+from .result import Result
+from .start import end_positions
+
+__all__ = ["diagnose", "over_mbl", "unbalanced_force", "SUCCESS_STATUSES"]
+
+SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
+                    STATUS_TEXT[CONVERGED])
+
+
+def unbalanced_force(problem, x, p) -> float:
+    """The largest unbalanced force [N] on a free translation of a body or a free point."""
+    unbalanced = np.asarray(problem.report(x, p)[1], dtype=float).ravel()
+    values, k = [], 0
+    for body_index, body in enumerate(problem.case.bodies):
+        values += [abs(v) for v in unbalanced[6 * body_index: 6 * body_index + 3]]
+        k = 6 * (body_index + 1)
+    values += [abs(v) for v in unbalanced[k:]]
+    finite = [v for v in values if math.isfinite(v)]
+    return max(finite, default=math.inf)
+
+
+_FA = slice(LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FAx") + 3)
+_FB = slice(LINE_COLUMNS.index("FBx"), LINE_COLUMNS.index("FBx") + 3)
+
+
+def over_mbl(result: Result, problem=None, post=None) -> list:
+    """``"leg NAME would break ..."`` for every line above its minimum breaking load; a line
+    whose unstretched length is shorter than the distance between its ends at the case-file
+    pose (neither end a free point) says it cannot reach, with the shortfall in metres.
+
+    ``problem`` and ``post`` (the arrays the result was made from) let one-segment lines
+    be judged from their end forces without making the legs.
+    """
+    if problem is not None and post is not None and problem.all_single:
+        mbl = line_facts(result.case).mbl
+        if not np.isfinite(mbl).any():
+            return []
+        f = post["lines"]
+        tension = np.maximum(np.sqrt(np.square(f[:, _FA]).sum(axis=1)),
+                             np.sqrt(np.square(f[:, _FB]).sum(axis=1)))
+        lines = result.case.lines
+        over = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
+    else:
+        over = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
+                for leg in result.legs if leg.utilisation is not None and leg.utilisation > 1]
+    out = []
+    rest = _rest_chords(result.case) if (over and result.case is not None) else {}
+    for name, tension_N, mbl_N in over:
+        tension = f"{tension_N / 1e3:.1f} kN > MBL {mbl_N / 1e3:.1f} kN"
+        length, chord = rest.get(name, (math.inf, 0.0))
+        if chord > length:
+            out.append(f"leg {name} cannot reach its fairlead: it is "
+                       f"{chord - length:.2f} m short (unstretched length {length:.2f} m, "
+                       f"anchor to fairlead {chord:.2f} m at rest); stretched to reach, "
+                       f"it would break: tension {tension}")
+        else:
+            out.append(f"leg {name} would break: tension {tension}")
+    return out
+
+
+def _rest_chords(case: Case) -> dict:
+    """``name -> (unstretched length, end-to-end distance at the case-file pose)`` of every
+    line whose ends are both fixed in the scene or on a body."""
+    free = {p.name for p in case.points if p.free}
+    out = {}
+    for line in case.lines:
+        if line.a.point in free or line.b.point in free:
+            continue
+        a, b = end_positions(case, line)
+        out[line.name] = (line.length, math.dist(a, b))
+    return out
+
+
+def diagnose(problem, case, result) -> str:
+    """The physical reason an equilibrium was not found, at the best point reached."""
+    reasons = []
+    for line, lr in zip(case.lines, result.legs):
+        lt = line.line_type
+        chord = math.dist(lr.anchor, lr.fairlead)
+        fixed = line.a.fixed and (line.b.fixed or line.b.body is not None)
+        if fixed and not any(s.line_type.elastic for s in line.segments) \
+                and chord > line.length * (1 + 1e-9):
+            reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
+                           f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
+                           f"by {chord - line.length:.2f} m")
+        elif fixed and not lt.elastic and chord > line.length * (1 - 1e-4):
+            reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
+                           f"{line.length:.3f} m): an inextensible line would need an "
+                           f"unbounded tension; give the line type an ea")
+    reasons += over_mbl(result)
+    if result.bodies and problem.load_names:
+        total = np.sum([v[:2] for v in result.loads.values()], axis=0)
+        if np.hypot(*total) > 0:
+            heading = math.degrees(math.atan2(total[1], total[0])) % 360.0
+            reasons.append(f"the legs could not balance the body load of "
+                           f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
+                           f"(the lines may be too weak, too short or all on one side)")
+    if not reasons:
+        found = audit_findings(result, case, boundaries_only=True)
+        cert = result.certificate
+        short = (f", but its point is not certified: relative residual {cert.relative:.2g} "
+                 f"above the tolerance {cert.tolerance:.2g}"
+                 if cert.status in SUCCESS_STATUSES and math.isfinite(cert.relative) else "")
+        reasons.append(f"the solver stopped with status {cert.status}{short}"
+                       + (f"; at the best point reached: {'; '.join(found)}" if found else "")
+                       + _along_a_boundary(case, result) + _near_neutral(case, result))
+    return "; ".join(reasons)
+
+
+def _near_neutral(case, result) -> str:
+    """Name a line whose whole weight in water is below a millionth of the largest tension:
+    its catenary loses precision (``x ~ (H/w) asinh``, a difference of nearly equal terms)
+    for a weight that changes no reported digit."""
+    tensions = [max(lr.fairlead_tension_N, lr.anchor_tension_N) for lr in result.legs]
+    top = max((t for t in tensions if math.isfinite(t)), default=0.0)
+    for line in case.lines:
+        weight = sum(abs(s.line_type.weight_in_water) * s.length for s in line.segments)
+        if 0 < weight < 1e-5 * top:
+            return (f" (line {line.name} weighs {weight:.3g} N in water, under 1e-5 of "
+                    f"the {top:.4g} N it carries: a catenary that light cannot be resolved to "
+                    "the certificate's digits; give its line type weight_in_water 0, a "
+                    "neutrally buoyant line)")
+    return ""
+
+
+def _along_a_boundary(case, result) -> str:
+    """Name a segment lying along the seabed or the surface over its whole length between
+    two ends both on it: its height equation is degenerate there (``Z ~ V|V|`` at ``V = 0``),
+    which limits how closely its state can be certified."""
+    for line, lr in zip(case.lines, result.legs):
+        for k, seg in enumerate(lr.segments):
+            lying = max(seg.get("grounded_length_m", 0.0), seg.get("floating_length_m", 0.0))
+            if lying >= seg["length_m"] * (1 - 1e-9):
+                where = "surface" if seg.get("floating_length_m", 0.0) > 0 else "seabed"
+                return (f" (leg {line.name}: segment {k + 1} lies along the {where} over its "
+                        "whole length between two ends on it, where its height equation is "
+                        "degenerate: join it with the segment beside it, or move an end off "
+                        f"the {where})")
+    return ""
