@@ -274,7 +274,8 @@ def _end_force(leg, which: str):
 
 def result_warnings(result, case) -> list[dict]:
     """What an engineer must not miss in ``result``: a list of ``{"code", "leg",
-    "message"}`` (codes ``wall_compression``, ``floating``, ``end_in_air``)."""
+    "message"}`` (codes ``wall_compression``, ``floating``, ``end_in_air``; on a bathymetry
+    grid :func:`.bathymetry.finish` adds ``seabed_departure``)."""
     out = []
     for leg_case, leg in zip(case.lines, result.legs):
         # Only a sealed line's profile has a wall tension (and a profile costs its drawing).

@@ -145,7 +145,7 @@ def solve_on_grid(case, kinds, solve_once, start=None):
 def finish(case, result, planes, rounds):
     """``result`` with every leg's plane and seabed deviation, and the notes."""
     env = case.environment
-    legs, notes = [], list(result.notes)
+    legs, notes, warnings = [], list(result.notes), list(result.warnings)
     warn = WARN_FRACTION * env.seabed.tolerance
     for leg, plane in zip(result.legs, planes):
         dev = deviation(env, leg, plane)
@@ -153,16 +153,22 @@ def finish(case, result, planes, rounds):
         legs.append(dataclasses.replace(leg, seabed_plane=(float(z0), float(plane[1]),
                                                                 float(plane[2])),
                                         seabed_deviation_m=dev))
-        if dev > warn:
-            notes.append(f"leg {leg.name}: the bathymetry departs {dev:.3g} m from the line's "
-                         f"seabed plane under it (tolerance {env.seabed.tolerance:g} m): the "
-                         "seabed bends under the grounded run")
+        message = (f"leg {leg.name}: the bathymetry departs {dev:.3g} m from the line's "
+                   f"seabed plane under it (tolerance {env.seabed.tolerance:g} m): the "
+                   "seabed bends under the grounded run")
+        if dev > env.seabed.tolerance:
+            # Past the user's tolerance the straight grounded run is a modelling slip an
+            # engineer must see (a trough the chain bridges or sags into), not a remark.
+            warnings.append(dict(code="seabed_departure", leg=leg.name, message=message))
+        elif dev > warn:
+            notes.append(message)
     if rounds < 0:
         notes.append(f"the seabed planes did not settle in {-rounds} solves: the touchdowns "
                      "still move; the last planes are reported")
     else:
         notes.append(f"bathymetry: each line's seabed plane settled in {rounds} solve(s)")
-    return dataclasses.replace(result, legs=tuple(legs), notes=tuple(notes))
+    return dataclasses.replace(result, legs=tuple(legs), notes=tuple(notes),
+                               warnings=tuple(warnings))
 
 
 def plane_slices(problem) -> list:

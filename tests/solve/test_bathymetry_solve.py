@@ -135,6 +135,20 @@ def test_a_departure_beyond_the_tolerance_is_noted_then_fails_the_audit():
         solve(load_case(_one_leg(_bank(0.3), tolerance=0.01)))
 
 
+def test_a_trough_deeper_than_the_tolerance_under_the_grounded_run_is_a_warning():
+    """A trough (a negative bank) under the grounded run leaves the modelled chain lying
+    straight above the surface by more than the tolerance: the result stands (the chain
+    would bridge or sag into it), with a warning an engineer cannot miss, not a note."""
+    res = solve(load_case(_one_leg(_bank(-0.4, at=180.0), tolerance=0.2)))
+    leg = res.legs[0]
+    assert res.converged and leg.grounded_length_m > 180.0
+    assert 0.2 < leg.seabed_deviation_m < 0.45
+    (warning,) = [w for w in res.warnings if w["code"] == "seabed_departure"]
+    assert warning["leg"] == "A" and f"{leg.seabed_deviation_m:.3g} m" in warning["message"]
+    assert not [n for n in res.notes if "departs" in n]
+    assert res.to_dict()["warnings"][-1]["code"] == "seabed_departure"
+
+
 def test_a_suspended_line_is_clear_of_the_surface():
     # A taut leg over a seabed falling away from the anchor: nothing touches down.
     data = _one_leg(lambda x, y: 100.0 + 0.02 * x)
