@@ -24,7 +24,8 @@ from __future__ import annotations
 from ..errors import CaseError
 from ..model import DOFS
 from .bathymetry import seafloor_option
-from .moordyn_write import _default_num_segs, _g, _line_type_rows
+from .moordyn_write import _default_num_segs
+from .moordyn_write_types import _g, _line_type_rows
 
 __all__ = ["network_to_moordyn"]
 

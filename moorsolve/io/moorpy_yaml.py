@@ -44,7 +44,7 @@ from ..errors import CaseError
 from .import_report import ImportReport
 from .moordyn import line_type_data, read_import, scene_case
 from .moordyn_scene import MDLine, MDLineType, MDPoint, MDScene
-from .moordyn_write import export_diameter
+from .moordyn_write_types import export_diameter
 from .output_files import write_text
 
 __all__ = ["MoorPyImport", "read_moorpy", "import_moorpy", "case_to_moorpy", "export_moorpy",
