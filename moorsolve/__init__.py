@@ -38,26 +38,48 @@ _NAMES = {
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
 
-def solve(case, **options):
+class _Solve:
     """Static equilibrium of ``case``, certified: :func:`moorsolve.solve.equilibrium.solve`
-    (keyword options ``tol``, ``solver``, ``allow_overload``, ``start``, ``stability``).
+    (keyword options ``tol``, ``solver``, ``allow_overload``, ``start``, ``stability``,
+    ``audit``).
 
-    The name ``moorsolve.solve`` is both this function and the :mod:`moorsolve.solve`
-    package; the function is bound here, after the (light) package, so importing any of
-    the package's modules later leaves it in place.
+    ``moorsolve.solve`` is both this callable and the :mod:`moorsolve.solve` package: it is
+    bound here, after the (light) package, so importing the package's modules later leaves
+    it in place, and its attributes are the package's, so ``import moorsolve.solve.newton
+    as newton`` works as for any package.
     """
-    run = _SOLVE or _import_solve()
-    return run(case, **options)
+
+    __name__ = __qualname__ = "solve"
+    __module__ = "moorsolve"
+
+    def __init__(self):
+        self._run = None
+        self.__doc__ = type(self).__doc__
+
+    def __call__(self, case, **options):
+        run = self._run
+        if run is None:
+            from .solve.equilibrium import solve as run
+            self._run = run
+        return run(case, **options)
+
+    def __getattr__(self, name: str):
+        if name.startswith("__"):
+            raise AttributeError(name)
+        import importlib
+
+        try:
+            return importlib.import_module(f"{__name__}.solve.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.solve.{name}":
+                raise
+        return getattr(_solve_package, name)
+
+    def __repr__(self) -> str:
+        return "<function moorsolve.solve(case, **options)>"
 
 
-_SOLVE = None
-
-
-def _import_solve():
-    global _SOLVE
-    from .solve.equilibrium import solve as run
-    _SOLVE = run
-    return run
+solve = _Solve()
 
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",

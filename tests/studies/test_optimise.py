@@ -53,10 +53,6 @@ def feasible(opt, results, study, slack=1e-7):
     return True
 
 
-def objective(study, case, design):
-    return moorsolve.solve.__globals__ and _objective(case, study, design)
-
-
 def _objective(case, study, design):
     from moorsolve.studies.optimise import objective_value
     return objective_value(design_case(case, study, design), study)
