@@ -43,7 +43,8 @@ import yaml
 from ..errors import CaseError
 from .import_report import ImportReport
 from .moordyn import line_type_data, read_import, scene_case
-from .moordyn_scene import MDLine, MDLineType, MDPoint, MDScene
+from .moordyn_scene import MDLine, MDPoint, MDScene
+from .moordyn_types import MDLineType
 from .moordyn_write_types import export_diameter
 from .output_files import write_text
 
