@@ -24,8 +24,8 @@ from __future__ import annotations
 from ..errors import CaseError
 from ..model import DOFS
 from .bathymetry import seafloor_option
-from .moordyn_write import _default_num_segs
-from .moordyn_write_types import _g, _line_type_rows
+from .moordyn_write import default_num_segs
+from .moordyn_write_types import line_type_rows, number_text as _g  # _g: dense rows
 
 __all__ = ["network_to_moordyn"]
 
@@ -46,7 +46,7 @@ def network_to_moordyn(case, result=None, *, curves: dict | None = None,
         raise CaseError("environment.seabed.gradient", "MoorDyn's seabed is flat or a grid; "
                                                        "a sloped plane cannot be written")
     notes = []
-    type_rows, _, _ = _line_type_rows(case, {}, 2, curve_prefix, curves)
+    type_rows, _, _ = line_type_rows(case, {}, 2, curve_prefix, curves)
     poses = {b["name"]: b for b in (result.bodies if result is not None else ())}
     points_found = {p["name"]: p for p in (result.points if result is not None else ())}
 
@@ -129,7 +129,7 @@ def network_to_moordyn(case, result=None, *, curves: dict | None = None,
             name = line.name if not line.multi_segment else f"{line.name}_{k + 1}"
             line_rows.append([str(len(line_rows) + 1), seg.line_type.name, str(ids[k]),
                               str(ids[k + 1]), _g(seg.length),
-                              str(_default_num_segs(seg.length)), "-", f"# {name}"])
+                              str(default_num_segs(seg.length)), "-", f"# {name}"])
 
     out = ["--------------------- MoorDyn Input File " + "-" * 31,
            f"{case.name} (written by moorsolve export-moordyn, network form)"]

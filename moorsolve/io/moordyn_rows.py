@@ -10,7 +10,7 @@ from .moordyn_parse import MoorDynFile, Row, number_token
 
 
 
-def _number(md: MoorDynFile, row: Row, index: int, column: str) -> float:
+def read_number(md: MoorDynFile, row: Row, index: int, column: str) -> float:
     token = row.values[index]
     value = number_token(token)
     if value is None:
@@ -20,7 +20,7 @@ def _number(md: MoorDynFile, row: Row, index: int, column: str) -> float:
     return value
 
 
-def _ident(md: MoorDynFile, row: Row, index: int, column: str, least: int = 1) -> int:
+def read_ident(md: MoorDynFile, row: Row, index: int, column: str, least: int = 1) -> int:
     token = row.values[index]
     if not re.fullmatch(r"\+?\d+", token) or int(token) < least:
         what = "a positive" if least == 1 else "a non-negative"
@@ -28,26 +28,26 @@ def _ident(md: MoorDynFile, row: Row, index: int, column: str, least: int = 1) -
     return int(token)
 
 
-def _width(md: MoorDynFile, row: Row, least: int, title: str, columns: str) -> None:
+def check_width(md: MoorDynFile, row: Row, least: int, title: str, columns: str) -> None:
     if len(row.values) < least:
         raise md.error(row.line, f"{title} row has {len(row.values)} columns; expected "
                                  f"{least} or more ({columns})")
 
 
-def _entries(md: MoorDynFile, kind: str, least: int, columns: str, title: str,
+def table_entries(md: MoorDynFile, kind: str, least: int, columns: str, title: str,
              id_column: str) -> list:
     """``(ID, row)`` of every row of a table, each at least ``least`` words wide."""
     rows = md.tables.get(kind, [])
     for row in rows:
-        _width(md, row, least, kind.upper(), columns)
-    return list(zip(_ids(md, rows, title, id_column), rows))
+        check_width(md, row, least, kind.upper(), columns)
+    return list(zip(row_ids(md, rows, title, id_column), rows))
 
 
-def _ids(md: MoorDynFile, rows: list, title: str, column: str) -> list:
+def row_ids(md: MoorDynFile, rows: list, title: str, column: str) -> list:
     """The rows' IDs, checked: v2 needs 1, 2, 3, ... in order; v1 distinct numbers."""
     seen, ids = {}, []
     for k, row in enumerate(rows, start=1):
-        ident = _ident(md, row, 0, column)
+        ident = read_ident(md, row, 0, column)
         if ident in seen:
             raise md.error(row.line, f"{title} {ident} is defined twice (first at line "
                                      f"{seen[ident]})")
@@ -59,9 +59,9 @@ def _ids(md: MoorDynFile, rows: list, title: str, column: str) -> list:
     return ids
 
 
-def _bars(md: MoorDynFile, row: Row, index: int, column: str, counts: tuple) -> list:
+def bar_fields(md: MoorDynFile, row: Row, index: int, column: str, counts: tuple) -> list:
     parts = row.values[index].split("|")
     if len(parts) not in counts:
         raise md.error(row.line, f"column {column!r}: {row.values[index]!r} must have "
                                  f"{' or '.join(map(str, counts))} '|'-separated numbers")
-    return [_number(md, Row(row.line, parts), i, column) for i in range(len(parts))]
+    return [read_number(md, Row(row.line, parts), i, column) for i in range(len(parts))]

@@ -38,7 +38,7 @@ from typing import Optional
 from .moordyn_options import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, KNOWN_OPTIONS,
                               read_environment)
 from .moordyn_parse import MoorDynFile, number_token
-from .moordyn_rows import _bars, _entries, _ident, _number
+from .moordyn_rows import bar_fields, table_entries, read_ident, read_number
 from .moordyn_syrope import apply_syrope
 from .moordyn_types import MDLineType, MDRodType, _line_types, _rod_types
 
@@ -161,7 +161,7 @@ def _onto_grid(points: dict, depth: float, grid: dict, converted: list) -> None:
 
 def _bodies(md: MoorDynFile, notes: list) -> dict:
     bodies = {}
-    for ident, row in _entries(md, "bodies", 14, "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* "
+    for ident, row in table_entries(md, "bodies", 14, "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* "
                                                  "Volume CdA* Ca*", "body", "ID"):
         word = row.values[1]
         let, num, rest, _ = decompose(word)
@@ -179,15 +179,15 @@ def _bodies(md: MoorDynFile, notes: list) -> dict:
                 notes.append(f"line {row.line}: body attachment {word!r} is not a MoorDyn "
                              "keyword; MoorDyn-C takes any such word as Free, and so does "
                              "this import")
-        pose = tuple(_number(md, row, 2 + i, c)
+        pose = tuple(read_number(md, row, 2 + i, c)
                      for i, c in enumerate(("X0", "Y0", "Z0", "r0", "p0", "y0")))
-        mass = _number(md, row, 8, "Mass")
-        cg = _bars(md, row, 9, "CG*", (1, 3))
+        mass = read_number(md, row, 8, "Mass")
+        cg = bar_fields(md, row, 9, "CG*", (1, 3))
         cg = (0.0, 0.0, cg[0]) if len(cg) == 1 else tuple(cg)
-        _bars(md, row, 10, "I*", (1, 3))
-        volume = _number(md, row, 11, "Volume")
-        _bars(md, row, 12, "CdA*", (1, 2, 3, 6))
-        _bars(md, row, 13, "Ca*", (1, 3))
+        bar_fields(md, row, 10, "I*", (1, 3))
+        volume = read_number(md, row, 11, "Volume")
+        bar_fields(md, row, 12, "CdA*", (1, 2, 3, 6))
+        bar_fields(md, row, 13, "Ca*", (1, 3))
         if mass < 0 or volume < 0:
             raise md.error(row.line, "columns 'Mass' and 'Volume' must be >= 0")
         columns = dict(zip(("mass", "cg", "i", "volume", "cda", "ca"), row.values[8:14]))
@@ -198,7 +198,7 @@ def _bodies(md: MoorDynFile, notes: list) -> dict:
 
 def _rods(md: MoorDynFile, rod_types: dict, bodies: dict) -> dict:
     rods = {}
-    for ident, row in _entries(md, "rods", 11, "ID RodType Attachment Xa Ya Za Xb Yb Zb "
+    for ident, row in table_entries(md, "rods", 11, "ID RodType Attachment Xa Ya Za Xb Yb Zb "
                                                "NumSegs RodOutputs", "rod", "ID"):
         tname = row.values[1]
         if tname not in rod_types:
@@ -233,9 +233,9 @@ def _rods(md: MoorDynFile, rod_types: dict, bodies: dict) -> dict:
             raise md.error(row.line, f"column 'Attachment': unknown rod attachment {word!r}; "
                                      "allowed: Fixed, Pinned, Body<N>, Body<N>Pinned, Coupled, "
                                      "CoupledPinned, Free")
-        coords = [_number(md, row, 3 + i, c)
+        coords = [read_number(md, row, 3 + i, c)
                   for i, c in enumerate(("Xa", "Ya", "Za", "Xb", "Yb", "Zb"))]
-        _ident(md, row, 9, "NumSegs", least=0)     # 0: a zero-length, point-like rod
+        read_ident(md, row, 9, "NumSegs", least=0)     # 0: a zero-length, point-like rod
         rods[ident] = MDRod(id=ident, line=row.line, type=rod_types[tname], kind=kind,
                             word=word, body=body, end_a=tuple(coords[:3]),
                             end_b=tuple(coords[3:]), num_segs=row.values[9],
@@ -248,7 +248,7 @@ def _points(md: MoorDynFile, bodies: dict) -> dict:
     names = ("Node Type X Y Z M V FX FY FZ CdA CA" if v1
              else "ID Attachment X Y Z Mass Volume CdA Ca")
     points = {}
-    for ident, row in _entries(md, "points", 12 if v1 else 9, names, "point",
+    for ident, row in table_entries(md, "points", 12 if v1 else 9, names, "point",
                                "Node" if v1 else "ID"):
         word = row.values[1]
         let, num, _, _ = decompose(word)
@@ -271,18 +271,18 @@ def _points(md: MoorDynFile, bodies: dict) -> dict:
                        "Turbine<N>" if not v1 else "Fixed, Vessel, Connect")
             raise md.error(row.line, f"column {'Type' if v1 else 'Attachment'!r}: unknown "
                                      f"attachment {word!r}; allowed: {allowed}")
-        x = _number(md, row, 2, "X")
-        y = _number(md, row, 3, "Y")
+        x = read_number(md, row, 2, "X")
+        y = read_number(md, row, 3, "Y")
         on_seabed = decompose(row.values[4])[0] in _SEABED and row.values[4].isalpha()
-        z = math.nan if on_seabed else _number(md, row, 4, "Z")
-        mass = _number(md, row, 5, "M" if v1 else "Mass")
-        volume = _number(md, row, 6, "V" if v1 else "Volume")
+        z = math.nan if on_seabed else read_number(md, row, 4, "Z")
+        mass = read_number(md, row, 5, "M" if v1 else "Mass")
+        volume = read_number(md, row, 6, "V" if v1 else "Volume")
         # A 12-column row carries FX FY FZ (v1, and MoorDyn-C v2 reads them too); in v2, a
         # longer row whose words 8-12 are not all numbers is 9 columns and a comment.
         forced = v1 or (len(row.values) >= 12
                         and all(number_token(t) is not None for t in row.values[7:12]))
         if forced:
-            force = tuple(_number(md, row, 7 + i, c) for i, c in enumerate(("FX", "FY", "FZ")))
+            force = tuple(read_number(md, row, 7 + i, c) for i, c in enumerate(("FX", "FY", "FZ")))
             columns = dict(zip(("fx", "fy", "fz", "cda", "ca"), row.values[7:12]))
         else:
             force = (0.0, 0.0, 0.0)
@@ -303,7 +303,7 @@ def _lines(md: MoorDynFile, types: dict, points: dict, rods: dict) -> dict:
     names = ("Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags/Outputs" if v1
              else "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs")
     lines = {}
-    for ident, row in _entries(md, "lines", 7, names, "line", "Line" if v1 else "ID"):
+    for ident, row in table_entries(md, "lines", 7, names, "line", "Line" if v1 else "ID"):
         tname = row.values[1]
         if tname not in types:
             raise md.error(row.line, f"column 'LineType': unknown line type {tname!r}; known: "
@@ -334,10 +334,10 @@ def _lines(md: MoorDynFile, types: dict, points: dict, rods: dict) -> dict:
         if ends[0] == ends[1]:
             raise md.error(row.line, f"line {ident} starts and ends at the same place "
                                      f"({row.values[ends_i[0]]})")
-        length = _number(md, row, length_i, "UnstrLen")
+        length = read_number(md, row, length_i, "UnstrLen")
         if not length > 0:
             raise md.error(row.line, f"column 'UnstrLen': {row.values[length_i]!r} must be > 0")
-        _ident(md, row, segs_i, "NumSegs")
+        read_ident(md, row, segs_i, "NumSegs")
         lines[ident] = MDLine(id=ident, line=row.line, type=types[tname], ends=tuple(ends),
                               length=length, num_segs=row.values[segs_i],
                               outputs=row.values[6],

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from .moordyn_curves import read_curve
 from .moordyn_parse import MoorDynFile, Row, number_token
-from .moordyn_rows import _number, _width
+from .moordyn_rows import read_number, check_width
 from .moordyn_syrope import is_syrope, read_syrope
 
 __all__ = ["MDLineType", "MDRodType"]
@@ -60,10 +60,10 @@ def _line_types(md: MoorDynFile, scene_notes: list) -> dict:
         if name in types:
             raise md.error(row.line, f"line type {name!r} is defined twice (first at line "
                                      f"{types[name].line})")
-        diameter = _number(md, row, 1, "Diam")
+        diameter = read_number(md, row, 1, "Diam")
         if diameter < 0:
             raise md.error(row.line, f"column 'Diam': {row.values[1]!r} must be >= 0")
-        mass = _number(md, row, 2, "MassDen" if layout == 1 else "Mass/m")
+        mass = read_number(md, row, 2, "MassDen" if layout == 1 else "Mass/m")
         if mass < 0:
             raise md.error(row.line, f"column 'Mass/m': {row.values[2]!r} must be >= 0")
         ea_token = row.values[3]
@@ -89,11 +89,11 @@ def _line_types(md: MoorDynFile, scene_notes: list) -> dict:
                                  lambda message, line=row.line: md.error(line, message))
             ea = None
         else:
-            ea = _number(md, Row(row.line, parts), 0, "EA")
+            ea = read_number(md, Row(row.line, parts), 0, "EA")
             if not ea > 0:
                 raise md.error(row.line, f"column 'EA': {ea_token!r} must be > 0")
         for p in parts[1:]:
-            _number(md, Row(row.line, [p]), 0, "EA")
+            read_number(md, Row(row.line, [p]), 0, "EA")
         keys = _LT_V1 if layout == 1 else _LT_V2
         columns = {_V1_TO_V2.get(k, k): t for k, t in zip(keys, row.values[4:])}
         if len(parts) > 1 or stretch is not None:
@@ -113,12 +113,12 @@ def _line_types(md: MoorDynFile, scene_notes: list) -> dict:
 def _rod_types(md: MoorDynFile) -> dict:
     types = {}
     for row in md.tables.get("rod_types", []):
-        _width(md, row, 7, "ROD TYPES", "TypeName Diam Mass/m Cd Ca CdEnd CaEnd")
+        check_width(md, row, 7, "ROD TYPES", "TypeName Diam Mass/m Cd Ca CdEnd CaEnd")
         name = row.values[0]
         if name in types:
             raise md.error(row.line, f"rod type {name!r} is defined twice")
-        diameter = _number(md, row, 1, "Diam")
-        mass = _number(md, row, 2, "Mass/m")
+        diameter = read_number(md, row, 1, "Diam")
+        mass = read_number(md, row, 2, "Mass/m")
         if diameter < 0 or mass < 0:
             raise md.error(row.line, "columns 'Diam' and 'Mass/m' must be >= 0")
         columns = dict(zip(("cd", "ca", "cdend", "caend"), row.values[3:7]))

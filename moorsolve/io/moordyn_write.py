@@ -37,7 +37,7 @@ from pathlib import Path
 from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
 from .bathymetry import seafloor_option
-from .moordyn_write_types import _g, _line_type_rows
+from .moordyn_write_types import line_type_rows, number_text as _g  # _g: dense rows
 from .output_files import write_text
 from .rotations import apply_transpose, moordyn_angles, moordyn_matrix, yawed
 
@@ -121,7 +121,7 @@ def _assign_ids(items: list, same) -> list:
     return ids
 
 
-def _default_num_segs(length: float) -> int:
+def default_num_segs(length: float) -> int:
     return int(min(max(math.ceil(length / SEGMENT_LENGTH), SEGMENTS_RANGE[0]),
                    SEGMENTS_RANGE[1]))
 
@@ -187,7 +187,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
                                                        "MoorDyn's flat WtrDpth; use a flat "
                                                        "seabed or a bathymetry grid")
     stored_legs = block.get("legs", {})
-    type_rows, masses, stiffness = _line_type_rows(case, block, version, curve_prefix, curves)
+    type_rows, masses, stiffness = line_type_rows(case, block, version, curve_prefix, curves)
     notes = []
 
     # ---- the body and where the fairleads are written ----
@@ -268,7 +268,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
         segs = []
         for k, seg in enumerate(leg.segments):
             s = sl[k] or {}
-            n = s.get("num_segs", str(_default_num_segs(seg.length)))
+            n = s.get("num_segs", str(default_num_segs(seg.length)))
             segs.append(int(n))
             line_items.append((s.get("id"), (li, k)))
         num_segs_all.append(segs)

@@ -16,11 +16,14 @@ ROPE_COEFFICIENTS = {"cd": "1.2", "ca": "1.0", "cdax": "0.008", "caax": "0"}
 DEFAULT_BA = "-0.8"
 
 
-def _g(value: float) -> str:
+def number_text(value: float) -> str:
     """A value to 12 significant digits (the round trip promises 6), shortest form."""
     if value == 0.0:
         return "0"
     return f"{value:.12g}"
+
+
+_g = number_text          # short, for the dense table rows below
 
 
 def _close(a: float, b: float) -> bool:
@@ -82,7 +85,7 @@ def _curve(lt, prefix: str, curves: dict) -> tuple:
     return name, stiffest
 
 
-def _line_type_rows(case, block: dict, version: int, curve_prefix: str = "",
+def line_type_rows(case, block: dict, version: int, curve_prefix: str = "",
                     curves: dict | None = None):
     env = case.environment
     stored_types = block.get("line_types", {})

@@ -306,6 +306,6 @@ def line_kinds(case: Case) -> list:
 # ---- the symbolic block of a line -------------------------------------------------------
 
 
-def _can_ground(kind: SegmentKind) -> bool:
+def can_ground(kind: SegmentKind) -> bool:
     """Whether a segment's top can arrive along the seabed (a sinking segment)."""
     return kind.block == "lifted" or (kind.leg is not None and kind.leg.contact)

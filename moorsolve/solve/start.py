@@ -19,7 +19,7 @@ from ..physics.catenary import LegKind
 from ..physics.closed_form import initial_state
 from ..physics.profile import leg_profile
 from .layout import parameter_vector
-from .line_kinds import _can_ground, discretised, line_kind
+from .line_kinds import can_ground, discretised, line_kind
 from .concurrency import LockedLRU
 from .prepared import geometry_key, line_kinds_of, per_case
 from .stretch_params import start_ea
@@ -180,7 +180,7 @@ def _multi_start(case, line, kind, lower, upper, segments, clumps, u, V, force_s
     joints = []
     block = kind.block
     for j in range(block.n_joints):
-        if grounded[j] and _can_ground(block.segments[j]):
+        if grounded[j] and can_ground(block.segments[j]):
             sigma = -(max(weights[j], 0.0) + 1e-6 * force_scale)
         elif z[j] >= 0 and block.segments[j].block == "floating":
             # A joint afloat starts held down by the surface (the mirror image).
