@@ -16,7 +16,7 @@ from ._lazy import lazy_exports
 from .errors import (CaseError, ConvergenceError, MoorsolveError, MoorsolveWarning,
                      UnusedInputWarning)
 
-__version__ = "0.1.0"
+from ._version import __version__
 
 _NAMES = {
     "load_case": ".io.case_file",

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import math
 
+from .items import CheckItem
+
 __all__ = ["fibre_items", "segment_min_tension", "LOWER_LIMIT_CHECKS"]
 
 #: Checks whose value must be at least the limit (the others: at most).
@@ -64,7 +66,6 @@ def segment_min_tension(leg, lr) -> list:
 
 def fibre_items(condition: str, leg, lr) -> list:
     """The fibre-rope check items of one leg in one condition (none for a chain leg)."""
-    from .run import CheckItem        # run.py imports this module for its checks
     items = []
     if lr.fibre_grounded_m is not None:
         g = lr.fibre_grounded_m

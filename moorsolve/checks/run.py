@@ -36,32 +36,11 @@ from ..solve import Result, solve
 from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
 from .fibre import LOWER_LIMIT_CHECKS, fibre_items
+from .items import CheckItem
 
 #: Anchor uplift below this fraction of the line tension (or 1 N) counts as none: the
 #: solver's own residual is far smaller, a physical uplift far larger.
 _UPLIFT_TOL_REL = 1e-6
-
-
-@dataclass(frozen=True)
-class CheckItem:
-    """One check: a value against its limit.
-
-    ``utilisation`` is demand over capacity (``<= 1`` passes; ``inf`` when the capacity is
-    zero or missing).
-    """
-
-    condition: str
-    leg: str | None
-    check: str
-    value: float
-    limit: float
-    unit: str
-    utilisation: float
-    passed: bool
-    criterion: str
-
-    def to_dict(self) -> dict:
-        return dataclasses.asdict(self)
 
 
 @dataclass(frozen=True)

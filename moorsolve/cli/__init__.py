@@ -19,7 +19,7 @@ __all__ = ["main", "EXIT_OK", "EXIT_NO_EQUILIBRIUM", "EXIT_BAD_INPUT"]
 
 
 def _parser() -> Parser:
-    from .. import __version__
+    from .._version import __version__
     parser = Parser(prog="moorsolve", description="Static equilibrium of moored bodies.")
     parser.add_argument("--version", action="version", version=f"moorsolve {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)

@@ -24,8 +24,8 @@ from __future__ import annotations
 from ..errors import CaseError
 from ..model import DOFS
 from .bathymetry import seafloor_option
-from .moordyn_write import default_num_segs
-from .moordyn_write_types import line_type_rows, number_text as _g  # _g: dense rows
+from .moordyn_write_types import default_num_segs, line_type_rows
+from .moordyn_write_types import number_text as _g  # _g: dense rows
 
 __all__ = ["network_to_moordyn"]
 

@@ -37,7 +37,8 @@ from pathlib import Path
 from ..errors import CaseError
 from ..model.moordyn_block import RAW_SECTIONS
 from .bathymetry import seafloor_option
-from .moordyn_write_types import line_type_rows, number_text as _g  # _g: dense rows
+from .moordyn_write_types import default_num_segs, line_type_rows
+from .moordyn_write_types import number_text as _g  # _g: dense rows
 from .output_files import write_text
 from .rotations import apply_transpose, moordyn_angles, moordyn_matrix, yawed
 
@@ -45,8 +46,6 @@ __all__ = ["case_to_moordyn", "export_moordyn"]
 
 log = logging.getLogger(__name__)
 
-SEGMENT_LENGTH = 5.0            # [m] per MoorDyn segment by default
-SEGMENTS_RANGE = (10, 100)
 DEFAULT_OPTIONS = [("kBot", "3.0e6"), ("cBot", "3.0e5"), ("dtIC", "1.0"), ("TmaxIC", "60"),
                    ("CdScaleIC", "5.0"), ("threshIC", "0.001")]
 
@@ -119,11 +118,6 @@ def _assign_ids(items: list, same) -> list:
         renumber = {old: new for new, old in enumerate(unique, start=1)}
         ids = [renumber[i] for i in ids]
     return ids
-
-
-def default_num_segs(length: float) -> int:
-    return int(min(max(math.ceil(length / SEGMENT_LENGTH), SEGMENTS_RANGE[0]),
-                   SEGMENTS_RANGE[1]))
 
 
 def _default_dt(case, masses: dict, num_segs: list, stiffness: dict) -> str:

@@ -1,6 +1,7 @@
-"""The LINE TYPES of a MoorDyn file written from a case: diameter and mass per metre (from
-the weight in water), EA or a tension-strain curve file, and the dynamic columns (kept from
-an imported file, else typical values for chain and rope)."""
+"""The LINE TYPES of a MoorDyn file written from a case (diameter and mass per metre from
+the weight in water, EA or a tension-strain curve file, and the dynamic columns: kept from
+an imported file, else typical values for chain and rope), and each line's default
+NumSegs. Shared by the legs-form and network-form writers."""
 
 from __future__ import annotations
 
@@ -14,6 +15,8 @@ STEEL_DENSITY = 7850.0          # [kg/m^3], for a line type without a diameter
 CHAIN_COEFFICIENTS = {"cd": "1.333", "ca": "1.0", "cdax": "0.639", "caax": "0.5"}
 ROPE_COEFFICIENTS = {"cd": "1.2", "ca": "1.0", "cdax": "0.008", "caax": "0"}
 DEFAULT_BA = "-0.8"
+SEGMENT_LENGTH = 5.0            # [m] per MoorDyn segment by default
+SEGMENTS_RANGE = (10, 100)
 
 
 def number_text(value: float) -> str:
@@ -134,3 +137,8 @@ def line_type_rows(case, block: dict, version: int, curve_prefix: str = "",
                 row += [v if v is not None else d for v, d in zip(extra, ("0", "0.08", "0.18"))]
         rows.append(row)
     return rows, masses, stiffness
+
+
+def default_num_segs(length: float) -> int:
+    return int(min(max(math.ceil(length / SEGMENT_LENGTH), SEGMENTS_RANGE[0]),
+                   SEGMENTS_RANGE[1]))

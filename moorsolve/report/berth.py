@@ -4,7 +4,10 @@ change independently."""
 
 from __future__ import annotations
 
-from ..solve.result import Result
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:          # annotations only: the report reads what upstream made
+    from ..solve.result import Result
 
 
 def _table(header: str, rows: list) -> list:

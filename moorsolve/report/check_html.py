@@ -21,10 +21,13 @@ import html
 import json
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from ..checks import CheckReport
 from ..io.output_files import write_text
 from .check_text import check_json, format_check_table, kN, summary_rows
+
+if TYPE_CHECKING:          # annotations only: the report reads what upstream made
+    from ..checks import CheckReport
 
 __all__ = ["check_json", "format_check_table", "render_html", "write_html_report",
            "summary_table", "case_fingerprint"]
@@ -138,7 +141,7 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
     created : datetime.datetime, optional
         The report's date (default now, UTC).
     """
-    from .. import __version__
+    from .._version import __version__
     created = created or datetime.datetime.now(datetime.timezone.utc)
     verdict = "PASS" if report.passed else "FAIL"
     source, hashed, digest = case_fingerprint(case, case_file)

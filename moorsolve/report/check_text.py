@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import json
 import math
+from typing import TYPE_CHECKING
 
-from ..checks import CheckReport
 from .berth import berth_check_lines
 from .text import _finite
+
+if TYPE_CHECKING:          # annotations only: the report reads what upstream made
+    from ..checks import CheckReport
 
 __all__ = ["check_json", "format_check_table", "summary_rows", "kN"]
 

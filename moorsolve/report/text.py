@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import json
 import math
+from typing import TYPE_CHECKING
 
-from ..solve.result import Result
 from .berth import berth_lines
+
+if TYPE_CHECKING:          # annotations only: the report reads what upstream made
+    from ..solve.result import Result
 
 
 def to_json(result: Result, profiles: bool = True) -> str:

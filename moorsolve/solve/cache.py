@@ -13,7 +13,8 @@ from collections import OrderedDict
 
 from ..model import Case
 from .prepared import HashedKey, per_case
-from .problem import EquilibriumProblem, structure_key
+from .prepared import structure_key
+from .problem import EquilibriumProblem
 from .start import scales
 
 

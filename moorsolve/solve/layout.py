@@ -37,7 +37,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import Case
-from . import prepared
 from .bathymetry import PLANE, initial_planes
 from .stretch_params import law_slot
 
@@ -178,15 +177,6 @@ def contact_parameters(case: Case) -> np.ndarray:
     for guide in c.guides:
         values += [*guide.at, guide.clearance]
     return np.asarray(values, dtype=float)
-
-
-def parameter_vector(case: Case, load_factor: float = 1.0, kinds=None) -> np.ndarray:
-    """The full parameter vector ``p`` of ``case``'s problem (a fresh array).
-
-    Assembled once per case object from the blocks below (:func:`.prepared.case_parameters`);
-    ``kinds``, the case's own line kinds, is accepted for the callers that hold them.
-    """
-    return prepared.case_parameters(case, load_factor)
 
 
 #: Index of the load factor in every parameter vector.

@@ -249,7 +249,7 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
 def kernel_key(problem) -> str:
     """What decides the kernel's generated code: the problem's structure, its scales and
     sizes and the kernel's constants (:class:`.compiled.Library` adds the code version)."""
-    from .problem import structure_key
+    from .prepared import structure_key
     return repr((structure_key(problem.case), problem.force_scale, problem.length_scale,
                  problem.moment_scale, problem.n_x, problem.n_p, MAX_ITERATIONS,
                  _BACKTRACKS, _ARMIJO, STEP_LIMIT, _ARROW_NODES))

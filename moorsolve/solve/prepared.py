@@ -21,6 +21,7 @@ the values are immutable (parameter vectors are handed out as copies).
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import threading
 import weakref
@@ -30,6 +31,7 @@ import numpy as np
 
 from . import layout
 from .concurrency import LockedLRU
+from .contact import contact_points
 
 # Re-entrant: a case freed while the table is locked calls _forget on the same thread.
 _LOCK = threading.RLock()
@@ -196,6 +198,13 @@ def _parameters(case) -> np.ndarray:
     return p
 
 
+def parameter_vector(case, load_factor: float = 1.0, kinds=None) -> np.ndarray:
+    """The full parameter vector ``p`` of ``case``'s problem (a fresh array), assembled once
+    per case object from :mod:`.layout`'s blocks (:func:`case_parameters`); ``kinds``, the
+    case's own line kinds, is accepted for the callers that hold them."""
+    return case_parameters(case, load_factor)
+
+
 def case_parameters(case, load_factor: float = 1.0) -> np.ndarray:
     """The parameter vector of ``case`` (a fresh array) at ``load_factor``."""
     p = _parameters(case).copy()
@@ -235,8 +244,6 @@ def load_free(case, p: np.ndarray) -> bytes:
 def geometry_key(case) -> HashedKey:
     """``case``'s structure key and its load-free parameters: equal for two cases whose
     rest states are equal."""
-    from .problem import structure_key
-
     return HashedKey((structure_key(case), load_free(case, _parameters(case))))
 
 
@@ -245,3 +252,25 @@ def clear() -> None:
     with _LOCK:
         _TABLE.clear()
     _KINDS.clear()
+
+
+@per_case
+def structure_key(case) -> tuple:
+    """What decides the shape of the built problem (not its parameter values); computed
+    once per case object."""
+    bodies = tuple(
+        (b.name, tuple(b.free), b.mass is not None, b.hydrostatics is not None,
+         tuple(m.shape for m in b.hull), b.stiffness is not None,
+         dataclasses.replace(b.loads, force=None), b.loads.force is not None)
+        for b in case.bodies)
+    berth = (tuple(w.name for w in case.contacts.walls),
+             tuple(p.name for p in case.contacts.piles), tuple(contact_points(case)))
+    return HashedKey((
+        line_kinds_of(case), line_ends_of(case), bodies,
+        tuple(p.name for p in case.free_points),
+        case.form, berth,
+        case.environment.wind is not None, case.environment.current is not None,
+        case.environment.waves is not None,
+        case.environment.air_density, case.environment.water_density,
+        case.environment.gravity, case.environment.seabed.bathymetry is not None,
+    ))

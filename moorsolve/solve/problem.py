@@ -25,7 +25,6 @@ solves of one structure is a parameter (:mod:`.layout`), so one build serves a w
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import threading
 
@@ -40,13 +39,12 @@ from .concurrency import SYMBOLIC_LOCK
 from .nodes import node_balances
 from .numerics import SolverAccess
 from .discrete import discrete_leg
-from .layout import (BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, SEABED_PARAMS,
-                     build_layout, parameter_vector)
+from .layout import BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, SEABED_PARAMS, build_layout
 from .contact import add_contacts, contact_points, element_reactions
 from .stretch_params import line_laws
 from .line_kinds import LineKind, line_kinds
 from .lines import closing_force, multi_block, plane_geometry, seabed_height, single_block
-from .prepared import HashedKey, line_ends_of, line_kinds_of, per_case
+from .prepared import parameter_vector
 
 #: Columns of the lines table of ``EquilibriumProblem.report``: the horizontal and vertical
 #: tension at end B (``H``, ``VF``: the upward force B exerts on the line), the horizontal
@@ -499,27 +497,5 @@ def _blockwise_jacobian(g, x, sizes):
     return ca.vertcat(*blocks) if blocks else ca.SX(0, x.numel())
 
 
-@per_case
-def structure_key(case: Case) -> tuple:
-    """What decides the shape of the built problem (not its parameter values); computed
-    once per case object."""
-    bodies = tuple(
-        (b.name, tuple(b.free), b.mass is not None, b.hydrostatics is not None,
-         tuple(m.shape for m in b.hull), b.stiffness is not None,
-         dataclasses.replace(b.loads, force=None), b.loads.force is not None)
-        for b in case.bodies)
-    berth = (tuple(w.name for w in case.contacts.walls),
-             tuple(p.name for p in case.contacts.piles), tuple(contact_points(case)))
-    return HashedKey((
-        line_kinds_of(case), line_ends_of(case), bodies,
-        tuple(p.name for p in case.free_points),
-        case.form, berth,
-        case.environment.wind is not None, case.environment.current is not None,
-        case.environment.waves is not None,
-        case.environment.air_density, case.environment.water_density,
-        case.environment.gravity, case.environment.seabed.bathymetry is not None,
-    ))
-
-
-__all__ = ["EquilibriumProblem", "structure_key", "LINE_COLUMNS", "LineKind",
+__all__ = ["EquilibriumProblem", "LINE_COLUMNS", "LineKind",
            "plane_geometry", "closing_force", "BODY_PARAMS"]

@@ -18,7 +18,7 @@ from ..model.build_network import end_position as case_end_position
 from ..physics.catenary import LegKind
 from ..physics.closed_form import initial_state
 from ..physics.profile import leg_profile
-from .layout import parameter_vector
+from .prepared import parameter_vector
 from .line_kinds import can_ground, discretised, line_kind
 from .concurrency import LockedLRU
 from .prepared import geometry_key, line_kinds_of, per_case

@@ -54,7 +54,8 @@ from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from ..solve.cache import get_problem
 from ..solve.equilibrium import solve
-from ..solve.layout import ENV_PARAMS, LEG_PARAMS, parameter_vector
+from ..solve.layout import ENV_PARAMS, LEG_PARAMS
+from ..solve.prepared import parameter_vector
 from .optimise_design import (_anchor_line, _leg_index, _objective, design_case,
                               load_case_scene, objective_value)
 from .optimise_results import (_KINDS, ACTIVE_TOL, ConstraintResult, Optimisation,

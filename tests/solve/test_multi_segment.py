@@ -18,8 +18,8 @@ from scipy.integrate import solve_ivp
 from moorsolve import load_case, solve
 from moorsolve.physics.catenary import LegKind
 from moorsolve.solve.cache import get_problem
-from moorsolve.solve.layout import (ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS,
-                                    parameter_vector)
+from moorsolve.solve.layout import ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS
+from moorsolve.solve.prepared import parameter_vector
 from moorsolve.solve.line_kinds import MultiLegKind
 from conftest import ROOT
 
