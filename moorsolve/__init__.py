@@ -52,9 +52,7 @@ class _Solve:
     __name__ = __qualname__ = "solve"
     __module__ = "moorsolve"
 
-    def __init__(self):
-        self._run = None
-        self.__doc__ = type(self).__doc__
+    _run = None             # the solver entry, imported on the first call
 
     def __call__(self, case, **options):
         run = self._run

@@ -41,6 +41,7 @@ from .moordyn_network import body_held, network_case
 from .moordyn_parse import MoorDynError, MoorDynFile, Row, read_moordyn
 from .moordyn_scene import (DEFAULT_GRAVITY, DEFAULT_WATER_DENSITY, MDScene, read_scene,
                             vertical_force)
+from .moordyn_syrope import is_syrope
 from .output_files import write_case_yaml
 
 __all__ = ["MoorDynError", "MoorDynFile", "MoorDynImport", "Row", "read_moordyn",
@@ -73,7 +74,7 @@ def line_type_data(scene: MDScene, report: ImportReport,
             weight = 0.0
         if lt.stretch is not None:
             entry = {"weight_in_water": weight, "stretch": lt.stretch}
-            source = ("the SYROPE rope's static law" if lt.ea_token.upper().startswith("SYROPE:")
+            source = ("the SYROPE rope's static law" if is_syrope(lt.ea_token)
                       else f"EA from the curve file {lt.ea_token.split('|')[0]!r}")
             stiffness = (f"{source}: a table law of {len(lt.stretch['strain'])} rows "
                          "(moorsolve interpolates them by a monotone cubic, MoorDyn linearly)")

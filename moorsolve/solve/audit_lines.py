@@ -219,7 +219,8 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
     uncovered = (np.abs(P.s[last] - L) > tol) | (np.abs(P.s[o]) > tol)
 
     # The seabed and the surface.
-    bed = np.asarray(env.seabed_z(P.x, P.y), float) * np.ones_like(P.z)
+    grid = np.asarray(env.seabed_z(P.x, P.y), float) * np.ones_like(P.z)
+    bed = grid
     below = np.maximum.reduceat(bed - P.z, o)
     below_tol, under_plane = tol, np.full(n, -np.inf)
     planes = [leg.seabed_plane for leg in legs]
@@ -263,8 +264,7 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
     v = dict(tol=tol, lumped=lumped, boundaries_only=boundaries_only, miss_a=miss_a,
              miss_f=miss_f, broken=broken, excess=excess, step=step, ds=ds,
              uncovered=uncovered, L=L, below=below, bed=bed, above=above, ceiling=ceiling,
-             below_tol=below_tol, under_plane=under_plane, grid=np.asarray(
-                 env.seabed_z(P.x, P.y), float) * np.ones_like(P.z),
+             below_tol=below_tol, under_plane=under_plane, grid=grid,
              bad_ta=bad_ta, bad_tf=bad_tf, t_max=t_max, size=size, f_tol=f_tol,
              on_boundary=on_boundary, directions=directions, vertical=vertical,
              horizontal=horizontal)
