@@ -51,14 +51,16 @@ class ConvergenceError(MoorsolveError, RuntimeError):
 
     def __init__(self, reason: str, *, residual_N: float = float("nan"),
                  residual_Nm: float = float("nan"), status: str = "",
-                 iterations: int = 0, result=None):
+                 iterations: int = 0, result=None, certified: bool | None = None):
         self.reason = reason
         self.residual_N = residual_N
         self.residual_Nm = residual_Nm
         self.status = status
         self.iterations = iterations
         self.result = result
-        if result is not None and getattr(result, "converged", False):
+        if certified is None:
+            certified = result is not None and getattr(result, "converged", False)
+        if certified:
             # An equilibrium was found and certified but is not acceptable (a line over
             # its breaking load): say so rather than "no equilibrium".
             text = (f"{reason} (a certified equilibrium: force residual {residual_N:.3g} N, "

@@ -42,7 +42,9 @@ import math
 import numpy as np
 
 from ..errors import ConvergenceError
+from .audit_closed_form import closed_form_findings, covers, table_ends
 from .audit_lines import FORCE_REL, is_lumped, line_findings
+from .concurrency import LockedLRU
 
 __all__ = ["audit", "audit_findings", "result_warnings", "AuditFailure"]
 
@@ -55,19 +57,25 @@ class AuditFailure(ConvergenceError):
     """A certified solution whose reported quantities are not a consistent equilibrium."""
 
 
-def audit(result, case) -> list[str]:
+def audit(result, case, problem=None, post=None, full: bool = False) -> list[str]:
     """Check ``result`` (of ``case``) independently; raise :class:`AuditFailure` on a defect.
 
-    Returns the names of the lines audited.
+    Given the ``problem`` and its report arrays ``post`` at the result, a scene of
+    one-segment lines on a flat seabed is audited in closed form from the reported end
+    positions and forces (:mod:`.audit_closed_form`), without drawing a profile; ``full``
+    also runs the profile audit. Returns the names of the lines audited.
     """
-    problems = audit_findings(result, case)
+    problems = (None if problem is None or post is None
+                else closed_form_audit(result, case, problem, post))
+    if problems is None or full:
+        problems = (problems or []) + audit_findings(result, case)
     if problems:
         c = result.certificate
         raise AuditFailure(
             "the solution certified but its reported quantities fail the independent audit: "
             + "; ".join(problems), residual_N=c.force_N, residual_Nm=c.moment_Nm,
             status=c.status, iterations=c.iterations, result=result)
-    return [leg.name for leg in result.legs]
+    return [line.name for line in case.lines]
 
 
 def audit_findings(result, case, boundaries_only: bool = False) -> list[str]:
@@ -80,10 +88,31 @@ def audit_findings(result, case, boundaries_only: bool = False) -> list[str]:
     """
     tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
     problems = line_findings(case, result.legs, tol_rel, boundaries_only)
-    return problems + ([] if boundaries_only else _audit_body(result, case))
+    if boundaries_only:
+        return problems
+    legs = result.legs
+    ends = tuple(np.array([getattr(leg, k) if getattr(leg, k) is not None else (0.0,) * 3
+                           for leg in legs], float).reshape(-1, 3)
+                 for k in ("anchor", "fairlead", "anchor_force", "fairlead_force"))
+    t_lines = max([1.0] + [max(leg.fairlead_tension_N, leg.anchor_tension_N)
+                           for leg in legs])
+    return problems + _audit_body(result, case, ends, t_lines)
 
 
-def _audit_body(result, case) -> list[str]:
+def closed_form_audit(result, case, problem, post) -> list[str] | None:
+    """The audit's findings from the report arrays, or None where the closed forms do not
+    cover the scene (:func:`.audit_closed_form.covers`)."""
+    if not covers(problem, case):
+        return None
+    table = np.atleast_2d(np.asarray(post["lines"], float))
+    tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
+    problems, t_lines = closed_form_findings(problem, case, table, tol_rel)
+    if problems is None:
+        return None
+    return problems + _audit_body(result, case, table_ends(table), max(t_lines, 1.0))
+
+
+def _audit_body(result, case, ends, t_lines: float) -> list[str]:
     """The reported line forces balance every free body and free point.
 
     Per body, in every free degree of freedom: the force and the moment about the body's
@@ -96,10 +125,9 @@ def _audit_body(result, case) -> list[str]:
     """
     out = []
     env = case.environment
-    t_max = max([1.0] + [max(leg.fairlead_tension_N, leg.anchor_tension_N)
-                         for leg in result.legs]
-                + [c["reaction_N"] for c in result.fenders + result.guides])
-    ends = _ends_by_body(case, result.legs)
+    t_max = max([t_lines] + [c["reaction_N"] for c in result.fenders + result.guides])
+    a, b, fa, fb = ends
+    by_body = _ends_by_body(case, ends)
     for bi, body in enumerate(case.bodies):
         if not body.free or bi >= len(result.bodies):
             continue
@@ -109,20 +137,21 @@ def _audit_body(result, case) -> list[str]:
         origin, R = q[:3], _rotation(*q[3:])
         # The line ends on the body, then fenders' and pile guides' pads (reaction and
         # friction) at their contact points: all at once.
-        positions, forces = ends.get(body.name, ([], []))
+        positions, forces = by_body.get(body.name, (np.zeros((0, 3)), np.zeros((0, 3))))
         contacts = [c for c in result.fenders if c["body"] == body.name]
         contacts += [pad for g in result.guides if g["body"] == body.name for pad in g["pads"]]
-        positions = positions + [c["contact_point_m"] for c in contacts]
-        forces = forces + [c["force_N"] for c in contacts]
+        if contacts:
+            positions = np.vstack([positions, [c["contact_point_m"] for c in contacts]])
+            forces = np.vstack([forces, [c["force_N"] for c in contacts]])
         force, moment = np.zeros(3), np.zeros(3)
         scale = t_max
         radius = 1.0
-        if forces:
-            f = np.array(forces, float).reshape(-1, 3)
-            arm = np.array(positions, float).reshape(-1, 3) - origin
+        if len(forces):
+            f = forces
+            arm = positions - origin
             force += f.sum(axis=0)
-            moment += _cross(arm, f).sum(axis=0)
-            radius = max(radius, float(np.max(np.hypot(arm[:, 0], arm[:, 1]))))
+            moment += _moment_sum(arm, f)
+            radius = max(radius, float(np.hypot(arm[:, 0], arm[:, 1]).max()))
         for name, load in result.loads.items():
             if len(case.bodies) > 1 and not name.startswith(body.name + "."):
                 continue
@@ -131,7 +160,7 @@ def _audit_body(result, case) -> list[str]:
                 f = np.array([f[0], f[1], 0.0, 0.0, 0.0, f[2]])
             force += f[:3]
             moment += f[3:]
-            scale = max(scale, float(np.linalg.norm(f[:3])))
+            scale = max(scale, math.hypot(f[0], f[1], f[2]))
         # Hydrostatics act about the still-water level (above the datum by a tide).
         afloat = origin - np.array([0.0, 0.0, env.water_level])
         for f, m in _hydrostatic_wrenches(body, afloat, R, env):
@@ -155,11 +184,10 @@ def _audit_body(result, case) -> list[str]:
     for point, reported in zip(case.free_points, result.points):
         total = np.array([0.0, 0.0, -env.gravity * (point.mass
                                                     - env.water_density * point.volume)])
-        for line, leg in zip(case.lines, result.legs):
-            for end, which in ((line.a, "a"), (line.b, "b")):
-                force = _end_force(leg, which)
-                if end.point == point.name and force is not None:
-                    total += force
+        for i, line in enumerate(case.lines):
+            for end, force in ((line.a, fa), (line.b, fb)):
+                if end.point == point.name:
+                    total += force[i]
         gx, gy = env.seabed.gradient
         normal = np.array([-gx, -gy, 1.0]) / math.sqrt(1 + gx * gx + gy * gy)
         total += reported.get("seabed_reaction_N", 0.0) * normal
@@ -169,24 +197,38 @@ def _audit_body(result, case) -> list[str]:
     return out
 
 
-def _ends_by_body(case, legs) -> dict:
-    """Per body name: the positions and the reported forces of the line ends on it."""
+def _ends_by_body(case, ends) -> dict:
+    """Per body name: the positions ``(k, 3)`` and the reported forces ``(k, 3)`` of the
+    line ends on it (ends A of the lines on it, then ends B)."""
+    a, b, fa, fb = ends
     out = {}
-    for line, leg in zip(case.lines, legs):
-        for end, pos, force in ((line.a, leg.anchor, leg.anchor_force),
-                                (line.b, leg.fairlead, leg.fairlead_force)):
-            if end.body is not None and force is not None:
-                positions, forces = out.setdefault(end.body, ([], []))
-                positions.append(pos)
-                forces.append(force)
+    for name, (on_a, on_b) in _ends_on_bodies(case.lines).items():
+        out[name] = (np.concatenate([a[on_a], b[on_b]]), np.concatenate([fa[on_a], fb[on_b]]))
     return out
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Row-wise ``a x b`` of (n, 3) arrays (numpy's cross costs more than it computes)."""
-    return np.column_stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
-                            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
-                            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]])
+_ENDS_ON_BODIES = LockedLRU(256)
+
+
+def _ends_on_bodies(lines) -> dict:
+    """Per body name, the lines whose end A and whose end B are on it (index arrays), once
+    per lines tuple."""
+    hit = _ENDS_ON_BODIES.get(id(lines))
+    if hit is not None and hit[0] is lines:
+        return hit[1]
+    names = {end.body for line in lines for end in (line.a, line.b) if end.body is not None}
+    found = {name: (np.array([i for i, line in enumerate(lines) if line.a.body == name], int),
+                    np.array([i for i, line in enumerate(lines) if line.b.body == name], int))
+             for name in sorted(names)}
+    _ENDS_ON_BODIES.put(id(lines), (lines, found))
+    return found
+
+
+def _moment_sum(arm: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """``sum_i arm_i x force_i`` of (n, 3) arrays (numpy's cross costs more than it
+    computes)."""
+    (ax, ay, az), (fx, fy, fz) = arm.T, force.T
+    return np.array([ay @ fz - az @ fy, az @ fx - ax @ fz, ax @ fy - ay @ fx])
 
 
 def _cross3(a, b) -> np.ndarray:
@@ -195,13 +237,12 @@ def _cross3(a, b) -> np.ndarray:
 
 
 def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """``Rz(yaw) Ry(pitch) Rx(roll)`` as the product of the three elementary rotations."""
+    """``Rz(yaw) Ry(pitch) Rx(roll)``, multiplied out."""
     cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
                               math.sin(pitch), math.cos(yaw), math.sin(yaw))
-    rz = np.array([[cy, -sy, 0.0], [sy, cy, 0.0], [0.0, 0.0, 1.0]])
-    ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, cr, -sr], [0.0, sr, cr]])
-    return rz @ ry @ rx
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
 
 
 def _angle_axes(R: np.ndarray, yaw: float) -> np.ndarray:
@@ -261,12 +302,6 @@ def _member_volume(member, origin, R) -> tuple:
     centroid = np.array([np.sum(ww * h * xs), np.sum(ww * h * ys),
                          np.sum(ww * h * (member.bottom + h / 2))]) / volume
     return volume, centroid
-
-
-def _end_force(leg, which: str):
-    """The force [N] the line exerts on its end A or B, as reported (global 3-vector)."""
-    force = leg.anchor_force if which == "a" else leg.fairlead_force
-    return None if force is None else np.asarray(force, float)
 
 
 # ---- warnings ---------------------------------------------------------------------------

@@ -117,7 +117,7 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
 
 def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
           allow_overload: bool = False, start: np.ndarray | None = None,
-          stability: bool = True, audit: bool = True, _planes=None) -> Result:
+          stability: bool = True, audit: bool | str = True, _planes=None) -> Result:
     """Static equilibrium of ``case``, certified.
 
     Parameters
@@ -140,11 +140,14 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         Examine the stability of the equilibrium and, where it is unstable, look for a
         stable one (the default). ``False`` returns the first certified point without that
         examination (``Result.stability`` is then None), for sweeps that only want numbers.
-    audit : bool
+    audit : bool or "full"
         Check the reported quantities independently before returning
-        (:mod:`moorsolve.solve.audit`; the default). It draws every line's profile and,
-        with them, costs a few times a compiled Newton solve: ``False`` skips it for loops
-        that need the speed (the certificate, the stability check and the warnings stay).
+        (:mod:`moorsolve.solve.audit`; the default). One-segment lines on a flat seabed are
+        audited in closed form from their reported end positions and forces
+        (:mod:`moorsolve.solve.audit_closed_form`); other scenes by drawing every line's
+        profile, which costs a few times a compiled Newton solve. ``"full"`` runs the
+        profile audit on every scene as well; ``False`` skips the audit for loops that need
+        the speed (the certificate, the stability check and the warnings stay).
 
     Returns
     -------
@@ -251,7 +254,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                     case.name, ", ".join(assessment.unstable_dofs) or "a coupled mode")
     # An independent check of what is reported (raises AuditFailure), and the warnings.
     if audit:
-        audit_result(result, case)
+        audit_result(result, case, problem, post, full=audit == "full")
     if not _may_warn(problem, case, post):
         return result
     return dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))

@@ -12,6 +12,7 @@ import math
 import casadi as ca
 import numpy as np
 
+from .bundled_blas import limit_bundled_blas
 from .concurrency import SYMBOLIC_LOCK
 
 
@@ -99,6 +100,7 @@ class SolverAccess:
                 }
                 with SYMBOLIC_LOCK:
                     self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
+                limit_bundled_blas()
             return self._nlp_solvers[key]
 
     #: The smoothings IPOPT solves with in turn, relative to the length scale (the polish

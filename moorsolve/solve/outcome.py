@@ -20,6 +20,7 @@ from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
+from .audit import AuditFailure
 from .bathymetry import plane_slices
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
@@ -69,7 +70,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                 # On a grid the line's own plane (solve/bathymetry.py) gives its slope.
                 plane = p[planes[i]][1:] if grid else None
                 lr = _single_result(case, line, kind, row, u, problem.contact_stiffness,
-                                    batch, plane)
+                                    cert, batch, plane)
             if fibre:
                 lr = dataclasses.replace(lr, fibre_grounded_m=fibre_grounded(case, line, lr))
             yield lr
@@ -227,7 +228,8 @@ def _weightless_slack(line, row, u, stiffness) -> bool:
     return stretched - math.hypot(row["X"], row["Z"]) > u / stiffness
 
 
-def _single_result(case, line, kind, row, u, stiffness, batch=None, plane=None) -> LegResult:
+def _single_result(case, line, kind, row, u, stiffness, cert, batch=None,
+                   plane=None) -> LegResult:
     env = case.environment
     lt = line.line_type
     if kind.neutral and _weightless_slack(line, row, u, stiffness):
@@ -283,13 +285,14 @@ def _single_result(case, line, kind, row, u, stiffness, batch=None, plane=None) 
     block = kind.block
     if (batch is not None and not (block.neutral or block.air or kind.lifted or kind.surface
                                    or kind.sloped) and numeric_law(lt) is None):
-        profile = LazyProfile(batch.add(
+        drawing = batch.add(
             dict(H=H, V=VF, L=line.length, w=lt.weight_in_water, ea=lt.ea, mu=mu,
                  contact=block.contact, lower=lower, upper=upper, flipped=kind.flipped,
                  length=line.length),
-            draw, lambda prof: _add_wall_tension(prof, line, env)))
+            draw, lambda prof: _add_wall_tension(prof, line, env))
     else:
-        profile = LazyProfile(draw)
+        drawing = draw
+    profile = LazyProfile(_ends_checked(drawing, line, env, a, b, fa, fb, cert))
     fields = _end_fields(line.name, a, b, fa, fb)
     fields.update(floating_length_m=floating,
                   touchup_from_anchor_m=_first_at_surface(profile, a) if floating > 0 else 0.0)
@@ -312,6 +315,35 @@ def _single_result(case, line, kind, row, u, stiffness, batch=None, plane=None) 
         touchdown_point=((lower[0] + ux * td, lower[1] + uy * td, lower[2] + slope * td)
                          if (anchored and grounded > 0) else None),
         mbl_N=lt.mbl, profile=profile, **fields)
+
+
+def _ends_checked(draw, line, env, a, b, fa, fb, cert):
+    """``draw`` made to check what it drew: the profile runs from end A to end B with their
+    reported tensions, or :class:`~.audit.AuditFailure` says it does not (where the audit
+    ran in closed form, :mod:`.audit_closed_form`, this is the only look at a profile)."""
+    def checked() -> dict:
+        prof = draw()
+        ta, tb = math.hypot(*fa), math.hypot(*fb)
+        lt = line.line_type
+        f_tol = 2e-6 * max(ta, tb, abs(lt.weight_in_water) * line.length, 1.0)
+        stretch = max(ta, tb) / lt.ea if lt.ea else 0.0
+        tol = 1e-6 * max(line.length * (1.0 + stretch), env.depth, 1.0)
+        x, y, z, t = (np.asarray(prof[k], float) for k in ("x_m", "y_m", "z_m", "tension_N"))
+        misses = [("starts", math.dist((x[0], y[0], z[0]), a), "from end A"),
+                  ("ends", math.dist((x[-1], y[-1], z[-1]), b), "from end B")]
+        found = [f"the profile {what} {d:.3g} m {where}" for what, d, where in misses
+                 if not d <= tol]
+        found += [f"the profile's tension at end {end}, {got:.6g} N, is not the reported "
+                  f"{want:.6g} N" for end, got, want in (("A", t[0], ta), ("B", t[-1], tb))
+                  if not abs(got - want) <= f_tol]
+        if found:
+            raise AuditFailure(
+                f"the solution certified but leg {line.name}'s profile drawn from it fails "
+                "the independent audit: " + "; ".join(found), residual_N=cert.force_N,
+                residual_Nm=cert.moment_Nm, status=cert.status, iterations=cert.iterations,
+                certified=True)
+        return prof
+    return checked
 
 
 def _multi_result(case, line, kind, row, rows, u) -> LegResult:

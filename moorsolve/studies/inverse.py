@@ -32,6 +32,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..physics.catenary import (LegKind, leg_function)
+from ..solve.bundled_blas import limit_bundled_blas
 
 __all__ = ["InverseResult", "minimum_anchor_distance", "required_chain_length",
            "uplift_at_distance"]
@@ -114,6 +115,7 @@ def _nlp(question: str, elastic: bool, given: str):
             "ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-14, "constr_viol_tol": 1e-13,
                       "acceptable_tol": 1e-12, "max_iter": 500, "mu_strategy": "adaptive"}}
     solver = ca.nlpsol(f"inverse_{question}_{given}_{int(elastic)}", "ipopt", nlp, opts)
+    limit_bundled_blas()
     check = ca.Function("check", [xs, p], [ca.vertcat(*g), out["grounded"], out["VA"]])
     return solver, check
 

@@ -52,6 +52,7 @@ import numpy as np
 from ..model.study import Limits, Study
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
+from ..solve.bundled_blas import limit_bundled_blas
 from ..solve.cache import get_problem
 from ..solve.equilibrium import solve
 from ..solve.layout import ENV_PARAMS, LEG_PARAMS
@@ -172,6 +173,7 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
                       "max_iter": study.max_iter, "mu_strategy": "adaptive"}}
     t_build = time.perf_counter()
     solver = ca.nlpsol("design", "ipopt", nlp, opts)
+    limit_bundled_blas()
     lbg = np.concatenate([np.zeros(n_eq), np.full(len(records), -np.inf)])
     ubg = np.zeros(n_eq + len(records))
     z0 = np.concatenate(x0_all)

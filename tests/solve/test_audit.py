@@ -148,8 +148,17 @@ def test_solve_raises_when_the_reported_profile_is_wrong(monkeypatch):
     monkeypatch.setattr(outcome, "leg_profile", broken)
     # Each line drawn by its own (broken) drawing, not with the others (profile_batch).
     monkeypatch.setattr(ProfileBatch, "add", lambda self, params, fallback, finish: fallback)
-    with pytest.raises(ConvergenceError, match="independent audit: leg A: the profile starts"):
-        solve(one_leg(100.0, [0, 0], [80.0, 0, 0.0], 100.0))
+    case = one_leg(100.0, [0, 0], [80.0, 0, 0.0], 100.0)
+    message = ("the solution certified but leg A's profile drawn from it fails the "
+               "independent audit: the profile starts 1 m from end A")
+    with pytest.raises(ConvergenceError, match=message):
+        solve(case, audit="full")
+    # Audited in closed form, the solve draws no profile; the profile, when it is read, is
+    # checked against the reported ends and tensions.
+    result = solve(case)
+    with pytest.raises(AuditFailure, match=message) as caught:
+        result.legs[0].profile["z_m"]
+    assert "a certified equilibrium" in str(caught.value)
 
 
 # ---- warnings -----------------------------------------------------------------------------

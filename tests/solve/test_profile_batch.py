@@ -99,7 +99,9 @@ def test_a_touchdown_on_a_grid_point_is_drawn_alone(monkeypatch):
 
 
 def test_the_audit_checks_profiles_drawn_together(monkeypatch):
-    """A wrong profile from the joint drawing fails the audit inside ``solve``."""
+    """A wrong profile from the joint drawing fails the profile audit inside ``solve``
+    (``audit="full"``), and is refused when it is read from a result audited in closed
+    form (which draws no profile)."""
     from moorsolve import ConvergenceError
     real = profile_batch._grounded
 
@@ -108,5 +110,9 @@ def test_the_audit_checks_profiles_drawn_together(monkeypatch):
         return dict(planar, z=planar["z"] + 1.0)
 
     monkeypatch.setattr(profile_batch, "_grounded", lifted)
+    case = load_case(CASES / "oc3_spar.yaml")
     with pytest.raises(ConvergenceError, match="independent audit"):
-        solve(load_case(CASES / "oc3_spar.yaml"), solver="newton")
+        solve(case, solver="newton", audit="full")
+    result = solve(case, solver="newton")
+    with pytest.raises(ConvergenceError, match="profile drawn from it fails the independent"):
+        result.legs[0].profile["z_m"]

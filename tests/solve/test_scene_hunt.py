@@ -9,11 +9,13 @@ points, suspended, slack and afloat); weightless lines; lazy waves (chain, buoya
 chain); lines in a current (lumped nodes); a body on a spread of such legs under a load.
 
 Every solve either raises ConvergenceError (refused: counted) or returns a result that
-must pass (1) the audit, which ``solve`` already runs on it (``moorsolve.solve.audit``:
-profile, boundaries, end forces, body balance), and (2) for every analytic one-segment leg,
-an independent integration of the line's equilibrium ODE (``tests/reference_ode.py``) from
-the reported end forces, which must land on the leg's other end: flat and lifted contact
-from the fairlead or the anchor, the free surface from the anchor, a sloped seabed to its
+must pass (1) both audits, which ``solve(..., audit="full")`` runs on it
+(``moorsolve.solve.audit``: the profile audit of boundaries, end forces and body balance,
+and for one-segment lines on a flat seabed the closed-form audit of the end forces), and
+(2) for every analytic one-segment leg, an independent integration of the line's
+equilibrium ODE (``tests/reference_ode.py``) from the reported end forces, which must land
+on the leg's other end: flat and lifted contact from the fairlead or the anchor, the free
+surface from the anchor, a sloped seabed to its
 touchdown.
 """
 
@@ -136,7 +138,7 @@ def test_one_leg_scenes_are_right_or_refused(scene):
     kind, data = scene
     case = load_case(data)
     try:
-        result = solve(case)
+        result = solve(case, audit="full")
     except ConvergenceError as exc:
         event(f"{kind}: refused")
         assert exc.reason
@@ -189,7 +191,7 @@ def spread(draw):
 def test_spread_moorings_are_right_or_refused(data):
     case = load_case(data)
     try:
-        result = solve(case)
+        result = solve(case, audit="full")
     except ConvergenceError as exc:
         event("refused")
         assert exc.reason
@@ -229,7 +231,7 @@ def test_lines_in_a_current_are_right_or_refused(depth, speed, reverse, turn, bu
                       "segments": [{"type": "l", "length": 2.3 * depth}]}],
             "solver": {"line_elements": 12}}
     try:
-        result = solve(load_case(data))
+        result = solve(load_case(data), audit="full")
     except ConvergenceError as exc:
         event("refused")
         assert exc.reason
