@@ -20,20 +20,27 @@ The tolerances are the profile audit's: lengths to ``tol_rel`` of the line's str
 length (or the depth), forces to ``FORCE_REL + tol_rel`` of its largest tension. Lines of
 any other kind, or a nearly vertical line (whose closed forms lose their digits), are left
 to the profile audit: :func:`covers` says which scenes this module audits alone.
+
+The checks of one line are one small CasADi function of its reported numbers (these
+formulas, none of the solver's blocks), mapped over the lines and compiled once per number
+of lines into a cached library (:mod:`.compiled`; interpreted until it is ready): numpy
+spends more in calling its functions on a dozen lines than the checks compute.
 """
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
+import casadi as ca
 import numpy as np
 
 from .audit_lines import FORCE_REL
-from .concurrency import LockedLRU
+from .concurrency import SYMBOLIC_LOCK, LockedLRU
 from .problem import LINE_COLUMNS
 from .stretch_params import numeric_law
 
-__all__ = ["covers", "closed_form_findings", "table_ends"]
+__all__ = ["covers", "closed_form_findings", "table_end_rows"]
 
 _COL = {name: k for k, name in enumerate(LINE_COLUMNS)}
 _A = [_COL[c] for c in ("ax", "ay", "az")]
@@ -45,6 +52,19 @@ _GROUNDED = _COL["grounded"]
 #: Below this ratio of horizontal to vertical tension the closed forms lose digits (the
 #: catenary's parameter H/w shrinks to nothing): such a line is left to the profile audit.
 _STEEP = 1e-7
+
+#: One line's inputs (a column): the lower end, the upper end, the forces on them, the
+#: grounded length, then the line's data and the tolerances.
+_INPUTS = ("lo_x", "lo_y", "lo_z", "up_x", "up_y", "up_z", "flo_x", "flo_y", "flo_z",
+           "fup_x", "fup_y", "fup_z", "grounded", "L", "w", "c", "mu", "bed", "depth",
+           "tol_rel")
+#: Each check's defect over its tolerance (a line fails where one exceeds 1).
+_RATIOS = ("side", "push", "weight", "grounded_pull", "friction", "grounded_length",
+           "reach", "off_bed", "below")
+#: Whether the closed forms hold (a span and a horizontal tension), the larger end tension,
+#: the ratios, and what the sentences quote.
+_OUTPUTS = ("closed", "t_ends", *_RATIOS, "side_N", "H_lo", "H_up", "unbalanced", "hangs",
+            "V_lo", "H_expected", "x_reach", "z_reach", "X", "Z", "off_bed_m", "below_m")
 
 
 def _closed_kind(kind) -> bool:
@@ -68,12 +88,10 @@ def covers(problem, case) -> bool:
 
 @dataclass(frozen=True)
 class _Data:
-    """What the checks read of the case's lines, as arrays, made once per lines tuple."""
+    """What the checks read of the case's lines, made once per lines tuple."""
 
     names: tuple
-    L: np.ndarray        # unstretched length [m]
-    w: np.ndarray        # weight in water [N/m]
-    c: np.ndarray        # compliance 1/EA [1/N] (0: inextensible)
+    columns: np.ndarray  # per line: L [m], w [N/m], 1/EA [1/N] (0: inextensible)
     sinking: bool        # every line weighs in water and has no stretch law
 
 
@@ -87,29 +105,30 @@ def _data(lines) -> _Data:
     types = [line.line_type for line in lines]
     data = _Data(
         names=tuple(line.name for line in lines),
-        L=np.array([line.length for line in lines], float),
-        w=np.array([lt.weight_in_water for lt in types], float),
-        c=np.array([1.0 / lt.ea if lt.ea else 0.0 for lt in types], float),
+        columns=np.array([[line.length, lt.weight_in_water, 1.0 / lt.ea if lt.ea else 0.0]
+                          for line, lt in zip(lines, types)], float).reshape(-1, 3),
         sinking=all(lt.weight_in_water > 0 and numeric_law(lt) is None for lt in types))
     _DATA.put(id(lines), (lines, data))
     return data
 
 
-def table_ends(table: np.ndarray) -> tuple:
-    """End A and B positions and the forces the lines exert on them, ``(n, 3)`` each, from
-    the report's line table (:data:`~.problem.LINE_COLUMNS`)."""
-    return table[:, _A], table[:, _B], table[:, _FA], table[:, _FB]
+def table_end_rows(table: np.ndarray) -> tuple:
+    """Every line end's position and the force the line exerts on it, ``(2 n, 3)`` each,
+    from the report's line table (:data:`~.problem.LINE_COLUMNS`): end A of line ``i`` in
+    row ``2 i``, end B in row ``2 i + 1``."""
+    return table[:, _A + _B].reshape(-1, 3), table[:, _FA + _FB].reshape(-1, 3)
 
 
 def _columns(problem) -> tuple:
     """Per line, the table columns of its lower end's position and force and its upper
-    end's, side by side (the catenary is integrated from the lower end, as each line's
-    block is written), and the seabed friction factor of its block (1 or 0)."""
+    end's, side by side, then its grounded length (the catenary is integrated from the
+    lower end, as each line's block is written); and the seabed friction factor of its
+    block (1 or 0)."""
     hit = problem.derived.get("closed_form_columns")
     if hit is None:
         flipped = np.array([k.flipped for k in problem.kinds], bool)[:, None]
-        lower_first = np.array(_A + _B + _FA + _FB)
-        upper_first = np.array(_B + _A + _FB + _FA)
+        lower_first = np.array(_A + _B + _FA + _FB + [_GROUNDED])
+        upper_first = np.array(_B + _A + _FB + _FA + [_GROUNDED])
         cols = np.where(flipped, upper_first, lower_first)
         rows = np.arange(len(problem.kinds))[:, None]
         friction = np.array([1.0 if k.friction else 0.0 for k in problem.kinds])
@@ -117,17 +136,145 @@ def _columns(problem) -> tuple:
     return hit
 
 
+# ---- the checks of one line, symbolic --------------------------------------------------
+
+
 def _span(H, V0, s, w, c):
     """Horizontal and vertical reach [m] of an elastic catenary of weight ``w`` [N/m] and
     compliance ``c`` [1/N] over unstretched arc ``s`` from a point where its tension is
     ``(H, V0)`` (H > 0; Irvine 1981, eq. 2.8 with the stretch terms)."""
     a0, a1 = V0 / H, (V0 + w * s) / H
-    r0, r1 = np.sqrt(1.0 + a0 * a0), np.sqrt(1.0 + a1 * a1)
+    r0, r1 = ca.sqrt(1.0 + a0 * a0), ca.sqrt(1.0 + a1 * a1)
     k = H / w
-    x = k * (np.arcsinh(a1) - np.arcsinh(a0)) + H * c * s
+    x = k * (ca.asinh(a1) - ca.asinh(a0)) + H * c * s
     # sqrt(1 + a1^2) - sqrt(1 + a0^2) without the cancellation of a taut line's.
     z = k * ((a1 - a0) * (a1 + a0) / (r1 + r0)) + c * s * (V0 + 0.5 * w * s)
     return x, z
+
+
+def _line_checks() -> ca.Function:
+    v = ca.SX.sym("line", len(_INPUTS))
+    i = dict(zip(_INPUTS, ca.vertsplit(v)))
+    L, w, c, mu, bed = i["L"], i["w"], i["c"], i["mu"], i["bed"]
+    grounded, tol_rel = i["grounded"], i["tol_rel"]
+    dx, dy = i["up_x"] - i["lo_x"], i["up_y"] - i["lo_y"]
+    X = ca.sqrt(dx * dx + dy * dy)
+    Z = i["up_z"] - i["lo_z"]
+    span = ca.fmax(X, 1e-300)
+    ux, uy = dx / span, dy / span
+    H_lo = i["flo_x"] * ux + i["flo_y"] * uy              # pulls the lower end along +u
+    H_up = -(i["fup_x"] * ux + i["fup_y"] * uy)           # pulls the upper end along -u
+    side = ca.fmax(ca.fabs(i["flo_x"] * uy - i["flo_y"] * ux),
+                   ca.fabs(i["fup_x"] * uy - i["fup_y"] * ux))
+    V_lo, V_up = i["flo_z"], -i["fup_z"]
+    t_ends = ca.fmax(ca.sqrt(H_lo * H_lo + V_lo * V_lo), ca.sqrt(H_up * H_up + V_up * V_up))
+    t_max = ca.fmax(t_ends, w * L)
+    closed = ca.logic_and(X > 0, ca.fabs(H_up) > _STEEP * t_max)
+    H = ca.if_else(closed, H_up, 1.0)                    # the formulas' H where they hold
+    tol = tol_rel * ca.fmax(ca.fmax(L * (1.0 + c * t_max), i["depth"]), 1.0)
+    f_tol = (FORCE_REL + tol_rel) * t_max
+    on_bed = grounded > 0
+    Lg = ca.if_else(on_bed, grounded, 0.0)
+    hanging = L - Lg
+    # Friction on the grounded length takes up to mu w Lg of the horizontal tension.
+    H_anchor = ca.fmax(H_up - mu * w * Lg, 0.0)
+    V_start = ca.if_else(on_bed, 0.0, V_lo)
+    x_h, z_h = _span(H, V_start, hanging, w, c)
+    # The grounded run: straight, stretched by its tension (which friction may end).
+    grip = mu * w
+    run = ca.if_else(grip > 0, ca.fmin(Lg, H_up / ca.fmax(grip, 1e-300)), Lg)
+    x_reach = Lg + c * (H_up * run - 0.5 * grip * run * run) + x_h
+    # Lowest point: the lower end, or the vertex of a line leaving it downwards.
+    s_v = ca.fmin(ca.fmax(-V_start / w, 0.0), hanging)
+    lowest = i["lo_z"] + ca.fmin(_span(H, V_start, s_v, w, c)[1], 0.0)
+    below = bed - ca.fmin(lowest, i["up_z"])
+    unbalanced = V_up - V_start - w * hanging
+    off_bed = i["lo_z"] - bed
+    ratios = {
+        "side": side / f_tol,
+        "push": ca.fmax(-H_lo, -H_up) / f_tol,
+        "weight": ca.fabs(unbalanced) / f_tol,
+        "grounded_pull": ca.if_else(on_bed, ca.fabs(V_lo), 0.0) / f_tol,
+        "friction": ca.fabs(H_lo - H_anchor) / f_tol,
+        "grounded_length": ca.fmax(-grounded, grounded - L) / tol,
+        "reach": ca.sqrt((x_reach - X) ** 2 + (z_h - Z) ** 2) / tol,
+        "off_bed": ca.if_else(on_bed, ca.fabs(off_bed), 0.0) / tol,
+        "below": below / tol,
+    }
+    out = dict(ratios, closed=closed, t_ends=t_ends, side_N=side, H_lo=H_lo, H_up=H_up,
+               unbalanced=unbalanced, hangs=w * hanging, V_lo=V_lo, H_expected=H_anchor,
+               x_reach=x_reach, z_reach=z_h, X=X, Z=Z, off_bed_m=off_bed, below_m=below)
+    return ca.Function("moorsolve_line_audit", [v], [ca.vertcat(*[out[k] for k in _OUTPUTS])])
+
+
+_SAY = {
+    "side": lambda o: f"the end forces leave the line's vertical plane by {o['side_N']:.4g} N",
+    "push": lambda o: (f"an end force pushes the end away from the line (horizontal tensions "
+                       f"{o['H_lo']:.6g} N and {o['H_up']:.6g} N)"),
+    "weight": lambda o: (f"the end forces do not carry the line's weight: "
+                         f"{o['unbalanced']:.4g} N of vertical force unbalanced (the line "
+                         f"hangs {o['hangs']:.6g} N)"),
+    "grounded_pull": lambda o: (f"a grounded line pulls its lower end with {o['V_lo']:.4g} N "
+                                "vertically"),
+    "friction": lambda o: (f"the horizontal tension changes along the line by more than the "
+                           f"seabed friction holds ({o['H_up']:.6g} N at the upper end, "
+                           f"{o['H_lo']:.6g} N at the lower, {o['H_expected']:.6g} N "
+                           "expected)"),
+    "grounded_length": lambda o: (f"the grounded length {o['grounded']:.6g} m is outside the "
+                                  f"line's {o['L']:.6g} m"),
+    "reach": lambda o: (f"the catenary from the lower end's force reaches "
+                        f"({o['x_reach']:.6g}, {o['z_reach']:.6g}) m along and up, not the "
+                        f"other end at ({o['X']:.6g}, {o['Z']:.6g}) m"),
+    "off_bed": lambda o: (f"the line is grounded but its lower end is {o['off_bed_m']:.3g} m "
+                          "off the seabed"),
+    "below": lambda o: f"the line passes {o['below_m']:.3g} m below the seabed",
+}
+
+
+# ---- evaluating it over the lines --------------------------------------------------------
+
+
+class _Mapped:
+    """The checks mapped over ``n`` lines: compiled when the library is ready (built in the
+    background, :class:`.compiled.Library`), else CasADi's interpreter. One call at a time
+    (the compiled function's buffers are shared)."""
+
+    def __init__(self, n: int):
+        from .compiled import Library
+
+        with SYMBOLIC_LOCK:
+            self.function = _line_checks().map(n)
+        self._library = Library([self.function], key=f"closed-form line audit/{n}",
+                                label=f"the closed-form audit of {n} lines")
+        self._compiled = None
+        self._lock = threading.Lock()
+
+    def __call__(self, columns: np.ndarray) -> np.ndarray:
+        """Outputs ``(n, len(_OUTPUTS))`` for inputs ``(n, len(_INPUTS))``."""
+        n = columns.shape[0]
+        with self._lock:
+            if self._compiled is None and self._library.ready:
+                self._compiled = self._library.instances()[0]
+            lib = self._compiled
+            if lib is not None:
+                lib.inputs[0][:] = columns.ravel()
+                lib()
+                return lib.output_buffer[:n * len(_OUTPUTS)].reshape(n, -1).copy()
+            return np.asarray(self.function(columns.T), float).T
+
+
+_MAPPED: dict = {}
+_MAPPED_LOCK = threading.Lock()
+
+
+def _mapped(n: int) -> _Mapped:
+    hit = _MAPPED.get(n)
+    if hit is None:
+        with _MAPPED_LOCK:
+            hit = _MAPPED.get(n)
+            if hit is None:
+                hit = _MAPPED[n] = _Mapped(n)
+    return hit
 
 
 def closed_form_findings(problem, case, table, tol_rel: float):
@@ -136,82 +283,27 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     for the closed forms (the profile audit must answer)."""
     env = case.environment
     data = _data(case.lines)
-    L, w, c = data.L, data.w, data.c
     rows, cols, friction = _columns(problem)
-    ends = table[rows, cols]
-    lo, up, f_lo, f_up = ends[:, 0:3], ends[:, 3:6], ends[:, 6:9], ends[:, 9:12]
-    grounded = table[:, _GROUNDED]
-    dx, dy = up[:, 0] - lo[:, 0], up[:, 1] - lo[:, 1]
-    X = np.sqrt(dx * dx + dy * dy)
-    Z = up[:, 2] - lo[:, 2]
-    # (Array methods: numpy's function forms cost more than these checks compute.)
-    if not ((X > 0).all() and np.isfinite(table).all()):
+    if not np.isfinite(table).all():
         return None, 0.0
-    ux, uy = dx / X, dy / X
-    H_lo = f_lo[:, 0] * ux + f_lo[:, 1] * uy           # pulls the lower end along +u
-    H_up = -(f_up[:, 0] * ux + f_up[:, 1] * uy)        # pulls the upper end along -u
-    side = np.maximum(np.abs(f_lo[:, 0] * uy - f_lo[:, 1] * ux),
-                      np.abs(f_up[:, 0] * uy - f_up[:, 1] * ux))
-    V_lo, V_up = f_lo[:, 2], -f_up[:, 2]
-    t_ends = np.maximum(np.sqrt(H_lo * H_lo + V_lo * V_lo), np.sqrt(H_up * H_up + V_up * V_up))
-    t_max = np.maximum(t_ends, w * L)
-    if not (np.abs(H_up) > _STEEP * t_max).all():
+    n = len(data.names)
+    columns = np.empty((n, len(_INPUTS)))
+    columns[:, :13] = table[rows, cols]
+    columns[:, 13:16] = data.columns
+    columns[:, 16] = env.seabed.friction * friction
+    columns[:, 17] = -env.depth                  # a flat seabed (covers() says so)
+    columns[:, 18] = env.depth
+    columns[:, 19] = tol_rel
+    out = _mapped(n)(columns)
+    if not out[:, 0].all():
         return None, 0.0
-    tol = tol_rel * np.maximum(np.maximum(L * (1.0 + c * t_max), env.depth), 1.0)
-    f_tol = (FORCE_REL + tol_rel) * t_max
-    on_bed = grounded > 0
-    mu = env.seabed.friction * friction
-    Lg = np.where(on_bed, grounded, 0.0)
-    hanging = L - Lg
-    # Friction on the grounded length takes up to mu w Lg of the horizontal tension.
-    H_anchor = np.maximum(H_up - mu * w * Lg, 0.0)
-    V_start = np.where(on_bed, 0.0, V_lo)
-    x_h, z_h = _span(H_up, V_start, hanging, w, c)
-    # The grounded run: straight, stretched by its tension (which friction may end).
-    grip = mu * w
-    run = np.where(grip > 0, np.minimum(Lg, H_up / np.where(grip > 0, grip, 1.0)), Lg)
-    x_g = Lg + c * (H_up * run - 0.5 * mu * w * run * run)
-    bed = -env.depth                                   # a flat seabed (covers() says so)
-    # Lowest point: the lower end, or the vertex of a line leaving it downwards.
-    lowest = lo[:, 2]
-    if (V_start < 0).any():
-        s_v = np.minimum(np.maximum(-V_start / w, 0.0), hanging)
-        lowest = lowest + np.minimum(_span(H_up, V_start, s_v, w, c)[1], 0.0)
-    below = bed - np.minimum(lowest, up[:, 2])
-    unbalanced = V_up - V_start - w * hanging
-    miss = np.sqrt((x_h + x_g - X) ** 2 + (z_h - Z) ** 2)
-    flags = (
-        (side > f_tol, lambda i: f"the end forces leave the line's vertical plane by "
-                                 f"{side[i]:.4g} N"),
-        ((H_lo < -f_tol) | (H_up < -f_tol),
-         lambda i: f"an end force pushes the end away from the line (horizontal tensions "
-                   f"{H_lo[i]:.6g} N and {H_up[i]:.6g} N)"),
-        (np.abs(unbalanced) > f_tol,
-         lambda i: f"the end forces do not carry the line's weight: {unbalanced[i]:.4g} N "
-                   f"of vertical force unbalanced (the line hangs {w[i] * hanging[i]:.6g} "
-                   "N)"),
-        (on_bed & (np.abs(V_lo) > f_tol),
-         lambda i: f"a grounded line pulls its lower end with {V_lo[i]:.4g} N vertically"),
-        (np.abs(H_lo - H_anchor) > f_tol,
-         lambda i: f"the horizontal tension changes along the line by more than the "
-                   f"seabed friction holds ({H_up[i]:.6g} N at the upper end, "
-                   f"{H_lo[i]:.6g} N at the lower, {H_anchor[i]:.6g} N expected)"),
-        ((grounded < -tol) | (grounded > L + tol),
-         lambda i: f"the grounded length {grounded[i]:.6g} m is outside the line's "
-                   f"{L[i]:.6g} m"),
-        (miss > tol,
-         lambda i: f"the catenary from the lower end's force reaches "
-                   f"({x_h[i] + x_g[i]:.6g}, {z_h[i]:.6g}) m along and up, not the other "
-                   f"end at ({X[i]:.6g}, {Z[i]:.6g}) m"),
-        (on_bed & (np.abs(lo[:, 2] - bed) > tol),
-         lambda i: f"the line is grounded but its lower end is {lo[i, 2] - bed:.3g} m off "
-                   "the seabed"),
-        (below > tol, lambda i: f"the line passes {below[i]:.3g} m below the seabed"),
-    )
-    bad = flags[0][0]
-    for flag, _ in flags[1:]:
-        bad = bad | flag
-    out = []
-    for i in bad.nonzero()[0] if bad.any() else ():
-        out += [f"leg {data.names[i]}: {say(i)}" for flag, say in flags if flag[i]]
-    return out, float(t_ends.max())
+    # A defect is a ratio above 1, or not a number at all.
+    bad = ~(out[:, 2:2 + len(_RATIOS)] <= 1.0)
+    found = []
+    if bad.any():
+        for i in bad.any(axis=1).nonzero()[0]:
+            said = dict(zip(_OUTPUTS, out[i].tolist()), grounded=columns[i, 12],
+                        L=columns[i, 13])
+            found += [f"leg {data.names[i]}: {_SAY[name](said)}"
+                      for name, failed in zip(_RATIOS, bad[i]) if failed]
+    return found, float(out[:, 1].max())

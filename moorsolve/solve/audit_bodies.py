@@ -1,0 +1,206 @@
+"""The audit's balance of every free body and free point (:mod:`moorsolve.solve.audit`).
+
+Per body, in every free degree of freedom: the force and the moment about the body's origin
+(global axes) of every line end on the body (the reported end forces at the reported end
+positions), every reported fender and pile-guide force at its contact point, every reported
+load, the weight at the centre of gravity, the hydrostatics recomputed here (the linear
+model; hull members by Gauss quadrature over their cross-section, not by the solver's
+closed form) and the extra springs; the moments are taken about the axes the body's angles
+turn about. Per free point: all three components, with its weight in water and the seabed's
+reported reaction.
+
+The line ends come as two ``(2 n, 3)`` arrays, positions and the forces the lines exert
+on them, with end A of line ``i`` in row ``2 i`` and end B in row ``2 i + 1`` (read from
+the legs or straight from the report's line table).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .audit_lines import FORCE_REL
+from .concurrency import LockedLRU
+
+__all__ = ["body_findings"]
+
+_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
+    """One sentence per free degree of freedom of a body, and per free point, that the
+    reported forces leave unbalanced (empty: all balance). ``t_lines`` [N]: the largest
+    line tension, the scale of the force tolerance."""
+    out = []
+    env = case.environment
+    t_max = max([t_lines] + [c["reaction_N"] for c in result.fenders + result.guides])
+    rows = _end_rows(case.lines)
+    certified_tol = max(10.0 * result.certificate.tolerance, FORCE_REL)
+    for bi, body in enumerate(case.bodies):
+        if not body.free or bi >= len(result.bodies):
+            continue
+        pose = result.bodies[bi]
+        q = [pose["x_m"], pose["y_m"], pose["z_m"],
+             *(math.radians(pose[k]) for k in ("roll_deg", "pitch_deg", "yaw_deg"))]
+        origin, R = np.array(q[:3]), _rotation(*q[3:])
+        on_body = rows.get(("body", body.name))
+        at = positions[on_body] if on_body is not None else np.zeros((0, 3))
+        pulls = forces[on_body] if on_body is not None else np.zeros((0, 3))
+        # Fenders' and pile guides' pads (reaction and friction) at their contact points.
+        contacts = [c for c in result.fenders if c["body"] == body.name]
+        contacts += [pad for g in result.guides if g["body"] == body.name for pad in g["pads"]]
+        if contacts:
+            at = np.vstack([at, [c["contact_point_m"] for c in contacts]])
+            pulls = np.vstack([pulls, [c["force_N"] for c in contacts]])
+        force, moment = np.zeros(3), np.zeros(3)
+        scale, radius = t_max, 1.0
+        if len(pulls):
+            arm = at - origin
+            force += pulls.sum(axis=0)
+            moment += _moment_sum(arm, pulls)
+            radius = max(radius, float(np.hypot(arm[:, 0], arm[:, 1]).max()))
+        for name, load in result.loads.items():
+            if len(case.bodies) > 1 and not name.startswith(body.name + "."):
+                continue
+            f = np.asarray(load, float)
+            if f.size == 3:                       # the legs form: [Fx, Fy, Mz]
+                f = np.array([f[0], f[1], 0.0, 0.0, 0.0, f[2]])
+            force += f[:3]
+            moment += f[3:]
+            scale = max(scale, math.hypot(f[0], f[1], f[2]))
+        # Hydrostatics act about the still-water level (above the datum by a tide).
+        afloat = (q[0], q[1], q[2] - env.water_level)
+        for f, m in _hydrostatic_wrenches(body, afloat, R, env):
+            force += f
+            moment += m
+            scale = max(scale, math.hypot(f[0], f[1], f[2]))
+        generalized = [*force, *(_angle_axes(R, q[5]).T @ moment)]
+        if body.stiffness is not None:
+            q0 = np.array(list(body.position) + [math.radians(a) for a in
+                                                 body.orientation_deg])
+            generalized = np.array(generalized) - np.asarray(body.stiffness, float) @ (
+                np.array(q) - q0)
+        tol = certified_tol * scale
+        for dof in body.free:
+            k = _DOFS.index(dof)
+            if abs(generalized[k]) > tol * (1.0 if k < 3 else max(radius, 1.0) * 10.0):
+                out.append(f"body {body.name} is not in balance in {dof}: "
+                           f"{generalized[k]:.4g} {'N' if k < 3 else 'N m'} unbalanced by "
+                           "the reported line forces, loads, weight and hydrostatics")
+    tol = certified_tol * t_max
+    for point, reported in zip(case.free_points, result.points):
+        total = np.array([0.0, 0.0, -env.gravity * (point.mass
+                                                    - env.water_density * point.volume)])
+        on_point = rows.get(("point", point.name))
+        if on_point is not None:
+            total += forces[on_point].sum(axis=0)
+        gx, gy = env.seabed.gradient
+        normal = np.array([-gx, -gy, 1.0]) / math.sqrt(1 + gx * gx + gy * gy)
+        total += reported.get("seabed_reaction_N", 0.0) * normal
+        if np.linalg.norm(total) > tol:
+            out.append(f"point {point.name} is not in balance: {np.linalg.norm(total):.4g} N "
+                       "unbalanced by the reported line forces, its weight and the seabed")
+    return out
+
+
+_END_ROWS = LockedLRU(256)
+
+
+def _end_rows(lines) -> dict:
+    """Per ``("body", name)`` and ``("point", name)``: the rows of the line ends on it in
+    the interleaved end arrays (ends A first, then ends B), once per lines tuple."""
+    hit = _END_ROWS.get(id(lines))
+    if hit is not None and hit[0] is lines:
+        return hit[1]
+    found: dict = {}
+    for side in (0, 1):
+        for i, line in enumerate(lines):
+            end = (line.a, line.b)[side]
+            for kind, name in (("body", end.body), ("point", end.point)):
+                if name is not None:
+                    found.setdefault((kind, name), []).append(2 * i + side)
+    found = {key: np.array(value, int) for key, value in found.items()}
+    _END_ROWS.put(id(lines), (lines, found))
+    return found
+
+
+def _moment_sum(arm: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """``sum_i arm_i x force_i`` of (n, 3) arrays (numpy's cross costs more than it
+    computes)."""
+    m = arm.T @ force                  # m[j, k] = sum_i arm_ij force_ik
+    return np.array([m[1, 2] - m[2, 1], m[2, 0] - m[0, 2], m[0, 1] - m[1, 0]])
+
+
+def _cross3(a, b) -> np.ndarray:
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
+def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """``Rz(yaw) Ry(pitch) Rx(roll)``, multiplied out."""
+    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
+                              math.sin(pitch), math.cos(yaw), math.sin(yaw))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def _angle_axes(R: np.ndarray, yaw: float) -> np.ndarray:
+    """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles), for the
+    body's rotation ``R`` (:func:`_rotation`): ``Rz Ry e_x`` (R's first column, as ``Rx``
+    keeps ``e_x``), ``Rz e_y`` and ``e_z``."""
+    return np.array([[R[0, 0], -math.sin(yaw), 0.0], [R[1, 0], math.cos(yaw), 0.0],
+                     [R[2, 0], 0.0, 1.0]])
+
+
+def _hydrostatic_wrenches(body, origin, R, env):
+    """Weight, buoyancy and heave restoring of a body, as ``(force, moment)`` pairs;
+    ``origin`` above the still-water level."""
+    g, rho = env.gravity, env.water_density
+    out = []
+    if body.mass is not None:
+        w = np.array([0.0, 0.0, -body.mass * g])
+        out.append((w, _cross3(R @ np.asarray(body.centre_of_gravity, float), w)))
+    hydro = body.hydrostatics
+    if hydro is not None:
+        b = np.array([0.0, 0.0, rho * g * hydro.displaced_volume])
+        out.append((b, _cross3(R @ np.asarray(hydro.metacentre, float), b)))
+        out.append((np.array([0.0, 0.0, -rho * g * hydro.waterplane_area * origin[2]]),
+                    np.zeros(3)))
+    for member in body.hull:
+        volume, centroid = _member_volume(member, origin, R)
+        b = np.array([0.0, 0.0, rho * g * volume])
+        out.append((b, _cross3(R @ centroid, b)))
+    return out
+
+
+_GAUSS = np.polynomial.legendre.leggauss(24)
+
+
+def _member_volume(member, origin, R) -> tuple:
+    """Submerged volume [m^3] and its centroid (body frame) of a vertical prism, by Gauss
+    quadrature of the submerged column height over its cross-section."""
+    nodes, weights = _GAUSS
+    cx, cy = member.centre
+    if member.shape == "cylinder":
+        # Polar: r = a (n + 1) / 2 over [0, a], theta over [0, 2 pi]; dA = r dr dtheta.
+        r = member.radius * (nodes + 1) / 2
+        th = math.pi * (nodes + 1)
+        rr, tt = np.meshgrid(r, th, indexing="ij")
+        ww = np.outer(weights * member.radius / 2 * r, weights * math.pi)
+        xs, ys = cx + rr * np.cos(tt), cy + rr * np.sin(tt)
+    else:
+        xs1 = cx + member.length / 2 * nodes
+        ys1 = cy + member.width / 2 * nodes
+        xs, ys = np.meshgrid(xs1, ys1, indexing="ij")
+        ww = np.outer(weights * member.length / 2, weights * member.width / 2)
+    # The water surface along the member's axis at (x, y): origin_z + (R [x, y, z])_z = 0.
+    surface = -(origin[2] + R[2, 0] * xs + R[2, 1] * ys) / R[2, 2]
+    h = np.clip(surface - member.bottom, 0.0, member.top - member.bottom)
+    volume = float(np.sum(ww * h))
+    if volume <= 0.0:
+        return 0.0, np.zeros(3)
+    centroid = np.array([np.sum(ww * h * xs), np.sum(ww * h * ys),
+                         np.sum(ww * h * (member.bottom + h / 2))]) / volume
+    return volume, centroid
