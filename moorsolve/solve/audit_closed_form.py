@@ -68,14 +68,20 @@ _OUTPUTS = ("closed", "t_ends", *_RATIOS, "side_N", "H_lo", "H_up", "unbalanced"
 
 
 def _closed_kind(kind) -> bool:
+    """One segment, sinking, Hooke or inextensible, in the water, on a flat seabed. A line
+    whose lower end is off the seabed (``lifted``) qualifies while it hangs clear of it
+    (:func:`closed_form_findings` checks its grounded length)."""
     block = kind.block
-    return (kind.single and not kind.lifted and not block.neutral and not block.sloped
-            and not block.surface and not block.air and not block.lifted
-            and block.law is None)
+    return (kind.single and not block.neutral and not block.sloped and not block.surface
+            and not block.air and block.law is None)
+
+
+def _lifted(kind) -> bool:
+    return bool(kind.lifted or kind.block.lifted)
 
 
 def covers(problem, case) -> bool:
-    """Whether every line of ``case`` (built as ``problem``) is audited here: one-segment
+    """Whether every line of ``case`` (built as ``problem``) can be audited here: one-segment
     sinking Hooke or inextensible lines in the water, on a flat seabed without a grid."""
     key = "closed_form_audit"
     hit = problem.derived.get(key)
@@ -122,8 +128,8 @@ def table_end_rows(table: np.ndarray) -> tuple:
 def _columns(problem) -> tuple:
     """Per line, the table columns of its lower end's position and force and its upper
     end's, side by side, then its grounded length (the catenary is integrated from the
-    lower end, as each line's block is written); and the seabed friction factor of its
-    block (1 or 0)."""
+    lower end, as each line's block is written); the seabed friction factor of its block
+    (1 or 0); whether its lower end is off the seabed."""
     hit = problem.derived.get("closed_form_columns")
     if hit is None:
         flipped = np.array([k.flipped for k in problem.kinds], bool)[:, None]
@@ -132,7 +138,8 @@ def _columns(problem) -> tuple:
         cols = np.where(flipped, upper_first, lower_first)
         rows = np.arange(len(problem.kinds))[:, None]
         friction = np.array([1.0 if k.friction else 0.0 for k in problem.kinds])
-        hit = problem.derived["closed_form_columns"] = (rows, cols, friction)
+        lifted = np.array([_lifted(k) for k in problem.kinds], bool)
+        hit = problem.derived["closed_form_columns"] = (rows, cols, friction, lifted)
     return hit
 
 
@@ -283,8 +290,10 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     for the closed forms (the profile audit must answer)."""
     env = case.environment
     data = _data(case.lines)
-    rows, cols, friction = _columns(problem)
-    if not np.isfinite(table).all():
+    rows, cols, friction, lifted = _columns(problem)
+    # A line from an end off the seabed that touches down between its ends has two arcs:
+    # the profile audit's.
+    if not np.isfinite(table).all() or (lifted & (table[:, _GROUNDED] > 0)).any():
         return None, 0.0
     n = len(data.names)
     columns = np.empty((n, len(_INPUTS)))

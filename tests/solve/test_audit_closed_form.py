@@ -27,7 +27,8 @@ from conftest import ROOT
 
 CASES = ROOT / "cases"
 COL = {name: k for k, name in enumerate(LINE_COLUMNS)}
-COVERED = ["floating_dock", "oc4_semi", "volturnus_s", "oc3_spar", "buoy_vida", "ship_97m"]
+COVERED = ["floating_dock", "oc4_semi", "volturnus_s", "oc3_spar", "buoy_vida", "ship_97m",
+           "three_platforms", "turret_ship"]
 
 
 def solved(name, **options):
@@ -156,6 +157,17 @@ def test_a_steep_line_is_left_to_the_profile_audit():
         table[0, COL[k]] = 0.0
     assert closed_form_findings(problem, case, table, 1e-6)[0] is None
     assert closed_form_audit(result, case, problem, {"lines": table}) is None
+
+
+def test_a_line_off_the_seabed_touching_down_is_left_to_the_profile_audit():
+    """A bridle or shared line (its lower end off the seabed) is audited here while it hangs
+    clear; touching down between its ends it has two arcs, which the profile audit draws."""
+    case, result, problem, table = solved("three_platforms")
+    lifted = [i for i, k in enumerate(problem.kinds) if k.lifted or k.block.lifted]
+    assert lifted and closed_form_findings(problem, case, table, 1e-6)[0] == []
+    table = table.copy()
+    table[lifted[0], COL["grounded"]] = 1.0
+    assert closed_form_findings(problem, case, table, 1e-6)[0] is None
 
 
 def test_the_solve_audits_covered_scenes_without_profiles(monkeypatch):
