@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from ..model.build_network import rotation
 from .audit_lines import FORCE_REL
 from .concurrency import LockedLRU
 
@@ -43,7 +44,7 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
         pose = result.bodies[bi]
         q = [pose["x_m"], pose["y_m"], pose["z_m"],
              *(math.radians(pose[k]) for k in ("roll_deg", "pitch_deg", "yaw_deg"))]
-        origin, R = np.array(q[:3]), _rotation(*q[3:])
+        origin, R = np.array(q[:3]), rotation(*q[3:])
         on_body = rows.get(("body", body.name))
         at = positions[on_body] if on_body is not None else np.zeros((0, 3))
         pulls = forces[on_body] if on_body is not None else np.zeros((0, 3))
@@ -137,18 +138,9 @@ def _cross3(a, b) -> np.ndarray:
                      a[0] * b[1] - a[1] * b[0]])
 
 
-def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """``Rz(yaw) Ry(pitch) Rx(roll)``, multiplied out."""
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
-                              math.sin(pitch), math.cos(yaw), math.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
 def _angle_axes(R: np.ndarray, yaw: float) -> np.ndarray:
     """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles), for the
-    body's rotation ``R`` (:func:`_rotation`): ``Rz Ry e_x`` (R's first column, as ``Rx``
+    body's rotation ``R`` (:func:`~moorsolve.model.build_network.rotation`): ``Rz Ry e_x`` (R's first column, as ``Rx``
     keeps ``e_x``), ``Rz e_y`` and ``e_z``."""
     return np.array([[R[0, 0], -math.sin(yaw), 0.0], [R[1, 0], math.cos(yaw), 0.0],
                      [R[2, 0], 0.0, 1.0]])
