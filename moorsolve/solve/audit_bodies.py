@@ -140,8 +140,8 @@ def _cross3(a, b) -> np.ndarray:
 
 def _angle_axes(R: np.ndarray, yaw: float) -> np.ndarray:
     """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles), for the
-    body's rotation ``R`` (:func:`~moorsolve.model.build_network.rotation`): ``Rz Ry e_x`` (R's first column, as ``Rx``
-    keeps ``e_x``), ``Rz e_y`` and ``e_z``."""
+    body's rotation ``R = Rz Ry Rx``: ``Rz Ry e_x`` (R's first column, as ``Rx`` keeps
+    ``e_x``), ``Rz e_y`` and ``e_z``."""
     return np.array([[R[0, 0], -math.sin(yaw), 0.0], [R[1, 0], math.cos(yaw), 0.0],
                      [R[2, 0], 0.0, 1.0]])
 
