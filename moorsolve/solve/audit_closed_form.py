@@ -22,9 +22,10 @@ any other kind, or a nearly vertical line (whose closed forms lose their digits)
 to the profile audit: :func:`covers` says which scenes this module audits alone.
 
 The checks of one line are one small CasADi function of its reported numbers (these
-formulas, none of the solver's blocks), mapped over the lines and compiled once per number
-of lines into a cached library (:mod:`.compiled`; interpreted until it is ready): numpy
-spends more in calling its functions on a dozen lines than the checks compute.
+formulas, none of the solver's blocks), mapped over the lines and compiled into a cached
+library (:mod:`.compiled`; interpreted until it is ready) for 8, 16, 32, ... lines, the
+lines padded up to that: numpy spends more in calling its functions on a dozen lines than
+the checks compute.
 """
 
 from __future__ import annotations
@@ -249,6 +250,7 @@ class _Mapped:
     def __init__(self, n: int):
         from .compiled import Library
 
+        self.n = n
         with SYMBOLIC_LOCK:
             self.function = _line_checks().map(n)
         self._library = Library([self.function], key=f"closed-form line audit/{n}",
@@ -257,24 +259,31 @@ class _Mapped:
         self._lock = threading.Lock()
 
     def __call__(self, columns: np.ndarray) -> np.ndarray:
-        """Outputs ``(n, len(_OUTPUTS))`` for inputs ``(n, len(_INPUTS))``."""
-        n = columns.shape[0]
+        """Outputs ``(k, len(_OUTPUTS))`` for inputs ``(k, len(_INPUTS))``, ``k <= n`` (the
+        rest of the ``n`` columns repeat the first line)."""
+        k, n = columns.shape[0], self.n
         with self._lock:
             if self._compiled is None and self._library.ready:
                 self._compiled = self._library.instances()[0]
             lib = self._compiled
             if lib is not None:
-                lib.inputs[0][:] = columns.ravel()
+                buffer = lib.inputs[0].reshape(n, -1)
+                buffer[:k] = columns
+                buffer[k:] = columns[0]
                 lib()
-                return lib.output_buffer[:n * len(_OUTPUTS)].reshape(n, -1).copy()
-            return np.asarray(self.function(columns.T), float).T
+                return lib.output_buffer[:k * len(_OUTPUTS)].reshape(k, -1).copy()
+            padded = np.vstack([columns, np.repeat(columns[:1], n - k, axis=0)])
+            return np.asarray(self.function(padded.T), float).T[:k]
 
 
 _MAPPED: dict = {}
 _MAPPED_LOCK = threading.Lock()
 
 
-def _mapped(n: int) -> _Mapped:
+def _mapped(lines: int) -> _Mapped:
+    """The checks mapped over the next power of two of ``lines`` (at least 8): a handful
+    of small libraries serve every scene."""
+    n = max(8, 1 << (lines - 1).bit_length())
     hit = _MAPPED.get(n)
     if hit is None:
         with _MAPPED_LOCK:
