@@ -43,7 +43,10 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     first read (:class:`~.result.LegList`, :class:`~.result.LazyProfile`): the same
     numbers, paid for only by a caller that reads them.
     """
-    x = np.where(np.isfinite(x), x, 0.0)
+    # A fresh array (the Result's state), any non-finite entry 0.
+    x = np.array(x, dtype=float)
+    if not np.isfinite(x).all():
+        x[~np.isfinite(x)] = 0.0
     if post is None:
         post = problem.post(x, p)
     poses, point_pos, load_vec = post["poses"], post["points"], post["loads"]
@@ -51,7 +54,8 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     tables = post["lines"], post["segments"], post["nodes"]
     grid = case.environment.seabed.bathymetry is not None
     planes = plane_slices(problem) if grid else None
-    p = np.ravel(np.asarray(p, float))
+    if grid or problem.contacts:
+        p = np.ravel(np.asarray(p, float))
 
     def make_legs():
         table, seg_table, node_table = (np.atleast_2d(t) for t in tables)
@@ -78,7 +82,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     facts = line_facts(case)
     fibre = facts.fibre
     legs = LegList(make_legs)
-    poses = np.ravel(poses).tolist()
+    poses = poses.ravel().tolist()
     bodies = []
     for bi, body in enumerate(case.bodies):
         q = poses[6 * bi: 6 * bi + 6]
@@ -99,15 +103,16 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
             body = dict(body, z_m=off["z_m"], roll_deg=off["roll_deg"],
                         pitch_deg=off["pitch_deg"])
     points = []
-    point_pos = np.ravel(point_pos)
-    for pi, point in enumerate(case.free_points):
+    free_points = case.free_points
+    point_pos = point_pos.ravel() if free_points else point_pos
+    for pi, point in enumerate(free_points):
         xyz = point_pos[3 * pi: 3 * pi + 3]
         j = problem.nodes.index(("point", pi, "zeta"))
         reaction = max(-float(xp[j]), 0.0) * problem.force_scale / problem.length_scale
         points.append({"name": point.name, "x_m": float(xyz[0]), "y_m": float(xyz[1]),
                        "z_m": float(xyz[2]), "seabed_reaction_N": reaction})
     loads = {}
-    lv = np.ravel(load_vec).tolist()
+    lv = load_vec.ravel().tolist()
     legacy = case.form == "legs"
     for k, name in enumerate(problem.load_names):
         f = lv[6 * k: 6 * k + 6]
@@ -122,7 +127,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
               f"above the top of pile {g['pile']} (it would come off the pile)"
               for g in guides if not g["on_pile"]]
     return Result(converged=certified, solver=solver, certificate=cert, effects=effects,
-                  body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
+                  body=body, legs=legs, loads=loads, case_name=case.name, state=x,
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
                   points=tuple(points), stability=stability, form=case.form,
                   fenders=fenders, guides=guides,
