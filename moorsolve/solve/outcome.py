@@ -43,8 +43,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     first read (:class:`~.result.LegList`, :class:`~.result.LazyProfile`): the same
     numbers, paid for only by a caller that reads them.
     """
-    # A fresh array (the Result's state), any non-finite entry 0.
-    x = np.array(x, dtype=float)
+    x = np.array(x, dtype=float)        # fresh: the Result's state, non-finite entries 0
     if not np.isfinite(x).all():
         x[~np.isfinite(x)] = 0.0
     if post is None:
@@ -54,8 +53,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     tables = post["lines"], post["segments"], post["nodes"]
     grid = case.environment.seabed.bathymetry is not None
     planes = plane_slices(problem) if grid else None
-    if grid or problem.contacts:
-        p = np.ravel(np.asarray(p, float))
+    p = np.ravel(np.asarray(p, float)) if grid or problem.contacts else p
 
     def make_legs():
         table, seg_table, node_table = (np.atleast_2d(t) for t in tables)
@@ -103,20 +101,17 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
             body = dict(body, z_m=off["z_m"], roll_deg=off["roll_deg"],
                         pitch_deg=off["pitch_deg"])
     points = []
-    free_points = case.free_points
-    point_pos = point_pos.ravel() if free_points else point_pos
-    for pi, point in enumerate(free_points):
-        xyz = point_pos[3 * pi: 3 * pi + 3]
+    for pi, point in enumerate(case.free_points):
+        xyz = point_pos.ravel()[3 * pi: 3 * pi + 3]
         j = problem.nodes.index(("point", pi, "zeta"))
         reaction = max(-float(xp[j]), 0.0) * problem.force_scale / problem.length_scale
         points.append({"name": point.name, "x_m": float(xyz[0]), "y_m": float(xyz[1]),
                        "z_m": float(xyz[2]), "seabed_reaction_N": reaction})
     loads = {}
     lv = load_vec.ravel().tolist()
-    legacy = case.form == "legs"
     for k, name in enumerate(problem.load_names):
         f = lv[6 * k: 6 * k + 6]
-        loads[name] = [f[0], f[1], f[5]] if legacy else f
+        loads[name] = [f[0], f[1], f[5]] if case.form == "legs" else f
     notes = list(notes) + _line_notes(case, problem, legs)
     if fibre:
         notes += fibre_notes(case, legs)
