@@ -75,6 +75,9 @@ def generalized_forces(force, moment, pitch, yaw):
 def wrap_degrees(angle):
     """An angle [deg] (float or numpy array) in (-180, 180]: the same orientation as
     reported, whichever turn the solver's unbounded yaw reached it on."""
+    if type(angle) is float:
+        # Python's float % rounds as numpy's remainder does; a Result's poses are floats.
+        return -((-angle + 180.0) % 360.0 - 180.0)
     import numpy as np
     wrapped = -((-np.asarray(angle, dtype=float) + 180.0) % 360.0 - 180.0)
     return float(wrapped) if np.ndim(wrapped) == 0 else wrapped

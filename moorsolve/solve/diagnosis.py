@@ -39,8 +39,9 @@ def unbalanced_force(problem, x, p) -> float:
     return max(finite, default=math.inf)
 
 
-_FA = slice(LINE_COLUMNS.index("FAx"), LINE_COLUMNS.index("FAx") + 3)
-_FB = slice(LINE_COLUMNS.index("FBx"), LINE_COLUMNS.index("FBx") + 3)
+_FA = LINE_COLUMNS.index("FAx")
+_FB = LINE_COLUMNS.index("FBx")
+assert _FB == _FA + 3
 
 
 def over_mbl(result: Result, problem=None, post=None) -> list:
@@ -52,14 +53,19 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
     be judged from their end forces without making the legs.
     """
     if problem is not None and post is not None and problem.all_single:
-        mbl = line_facts(result.case).mbl
-        if not np.isfinite(mbl).any():
+        facts = line_facts(result.case)
+        if not facts.any_mbl:
             return []
-        f = post["lines"]
-        tension = np.maximum(np.sqrt(np.square(f[:, _FA]).sum(axis=1)),
-                             np.sqrt(np.square(f[:, _FB]).sum(axis=1)))
+        mbl = facts.mbl
+        # The larger end tension, as max(|FA|, |FB|) (the root commutes with the max),
+        # summing each end's squares in the same order; a row of end forces per column.
+        sq = np.square(post["lines"].T[_FA: _FA + 6])
+        tension = np.sqrt(np.maximum(sq[0] + sq[1] + sq[2], sq[3] + sq[4] + sq[5]))
+        over_mask = tension > mbl
+        if not over_mask.any():
+            return []
         lines = result.case.lines
-        over = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(tension > mbl)]
+        over = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(over_mask)]
     else:
         over = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
                 for leg in result.legs if leg.utilisation is not None and leg.utilisation > 1]

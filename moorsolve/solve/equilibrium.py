@@ -87,9 +87,8 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     lines), else with IPOPT; the closed-form state when the scene has nothing free or no
     loads, or when the rest state does not certify.
     """
-    x0 = initial_point(problem, case)
     if not (problem.n_q and problem.load_names):
-        return x0
+        return initial_point(problem, case)
     # At load factor 0 nothing acts through the loads: one rest state per geometry (a
     # lumped line's start is drawn under its current, so there all parameters count).
     p_rest = problem.parameters(case, 0.0) if problem.any_discrete else None
@@ -100,6 +99,8 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
             return cached.copy()
         if p_rest is None:
             p_rest = problem.parameters(case, 0.0)
+        # Only a rest state not yet solved needs the closed-form start.
+        x0 = initial_point(problem, case)
         if kernel is not None:
             out = kernel.solve(x0, p_rest, tol)
             if _kernel_certified(problem, out, tol):
@@ -260,7 +261,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     return dataclasses.replace(result, warnings=tuple(result_warnings(result, case)))
 
 
-_WARN_COLUMNS = [LINE_COLUMNS.index(c) for c in ("floating", "az", "bz")]
+# An index array (a list would be converted at every call).
+_WARN_COLUMNS = np.array([LINE_COLUMNS.index(c) for c in ("floating", "az", "bz")])
 
 
 def _may_warn(problem, case, post) -> bool:
@@ -269,7 +271,8 @@ def _may_warn(problem, case, post) -> bool:
     above the water (so their legs and profiles need not be made to find nothing)."""
     if not problem.all_single or line_facts(case).sealed:
         return True
-    return bool((np.atleast_2d(post["lines"])[:, _WARN_COLUMNS] > 0).any())
+    # Rows of the transposed table are its columns (contiguous in the kernel's output).
+    return bool((np.atleast_2d(post["lines"]).T[_WARN_COLUMNS] > 0).any())
 
 
 #: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).

@@ -43,7 +43,9 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     first read (:class:`~.result.LegList`, :class:`~.result.LazyProfile`): the same
     numbers, paid for only by a caller that reads them.
     """
-    x = np.where(np.isfinite(x), x, 0.0)
+    x = np.array(x, dtype=float)        # fresh: the Result's state, non-finite entries 0
+    if not np.isfinite(x).all():
+        x[~np.isfinite(x)] = 0.0
     if post is None:
         post = problem.post(x, p)
     poses, point_pos, load_vec = post["poses"], post["points"], post["loads"]
@@ -51,7 +53,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     tables = post["lines"], post["segments"], post["nodes"]
     grid = case.environment.seabed.bathymetry is not None
     planes = plane_slices(problem) if grid else None
-    p = np.ravel(np.asarray(p, float))
+    p = np.ravel(np.asarray(p, float)) if grid or problem.contacts else p
 
     def make_legs():
         table, seg_table, node_table = (np.atleast_2d(t) for t in tables)
@@ -78,7 +80,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     facts = line_facts(case)
     fibre = facts.fibre
     legs = LegList(make_legs)
-    poses = np.ravel(poses).tolist()
+    poses = poses.ravel().tolist()
     bodies = []
     for bi, body in enumerate(case.bodies):
         q = poses[6 * bi: 6 * bi + 6]
@@ -99,19 +101,17 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
             body = dict(body, z_m=off["z_m"], roll_deg=off["roll_deg"],
                         pitch_deg=off["pitch_deg"])
     points = []
-    point_pos = np.ravel(point_pos)
     for pi, point in enumerate(case.free_points):
-        xyz = point_pos[3 * pi: 3 * pi + 3]
+        xyz = point_pos.ravel()[3 * pi: 3 * pi + 3]
         j = problem.nodes.index(("point", pi, "zeta"))
         reaction = max(-float(xp[j]), 0.0) * problem.force_scale / problem.length_scale
         points.append({"name": point.name, "x_m": float(xyz[0]), "y_m": float(xyz[1]),
                        "z_m": float(xyz[2]), "seabed_reaction_N": reaction})
     loads = {}
-    lv = np.ravel(load_vec).tolist()
-    legacy = case.form == "legs"
+    lv = load_vec.ravel().tolist()
     for k, name in enumerate(problem.load_names):
         f = lv[6 * k: 6 * k + 6]
-        loads[name] = [f[0], f[1], f[5]] if legacy else f
+        loads[name] = [f[0], f[1], f[5]] if case.form == "legs" else f
     notes = list(notes) + _line_notes(case, problem, legs)
     if fibre:
         notes += fibre_notes(case, legs)
@@ -122,7 +122,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
               f"above the top of pile {g['pile']} (it would come off the pile)"
               for g in guides if not g["on_pile"]]
     return Result(converged=certified, solver=solver, certificate=cert, effects=effects,
-                  body=body, legs=legs, loads=loads, case_name=case.name, state=x.copy(),
+                  body=body, legs=legs, loads=loads, case_name=case.name, state=x,
                   notes=tuple(notes), case=case, bodies=tuple(bodies),
                   points=tuple(points), stability=stability, form=case.form,
                   fenders=fenders, guides=guides,

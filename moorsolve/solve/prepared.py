@@ -144,6 +144,8 @@ class LineFacts(NamedTuple):
     clump_effects: tuple
     #: Each line's minimum breaking load [N] (inf where none is given; read-only).
     mbl: np.ndarray
+    #: Whether any line has a minimum breaking load (else none can be over it).
+    any_mbl: bool
 
 
 _FACTS = LockedLRU(256)
@@ -167,7 +169,7 @@ def line_facts(case) -> LineFacts:
         fibre=any(seg.line_type.fibre for seg in segments),
         clump_effects=(("clump_weight",) if any(w > 0 for w in clumps) else ())
         + (("buoy",) if any(w < 0 for w in clumps) else ()),
-        mbl=mbl)
+        mbl=mbl, any_mbl=bool(np.isfinite(mbl).any()))
     _FACTS.put(id(lines), (lines, facts))
     return facts
 

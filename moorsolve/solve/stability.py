@@ -273,8 +273,9 @@ def assess(problem, x, p, stiffness=None, clearly_stable=False) -> Stability:
         return Stability(stable=True, min_eigenvalue=math.inf)
     if not problem.smoothed:
         if clearly_stable and stiffness is not None:
+            # The product is a fresh array (no copy of the kernel's output needed first).
             return DeferredStability(
-                np.reshape(stiffness, (keep.size, keep.size)).astype(float) * hh, names)
+                np.asarray(stiffness, dtype=float).reshape(keep.size, keep.size) * hh, names)
         values = None
         if stiffness is not None:
             try:
