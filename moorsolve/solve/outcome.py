@@ -187,8 +187,8 @@ def _end_fields(name, a, b, fa, fb) -> dict:
         anchor_tension_N=math.hypot(*fa),
         anchor_horizontal_N=float(math.hypot(fa[0], fa[1])),
         anchor_vertical_N=float(fa[2]),
-        anchor=tuple(float(v) for v in a), fairlead=tuple(float(v) for v in b),
-        fairlead_force=tuple(float(v) for v in fb), anchor_force=tuple(float(v) for v in fa))
+        # The ends are tuples of floats already (:func:`_ends` reads a row of floats).
+        anchor=a, fairlead=b, fairlead_force=fb, anchor_force=fa)
 
 
 def _orient(profile: dict, lower, upper, flipped: bool, length: float) -> dict:
