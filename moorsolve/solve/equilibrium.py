@@ -360,6 +360,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     stepping from rest; the best point."""
     opts = case.solver
     deadline = t0 + opts.max_time_s
+    problem.ipopt_solvers.note_solve()
     # IPOPT's own tolerance is on the scaled residual; the polish and certificate
     # decide acceptance, so IPOPT only needs to get about as close as asked.
     ipopt_tol = min(max(tol, 1e-12), 1e-4)
