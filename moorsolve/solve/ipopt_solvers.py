@@ -16,6 +16,7 @@ Thread safety: a problem's solvers are made and run under its lock (the caller's
 from __future__ import annotations
 
 import casadi as ca
+import numpy as np
 
 from .bundled_blas import limit_bundled_blas
 from .concurrency import SYMBOLIC_LOCK
@@ -64,6 +65,7 @@ class IpoptSolvers:
         self._compiled: dict = {}
         self.solves = 0
         self.library = None
+        self._certificate = None
 
     def nlp(self) -> dict:
         """The NLP: the residuals as equality constraints. Where the scene has
@@ -123,6 +125,8 @@ class IpoptSolvers:
                 fns = [_renamed(self._oracle(), _PREFIX)]
                 fns += [_renamed(solver.get_function(name), f"{_PREFIX}_{name}")
                         for name in _DERIVED.values()]
+                # The certificate too: the strategy certifies every point IPOPT returns.
+                fns.append(_renamed(pr.certificate, f"{_PREFIX}_certificate"))
             if pr.n_x > COMPILE_MAX_UNKNOWNS or compile_mode() == "off":
                 # Past the size limit as the Newton kernel: minutes of C compiling for a
                 # modest gain.
@@ -135,6 +139,29 @@ class IpoptSolvers:
         """Compile now if not yet started and wait for it; whether the solvers now run
         compiled."""
         return self.compile().wait(timeout)
+
+    def certify(self, x, p, tol: float) -> bool:
+        """``problem.certify(x, p, tol)[0]``: the problem's judgement of its certificate,
+        the certificate evaluated by the library once it is loaded (the same arithmetic,
+        without an interpreted call's conversions)."""
+        pr = self.problem
+        if not self.compiled or not np.all(np.isfinite(x)):
+            return pr.certify(x, p, tol)[0]
+        return pr.judge(*self.certificate_values(x, p), tol=tol)[0]
+
+    def certificate_values(self, x, p) -> list:
+        """The certificate's numbers at ``x`` (force, moment, t_max, penetration,
+        complementarity), compiled once the library is loaded."""
+        if not self.compiled:
+            return [float(v) for v in self.problem.certificate(x, p)]
+        if self._certificate is None:
+            from .compiled import CompiledFunction
+            self._certificate = CompiledFunction(self.library.fns[-1], self.library.path)
+        fn = self._certificate
+        fn.inputs[0][:] = x
+        fn.inputs[1][:] = p
+        fn()
+        return fn.output_buffer.tolist()
 
     def _solver(self, key) -> ca.Function:
         """The interpreted solver of a setting."""

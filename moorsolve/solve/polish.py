@@ -24,12 +24,14 @@ def polish(problem, x, p, lb, ub, stats, tol):
 
 def polish_certified(problem, x, p, lb, ub, stats, tol) -> tuple:
     """:func:`polish`, and whether its point certifies: ``(x, certified)``, the verdict
-    of :meth:`EquilibriumProblem.certify` at that very ``x`` (computed once: callers need
+    of :meth:`EquilibriumProblem.certify` at that very ``x`` (computed once, compiled
+    where IPOPT's functions are: :meth:`.ipopt_solvers.IpoptSolvers.certify`; callers need
     not certify it again)."""
     if not np.all(np.isfinite(x)):
         return x, False
+    certify = problem.ipopt_solvers.certify
     # Certified as the solver left it (the usual case): no residual to evaluate.
-    if problem.certify(x, p, tol)[0]:
+    if certify(x, p, tol):
         return x, True
     g = np.asarray(problem.residual(x, p)).ravel()
     norm = np.max(np.abs(g)) if g.size else 0.0
@@ -54,7 +56,7 @@ def polish_certified(problem, x, p, lb, ub, stats, tol) -> tuple:
         if found is None:
             break
         x, g, norm = found
-        if problem.certify(x, p, tol)[0]:
+        if certify(x, p, tol):
             return x, True
     return x, False
 

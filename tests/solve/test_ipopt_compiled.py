@@ -68,6 +68,15 @@ def test_compiled_ipopt_gives_the_same_points(make):
         assert b.certificate.relative <= b.certificate.tolerance
         assert np.array_equal(a.state, b.state)
         assert a.certificate.iterations == b.certificate.iterations
+    # The strategy's certificate, compiled: the problem's numbers, here and off equilibrium.
+    problem = get_problem(cases[0])
+    rng = np.random.default_rng(3)
+    for case, result in zip(cases, after):
+        p = problem.parameters(case)
+        for x in (result.state, result.state * (1 + 1e-3 * rng.standard_normal(problem.n_x))):
+            expected = [float(v) for v in problem.certificate(x, p)]
+            assert solvers.certificate_values(x, p) == expected
+            assert solvers.certify(x, p, 1e-9) == problem.certify(x, p, 1e-9)[0]
 
 
 def test_compile_starts_after_repeated_solves(monkeypatch):
