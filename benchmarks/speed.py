@@ -193,10 +193,13 @@ def time_moorpy(case, make, loads, kind) -> dict:
 
 
 def _wait_compiled(case) -> None:
+    """The steady state of a process that solves the scene repeatedly: the Newton kernel
+    and IPOPT's functions compiled (a process compiles IPOPT's after a few solves)."""
     from moorsolve.solve.cache import get_problem
     problem = get_problem(case)
     if problem._newton is not None:
         problem._newton.wait_compiled()
+    problem.ipopt_solvers.wait_compiled()
 
 
 def single_solves(n_loads: int) -> dict:

@@ -51,5 +51,11 @@ def limit_bundled_blas() -> None:
                 setter = getattr(lib, "openblas_set_num_threads", None)
                 if setter is not None:
                     setter(ctypes.c_int(n))
+                    # The workers started when the library loaded spin for ~0.1 s of
+                    # CPU before they sleep, whatever the new count: end them now (as
+                    # OpenBLAS does before a fork; it starts them again if ever needed).
+                    shutdown = getattr(lib, "blas_thread_shutdown_", None)
+                    if n == 1 and shutdown is not None:
+                        shutdown()
                 break
         _DONE.set()

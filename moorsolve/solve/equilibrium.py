@@ -38,7 +38,7 @@ from .audit import audit as audit_result
 from .audit import result_warnings
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
-from .polish import polish
+from .polish import polish, polish_certified
 from .prepared import geometry_key, line_facts
 from .layout import LOAD_FACTOR_INDEX
 from .problem import LINE_COLUMNS
@@ -110,8 +110,8 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
         opts = case.solver
         solver = problem.ipopt(min(max(tol, 1e-12), 1e-4), opts.max_iter, opts.max_time_s)
         x = run_ipopt(problem, solver, x0, p_rest, lb, ub, {"iterations": 0})
-        x = polish(problem, x, p_rest, lb, ub, {"iterations": 0}, tol)
-        x = x if problem.certify(x, p_rest, tol)[0] else x0
+        x, certified = polish_certified(problem, x, p_rest, lb, ub, {"iterations": 0}, tol)
+        x = x if certified else x0
         problem.start_cache[key] = x
     return x.copy()
 
@@ -363,6 +363,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     stepping from rest; the best point."""
     opts = case.solver
     deadline = t0 + opts.max_time_s
+    problem.ipopt_solvers.note_solve()
     # IPOPT's own tolerance is on the scaled residual; the polish and certificate
     # decide acceptance, so IPOPT only needs to get about as close as asked.
     ipopt_tol = min(max(tol, 1e-12), 1e-4)
@@ -376,8 +377,7 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
         x = run_ipopt(problem, solver, x0, p, lb, ub, stats)
         stats["polish_steps"] = 0
-        x = polish(problem, x, p, lb, ub, stats, tol)
-        return x, problem.certify(x, p, tol)[0]
+        return polish_certified(problem, x, p, lb, ub, stats, tol)
 
     if start is not None:
         x, ok = run(np.asarray(start, float), p_full)
@@ -418,8 +418,8 @@ def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback):
     x = pseudo_transient(problem, x_rest, p, steps=2000)
     if x is None:
         return fallback
-    x = polish(problem, x, p, lb, ub, stats, tol)
-    if problem.certify(x, p, tol)[0]:
+    x, certified = polish_certified(problem, x, p, lb, ub, stats, tol)
+    if certified:
         stats["status"] = "pseudo-transient continuation, then Newton"
         return x
     return fallback

@@ -12,8 +12,8 @@ import math
 import casadi as ca
 import numpy as np
 
-from .bundled_blas import limit_bundled_blas
 from .concurrency import SYMBOLIC_LOCK
+from .ipopt_solvers import IpoptSolvers
 
 
 class SolverAccess:
@@ -65,43 +65,22 @@ class SolverAccess:
 
     # -- solvers --------------------------------------------------------------------
     def ipopt(self, tol: float, max_iter: int, max_time_s: float) -> ca.Function:
-        """An IPOPT solver for the feasibility NLP, cached per setting.
+        """An IPOPT solver for the feasibility NLP, cached per setting; compiled once the
+        problem has been solved a few times (:mod:`.ipopt_solvers`).
 
         A CasADi solver object is not safe to run from two threads at once: callers hold
         :attr:`lock` while they run it.
         """
-        key = (tol, max_iter, max_time_s)
         with self._lock:
-            if key not in self._nlp_solvers:
-                nlp = {"x": self._xs, "p": self._p, "f": 0, "g": self._g}
-                if self.smoothed:
-                    # IPOPT solves the smoothed complementarities (a smoothing parameter
-                    # appended to p, nlp_parameters); the polish makes them exact. Among
-                    # the equilibria it takes the one nearest its start (also appended),
-                    # which keeps it from wandering through open contacts and slack
-                    # hawsers, and pins a degree of freedom nothing holds.
-                    start = ca.SX.sym("start", self.n_x)
-                    nlp["p"] = ca.vertcat(self._p, self.smoothing_symbol, start)
-                    nlp["g"] = self._g_smooth
-                    nlp["f"] = self.IPOPT_PROXIMITY * ca.sumsqr(self._xs - start)
-                opts = {
-                    "print_time": False,
-                    "error_on_fail": False,
-                    # A NaN or inf met on the way (absurd input) is reported by the
-                    # certificate and ConvergenceError; CasADi's per-evaluation warnings are
-                    # noise.
-                    "show_eval_warnings": False, "calc_lam_p": False,
-                    "ipopt": {
-                        "print_level": 0, "sb": "yes", "tol": tol,
-                        "constr_viol_tol": tol, "max_iter": max_iter,
-                        "max_wall_time": max_time_s, "nlp_scaling_method": "none",
-                        "mu_strategy": "adaptive",
-                    },
-                }
-                with SYMBOLIC_LOCK:
-                    self._nlp_solvers[key] = ca.nlpsol("equilibrium", "ipopt", nlp, opts)
-                limit_bundled_blas()
-            return self._nlp_solvers[key]
+            return self.ipopt_solvers.get(tol, max_iter, max_time_s)
+
+    @property
+    def ipopt_solvers(self) -> IpoptSolvers:
+        """IPOPT's solvers of this problem, interpreted, then compiled."""
+        with self._lock:
+            if self._ipopt_solvers is None:
+                self._ipopt_solvers = IpoptSolvers(self)
+            return self._ipopt_solvers
 
     #: The smoothings IPOPT solves with in turn, relative to the length scale (the polish
     #: that follows makes the complementarities exact).

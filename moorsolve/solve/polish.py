@@ -8,7 +8,7 @@ import numpy as np
 
 from .newton import FLAT, STEP_LIMIT
 
-__all__ = ["polish"]
+__all__ = ["polish", "polish_certified"]
 
 #: Most Newton steps of one polish.
 _POLISH_STEPS = 30
@@ -19,15 +19,28 @@ def polish(problem, x, p, lb, ub, stats, tol):
     kept only while they reduce the residual (with complementarities, as the compiled
     kernel: a step along the exact direction that does not grow it where the smoothed one
     finds no descent; :mod:`.newton`)."""
+    return polish_certified(problem, x, p, lb, ub, stats, tol)[0]
+
+
+def polish_certified(problem, x, p, lb, ub, stats, tol) -> tuple:
+    """:func:`polish`, and whether its point certifies: ``(x, certified)``, the verdict
+    of :meth:`EquilibriumProblem.certify` at that very ``x`` (computed once, compiled
+    where IPOPT's functions are: :meth:`.ipopt_solvers.IpoptSolvers.certify`; callers need
+    not certify it again)."""
     if not np.all(np.isfinite(x)):
-        return x
+        return x, False
+    certify = problem.ipopt_solvers.certify
+    # Certified as the solver left it (the usual case): no residual to evaluate.
+    if certify(x, p, tol):
+        return x, True
     g = np.asarray(problem.residual(x, p)).ravel()
     norm = np.max(np.abs(g)) if g.size else 0.0
     for _ in range(_POLISH_STEPS):
-        # Stop once certified. Not on a merely small residual: where a span depends on a
-        # tension only to second order (a fairlead on the seabed: Z ~ V^2) Newton halves
-        # the tension's error per step while the residual is already below 1e-15.
-        if norm == 0.0 or problem.certify(x, p, tol)[0]:
+        # Stop once certified (below). Not on a merely small residual: where a span
+        # depends on a tension only to second order (a fairlead on the seabed: Z ~ V^2)
+        # Newton halves the tension's error per step while the residual is already below
+        # 1e-15.
+        if norm == 0.0:
             break
         J = problem.step_jacobian(x, p, g)
         if not (np.all(np.isfinite(J)) and np.all(np.isfinite(g))):
@@ -43,7 +56,9 @@ def polish(problem, x, p, lb, ub, stats, tol):
         if found is None:
             break
         x, g, norm = found
-    return x
+        if certify(x, p, tol):
+            return x, True
+    return x, False
 
 
 def _search(problem, x, p, g, norm, lb, ub, J, *, flat: bool, tries: int):

@@ -150,7 +150,7 @@ class EquilibriumProblem(Certification, SolverAccess):
         self.load_mask = self.layout.load_mask()
         self.effects = self._effects()
         self._lock = threading.RLock()
-        self._nlp_solvers = {}
+        self._ipopt_solvers = None
         self._newton = None
         #: Closed-form starting points by parameters (see :mod:`.start`); guarded by
         #: :attr:`lock`.
