@@ -193,13 +193,16 @@ def time_moorpy(case, make, loads, kind) -> dict:
 
 
 def _wait_compiled(case) -> None:
-    """The steady state of a process that solves the scene repeatedly: the Newton kernel
-    and IPOPT's functions compiled (a process compiles IPOPT's after a few solves)."""
+    """The steady state of a process that solves the scene repeatedly: the Newton kernel,
+    IPOPT's functions (a process compiles them after a few solves) and the closed-form
+    audit's checks compiled."""
+    from moorsolve.solve import audit_closed_form
     from moorsolve.solve.cache import get_problem
     problem = get_problem(case)
     if problem._newton is not None:
         problem._newton.wait_compiled()
     problem.ipopt_solvers.wait_compiled()
+    audit_closed_form.wait_compiled(len(case.lines))
 
 
 def single_solves(n_loads: int) -> dict:

@@ -41,7 +41,7 @@ from .concurrency import SYMBOLIC_LOCK, LockedLRU
 from .problem import LINE_COLUMNS
 from .stretch_params import numeric_law
 
-__all__ = ["covers", "closed_form_findings", "table_end_rows"]
+__all__ = ["covers", "closed_form_findings", "table_end_rows", "wait_compiled"]
 
 _COL = {name: k for k, name in enumerate(LINE_COLUMNS)}
 _A = [_COL[c] for c in ("ax", "ay", "az")]
@@ -291,6 +291,12 @@ def _mapped(lines: int) -> _Mapped:
             if hit is None:
                 hit = _MAPPED[n] = _Mapped(n)
     return hit
+
+
+def wait_compiled(lines: int, timeout: float | None = None) -> bool:
+    """Wait for the compile of the checks for ``lines`` lines (started by the first audit
+    of so many lines); whether they now run compiled."""
+    return _mapped(lines)._library.wait(timeout)
 
 
 def closed_form_findings(problem, case, table, tol_rel: float):
