@@ -76,7 +76,7 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
             force += f
             moment += m
             scale = max(scale, math.hypot(f[0], f[1], f[2]))
-        generalized = [*force, *(_angle_axes(R, q[5]).T @ moment)]
+        generalized = [*force.tolist(), *_about_angle_axes(R, q[5], moment.tolist())]
         if body.stiffness is not None:
             q0 = np.array(list(body.position) + [math.radians(a) for a in
                                                  body.orientation_deg])
@@ -138,12 +138,13 @@ def _cross3(a, b) -> np.ndarray:
                      a[0] * b[1] - a[1] * b[0]])
 
 
-def _angle_axes(R: np.ndarray, yaw: float) -> np.ndarray:
-    """Columns: the global axes roll, pitch and yaw turn about (z-y-x angles), for the
-    body's rotation ``R = Rz Ry Rx``: ``Rz Ry e_x`` (R's first column, as ``Rx`` keeps
-    ``e_x``), ``Rz e_y`` and ``e_z``."""
-    return np.array([[R[0, 0], -math.sin(yaw), 0.0], [R[1, 0], math.cos(yaw), 0.0],
-                     [R[2, 0], 0.0, 1.0]])
+def _about_angle_axes(R: np.ndarray, yaw: float, moment) -> tuple:
+    """A moment's components about the global axes roll, pitch and yaw turn about (z-y-x
+    angles), for the body's rotation ``R = Rz Ry Rx``: ``Rz Ry e_x`` (R's first column, as
+    ``Rx`` keeps ``e_x``), ``Rz e_y`` and ``e_z``."""
+    mx, my, mz = moment
+    return (R[0, 0] * mx + R[1, 0] * my + R[2, 0] * mz,
+            -math.sin(yaw) * mx + math.cos(yaw) * my, mz)
 
 
 def _hydrostatic_wrenches(body, origin, R, env):
