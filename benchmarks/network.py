@@ -40,6 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import numpy as np
 from peer_moorpy_network import NetworkScene, without_extras
+from speed import wait_steady
 
 import moorsolve
 from moorsolve.model import BodyLoads
@@ -82,6 +83,7 @@ def loaded(case, forces):
 def time_moorsolve(case, loads, solver: str) -> dict:
     times, ok = [], 0
     moorsolve.solve(loaded(case, loads[0]), solver=solver)      # build and compile
+    wait_steady(loaded(case, loads[0]))
     for forces in loads:
         scene = loaded(case, forces)
         t0 = time.perf_counter()

@@ -150,7 +150,7 @@ COLUMNS = {
 
 def time_solves(case, make, loads, options) -> dict:
     moorsolve.solve(make(case, loads[0]), **options)         # build (and compile) first
-    _wait_compiled(make(case, loads[0]))
+    wait_steady(make(case, loads[0]))
     cases = [make(case, load) for load in loads]
     clock = Clock()
     for c in cases:
@@ -192,7 +192,7 @@ def time_moorpy(case, make, loads, kind) -> dict:
     return clock.medians()
 
 
-def _wait_compiled(case) -> None:
+def wait_steady(case) -> None:
     """The steady state of a process that solves the scene repeatedly: the Newton kernel,
     IPOPT's functions (a process compiles them after a few solves) and the closed-form
     audit's checks compiled."""
@@ -255,7 +255,7 @@ TABLE_MEMORY = textwrap.dedent("""
     table = speed.dock_table({n})
     moorsolve = speed.moorsolve
     moorsolve.sweep(case, table=table.head(64))           # build and compile
-    speed._wait_compiled(case)
+    speed.wait_steady(case)
     import time
     t0 = time.perf_counter()
     result = moorsolve.sweep(case, table=table, workers=2)
@@ -273,7 +273,7 @@ def load_table(n_rows: int, n_peer: int) -> dict:
     case = dock_for_tables()
     table = dock_table(n_rows)
     moorsolve.sweep(case, table=table.head(64))
-    _wait_compiled(case)
+    wait_steady(case)
     runs = {}
     for workers in (1, 2):
         t0 = time.perf_counter()
