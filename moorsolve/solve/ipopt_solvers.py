@@ -23,9 +23,11 @@ from .concurrency import SYMBOLIC_LOCK
 
 __all__ = ["IpoptSolvers", "COMPILE_AFTER"]
 
-#: Solves of one problem with IPOPT after which its NLP functions are compiled (a CLI run
-#: or a test solves a structure a few times; a sweep or a hunt, many).
-COMPILE_AFTER = 20
+#: Solves of one problem with IPOPT after which its NLP functions are compiled. The
+#: compile takes 1-11 s of a core (the semis, the dock, three platforms) and saves about
+#: 0.1-0.5 ms a solve, so it pays after thousands of solves: a study's, not a CLI run's or
+#: a test's (the library is then cached on disk for the next process).
+COMPILE_AFTER = 200
 
 #: The functions CasADi's IPOPT interface evaluates (besides ``nlp_f`` and ``nlp_g``,
 #: which it derives from the oracle) that the library replaces, by nlpsol option.
