@@ -4,11 +4,6 @@ change independently."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:          # annotations only: the report reads what upstream made
-    from ..solve.result import Result
-
 
 def _table(header: str, rows: list) -> list:
     return ["", header, "-" * len(header)] + rows
@@ -30,8 +25,9 @@ def _guide_row(g: dict) -> str:
             f"{g['pile_moment_Nm'] / 1e3:13.1f}  {on} {g['pile']}")
 
 
-def berth_lines(result: Result) -> list:
-    """Text rows for the fenders and pile guides of ``result`` (none without them)."""
+def berth_lines(result) -> list:
+    """Text rows for the fenders and pile guides of ``result`` (a
+    :class:`moorsolve.Result`; none without them)."""
     c = result.certificate
     lines = []
     if c.penetration_m is not None:

@@ -4,15 +4,15 @@ from __future__ import annotations
 
 import json
 import math
-from typing import TYPE_CHECKING
 
 from .berth import berth_lines
 
-if TYPE_CHECKING:          # annotations only: the report reads what upstream made
-    from ..solve.result import Result
+# The results come from moorsolve.solve (a moorsolve.Result); they are not imported here,
+# not even for annotations: Result shows itself through this package (its repr and notebook
+# view), so an import back would close a cycle.
 
 
-def to_json(result: Result, profiles: bool = True) -> str:
+def to_json(result, profiles: bool = True) -> str:
     """The result as JSON text (CONTRACT.md "Result"); non-finite numbers become null."""
     return json.dumps(_finite(result.to_dict(profiles=profiles)), indent=2)
 
@@ -27,7 +27,7 @@ def _finite(obj):
     return obj
 
 
-def format_table(result: Result) -> str:
+def format_table(result) -> str:
     """A plain-text summary: body offset, certificate and one row per leg."""
     c = result.certificate
     lines = [f"{result.case_name}" if result.case_name else "equilibrium"]
