@@ -37,7 +37,6 @@ weight in water unless the line type gives its weight in air).
 
 from __future__ import annotations
 
-
 import numpy as np
 
 from ..errors import ConvergenceError

@@ -57,8 +57,7 @@ _STEEP = 1e-7
 #: One line's inputs (a column): the lower end, the upper end, the forces on them, the
 #: grounded length, then the line's data and the tolerances.
 _INPUTS = ("lo_x", "lo_y", "lo_z", "up_x", "up_y", "up_z", "flo_x", "flo_y", "flo_z",
-           "fup_x", "fup_y", "fup_z", "grounded", "L", "w", "c", "mu", "bed", "depth",
-           "tol_rel")
+           "fup_x", "fup_y", "fup_z", "grounded", "L", "w", "c", "mu", "depth", "tol_rel")
 #: Each check's defect over its tolerance (a line fails where one exceeds 1).
 _RATIOS = ("side", "push", "weight", "grounded_pull", "friction", "grounded_length",
            "reach", "off_bed", "below")
@@ -163,7 +162,8 @@ def _span(H, V0, s, w, c):
 def _line_checks() -> ca.Function:
     v = ca.SX.sym("line", len(_INPUTS))
     i = dict(zip(_INPUTS, ca.vertsplit(v)))
-    L, w, c, mu, bed = i["L"], i["w"], i["c"], i["mu"], i["bed"]
+    L, w, c, mu = i["L"], i["w"], i["c"], i["mu"]
+    bed = -i["depth"]                                   # a flat seabed (covers() says so)
     grounded, tol_rel = i["grounded"], i["tol_rel"]
     dx, dy = i["up_x"] - i["lo_x"], i["up_y"] - i["lo_y"]
     X = ca.sqrt(dx * dx + dy * dy)
@@ -315,9 +315,8 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     columns[:, :13] = table[rows, cols]
     columns[:, 13:16] = data.columns
     columns[:, 16] = env.seabed.friction * friction
-    columns[:, 17] = -env.depth                  # a flat seabed (covers() says so)
-    columns[:, 18] = env.depth
-    columns[:, 19] = tol_rel
+    columns[:, 17] = env.depth
+    columns[:, 18] = tol_rel
     out = _mapped(n)(columns)
     if not out[:, 0].all():
         return None, 0.0
