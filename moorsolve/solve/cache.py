@@ -61,7 +61,7 @@ class ProblemCache:
             self._problems.clear()
 
 
-@per_case
+@per_case(load_independent=True)
 def problem_key(case: Case) -> HashedKey:
     """The key of ``case``'s problem: its structure and its scales rounded to powers of two
     (see :meth:`ProblemCache.get`); computed once per case object."""

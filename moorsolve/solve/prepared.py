@@ -11,6 +11,14 @@ Cases made from one another by :func:`dataclasses.replace` (a new load on the sa
 share their ``lines`` tuple: the line kinds, the costliest part of the structure key, are
 also kept per lines tuple and the context they depend on (:func:`line_kinds_of`).
 
+A loop that solves one scene under many constant loads makes a new Case object per load,
+and each would derive everything again (tens of microseconds, more than a compiled solve of
+a small scene). So the newest case seen on a lines tuple is kept as a *sibling* candidate:
+a new case that differs from it only in the values of its bodies' constant forces
+(:func:`_only_forces_differ`) takes over the values of every function memoised with
+``per_case(..., load_independent=True)``, and its parameter vector is the sibling's with
+the environment and body blocks (where the forces sit) made anew.
+
 :func:`load_free` strips a parameter vector of what only acts through the load factor
 (flows, constant forces, the load factor itself): the rest state and the closed-form start
 depend on nothing else, so they are found once per geometry, not once per load.
@@ -30,6 +38,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import layout
+from ..model import Body, BodyLoads
 from .concurrency import LockedLRU
 from .contact import contact_points
 
@@ -46,29 +55,107 @@ def _forget(key: int, ref) -> None:
             del _TABLE[key]
 
 
-def per_case(fn):
+def _values_of(case) -> dict | None:
+    """The memoised values of ``case`` (None before its first)."""
+    entry = _TABLE.get(id(case))
+    return entry[1] if entry is not None and entry[0]() is case else None
+
+
+def _store(case, fn, value):
+    """Memoise ``value`` as ``fn(case)``; the value kept (a racing thread's may win)."""
+    key = id(case)
+    with _LOCK:
+        entry = _TABLE.get(key)
+        if entry is None or entry[0]() is not case:
+            ref = weakref.ref(case, functools.partial(_forget, key))
+            entry = _TABLE[key] = (ref, {})
+        return entry[1].setdefault(fn, value)
+
+
+def per_case(fn=None, *, load_independent: bool = False):
     """Memoise ``fn(case)`` per Case object (see the module notes). ``fn`` must return an
-    immutable value or one its callers never modify."""
+    immutable value or one its callers never modify. ``load_independent``: the value does
+    not depend on the values of the bodies' constant forces, so a sibling's is taken over
+    (:func:`_sibling`)."""
+    if fn is None:
+        return functools.partial(per_case, load_independent=load_independent)
 
     @functools.wraps(fn)
     def wrapper(case):
-        key = id(case)
         # Reads need no lock (a dict lookup is atomic); writes take it.
-        entry = _TABLE.get(key)
-        if entry is not None and entry[0]() is case:
-            values = entry[1]
-            if fn in values:
-                return values[fn]
-        value = fn(case)
-        with _LOCK:
-            entry = _TABLE.get(key)
-            if entry is None or entry[0]() is not case:
-                ref = weakref.ref(case, functools.partial(_forget, key))
-                entry = _TABLE[key] = (ref, {})
-            entry[1].setdefault(fn, value)
-            return entry[1][fn]
+        values = _values_of(case)
+        if values is not None and fn in values:
+            return values[fn]
+        if load_independent:
+            sibling = _sibling(case)
+            if sibling is not None:
+                known = _values_of(sibling)
+                if known is not None and fn in known:
+                    return _store(case, fn, known[fn])
+        return _store(case, fn, fn(case))
 
     return wrapper
+
+
+#: Per lines tuple, the newest case seen on it (a strong reference: a loop's previous case
+#: is usually freed before the next is made).
+_NEWEST = LockedLRU(64)
+#: The key of a case's sibling (or None) among its memoised values.
+_SIBLING_KEY = "sibling"
+
+
+def _sibling(case):
+    """An earlier case whose load-independent values ``case`` may take over (it differs
+    only in the values of its bodies' constant forces), or None; found once per case."""
+    values = _values_of(case)
+    if values is not None and _SIBLING_KEY in values:
+        ref = values[_SIBLING_KEY]
+        return ref() if ref is not None else None
+    lines = case.lines
+    newest = _NEWEST.get(id(lines))
+    found = None
+    if newest is not None and newest[0] is lines and newest[1] is not case \
+            and _only_forces_differ(case, newest[1]):
+        found = newest[1]
+    _NEWEST.put(id(lines), (lines, case))
+    # A weak reference: a chain of siblings must not keep every earlier case alive.
+    _store(case, _SIBLING_KEY, weakref.ref(found) if found is not None else None)
+    return found
+
+
+_CASE_FIELDS = ("environment", "points", "solver", "contacts", "line_types", "form")
+_BODY_FIELDS = tuple(f.name for f in dataclasses.fields(Body) if f.name != "loads")
+_LOAD_FIELDS = tuple(f.name for f in dataclasses.fields(BodyLoads) if f.name != "force")
+
+
+def _same(a, b) -> bool:
+    return a is b or a == b
+
+
+def _only_forces_differ(case, other) -> bool:
+    """Whether ``case`` and ``other`` (on the same lines) differ at most in the values of
+    their bodies' constant forces (each present in both or in neither, of one length)."""
+    if len(case.bodies) != len(other.bodies):
+        return False
+    for f in _CASE_FIELDS:
+        if not _same(getattr(case, f), getattr(other, f)):
+            return False
+    for a, b in zip(case.bodies, other.bodies):
+        if a is b:
+            continue
+        for f in _BODY_FIELDS:
+            if not _same(getattr(a, f), getattr(b, f)):
+                return False
+        la, lb = a.loads, b.loads
+        if la is lb:
+            continue
+        if (la.force is None) != (lb.force is None) or (
+                la.force is not None and len(la.force) != len(lb.force)):
+            return False
+        for f in _LOAD_FIELDS:
+            if not _same(getattr(la, f), getattr(lb, f)):
+                return False
+    return True
 
 
 class HashedKey(tuple):
@@ -100,7 +187,7 @@ def _kinds_context(case) -> tuple:
             tuple((b.name, tuple(b.position), tuple(b.orientation_deg)) for b in case.bodies))
 
 
-@per_case
+@per_case(load_independent=True)
 def line_kinds_of(case) -> tuple:
     """:func:`~.line_kinds.line_kinds` of ``case``, as a tuple, computed once per case and per
     lines tuple in the same context."""
@@ -151,7 +238,7 @@ class LineFacts(NamedTuple):
 _FACTS = LockedLRU(256)
 
 
-@per_case
+@per_case(load_independent=True)
 def line_facts(case) -> LineFacts:
     """:class:`LineFacts` of ``case``'s lines, once per lines tuple."""
     lines = case.lines
@@ -179,7 +266,18 @@ _LINE_BLOCKS = LockedLRU(256)
 
 
 @per_case
-def _parameters(case) -> np.ndarray:
+def _parameter_parts(case) -> tuple:
+    """``(p, body_block)``: the parameter vector at load factor 1 (read-only) and the slice
+    of its body block. From a sibling (:func:`_sibling`) only the blocks that hold the
+    constant forces, the environment's and the bodies', are made anew."""
+    sibling = _sibling(case)
+    if sibling is not None:
+        p_sibling, bodies = _parameter_parts(sibling)
+        p = p_sibling.copy()
+        p[:len(layout.ENV_PARAMS)] = layout.environment_parameters(case, 1.0)
+        p[bodies] = layout.body_parameters(case)
+        p.setflags(write=False)
+        return p, bodies
     env = case.environment
     kinds = line_kinds_of(case)
     key = (id(case.lines), env.depth, env.seabed,
@@ -193,11 +291,16 @@ def _parameters(case) -> np.ndarray:
                                 layout.segment_parameters(case, kinds)])
         laws = stretch_parameters(case)
         _LINE_BLOCKS.put(key, (case.lines, lines, laws))
-    p = np.concatenate([layout.environment_parameters(case, 1.0), lines,
-                        layout.body_parameters(case), layout.point_parameters(case),
-                        layout.contact_parameters(case), laws])
+    body_block = layout.body_parameters(case)
+    start = len(layout.ENV_PARAMS) + len(lines)
+    p = np.concatenate([layout.environment_parameters(case, 1.0), lines, body_block,
+                        layout.point_parameters(case), layout.contact_parameters(case), laws])
     p.setflags(write=False)
-    return p
+    return p, slice(start, start + len(body_block))
+
+
+def _parameters(case) -> np.ndarray:
+    return _parameter_parts(case)[0]
 
 
 def parameter_vector(case, load_factor: float = 1.0, kinds=None) -> np.ndarray:
@@ -218,7 +321,7 @@ def case_parameters(case, load_factor: float = 1.0) -> np.ndarray:
 _MASKS = LockedLRU(64)
 
 
-@per_case
+@per_case(load_independent=True)
 def load_mask(case) -> np.ndarray:
     """Entries of ``case``'s parameter vector that act only through the load factor."""
     kinds = line_kinds_of(case)
@@ -242,7 +345,7 @@ def load_free(case, p: np.ndarray) -> bytes:
     return q.tobytes()
 
 
-@per_case
+@per_case(load_independent=True)
 def geometry_key(case) -> HashedKey:
     """``case``'s structure key and its load-free parameters: equal for two cases whose
     rest states are equal."""
@@ -254,9 +357,10 @@ def clear() -> None:
     with _LOCK:
         _TABLE.clear()
     _KINDS.clear()
+    _NEWEST.clear()
 
 
-@per_case
+@per_case(load_independent=True)
 def structure_key(case) -> tuple:
     """What decides the shape of the built problem (not its parameter values); computed
     once per case object."""

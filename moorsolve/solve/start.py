@@ -63,7 +63,7 @@ HAWSER_STRAIN = 0.01
 _SCALES = LockedLRU(256)
 
 
-@per_case
+@per_case(load_independent=True)
 def scales(case: Case) -> tuple:
     """Typical tension [N] and length [m] of the scene, for scaling the unknowns.
 

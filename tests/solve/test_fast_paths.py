@@ -18,11 +18,13 @@ import pytest
 
 import moorsolve
 from moorsolve.model import BodyLoads
-from moorsolve.solve.cache import get_problem
+from moorsolve.solve import prepared
+from moorsolve.solve.cache import get_problem, problem_key
 from moorsolve.solve.diagnosis import over_mbl
 from moorsolve.solve.equilibrium import rest_point
 from moorsolve.solve.result import DeferredStability
 from moorsolve.solve.stability import assess, condensed_stiffness
+from moorsolve.solve.start import scales
 
 from conftest import CASES
 
@@ -253,6 +255,36 @@ def test_cases_sharing_lines_get_their_own_answers():
     again = with_force(base, (1e6, 0.0, 0.0))
     first = moorsolve.solve(again, solver="newton")
     assert_same_answer(first, moorsolve.solve(again, solver="newton"), 0.0)
+
+
+@pytest.mark.parametrize("path,loads", [
+    (DOCK, [(1e6, 2e6, 1e7), (-3e6, 5e5, -2e7)]),
+    (SPAR, [(6e5, -2e5, 0, 0, 0, 1e6), (1e6, 3e5, 0, 0, 0, -2e6)])], ids=["dock", "spar"])
+def test_a_case_differing_only_in_its_forces_derives_what_a_fresh_case_does(path, loads):
+    """A new case that differs from the last one on its lines only in its constant forces
+    takes over that case's load-independent values (prepared._sibling): every one must be
+    what a case loaded from scratch derives, and the parameter vector its own."""
+    base = moorsolve.load_case(path)
+    first, second = with_force(base, loads[0]), with_force(base, loads[1])
+    fresh = with_force(moorsolve.load_case(path), loads[1])
+    derived = (prepared.line_kinds_of, prepared.structure_key, prepared.geometry_key,
+               scales, problem_key)
+    for fn in derived:
+        fn(first)
+    assert prepared._sibling(second) is first and prepared._sibling(fresh) is None
+    for fn in derived:
+        assert fn(second) == fn(fresh), fn.__name__
+    np.testing.assert_array_equal(prepared.load_mask(second), prepared.load_mask(fresh))
+    np.testing.assert_array_equal(prepared.case_parameters(second),
+                                  prepared.case_parameters(fresh))
+    assert not np.array_equal(prepared.case_parameters(second),
+                              prepared.case_parameters(first))
+    # Anything else that differs (here the body's mass) makes a case derive on its own.
+    heavier = dataclasses.replace(second, bodies=(dataclasses.replace(
+        second.bodies[0], mass=(second.bodies[0].mass or 1e6) * 1.01),))
+    assert prepared._sibling(heavier) is None
+    body = get_problem(heavier).layout.slice(f"body[{heavier.bodies[0].name}].mass")
+    assert prepared.case_parameters(heavier)[body][0] == heavier.bodies[0].mass
 
 
 def test_rest_state_is_shared_by_loads_and_not_by_geometries():
