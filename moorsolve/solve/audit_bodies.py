@@ -54,29 +54,31 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
         if contacts:
             at = np.vstack([at, [c["contact_point_m"] for c in contacts]])
             pulls = np.vstack([pulls, [c["force_N"] for c in contacts]])
-        force, moment = np.zeros(3), np.zeros(3)
+        force, moment = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
         scale, radius = t_max, 1.0
         if len(pulls):
             arm = at - origin
-            force += pulls.sum(axis=0)
-            moment += _moment_sum(arm, pulls)
-            radius = max(radius, float(np.hypot(arm[:, 0], arm[:, 1]).max()))
+            m = (arm.T @ pulls).tolist()     # m[j][k] = sum_i arm_ij pull_ik
+            force = pulls.sum(axis=0).tolist()
+            moment = [m[1][2] - m[2][1], m[2][0] - m[0][2], m[0][1] - m[1][0]]
+            reach = arm[:, :2]
+            radius = max(radius, math.sqrt(float(np.einsum("ij,ij->i", reach, reach).max())))
         for name, load in result.loads.items():
             if len(case.bodies) > 1 and not name.startswith(body.name + "."):
                 continue
-            f = np.asarray(load, float)
-            if f.size == 3:                       # the legs form: [Fx, Fy, Mz]
-                f = np.array([f[0], f[1], 0.0, 0.0, 0.0, f[2]])
-            force += f[:3]
-            moment += f[3:]
+            f = [float(v) for v in load]
+            if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
+                f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
+            force = [a + b for a, b in zip(force, f[:3])]
+            moment = [a + b for a, b in zip(moment, f[3:])]
             scale = max(scale, math.hypot(f[0], f[1], f[2]))
         # Hydrostatics act about the still-water level (above the datum by a tide).
         afloat = (q[0], q[1], q[2] - env.water_level)
         for f, m in _hydrostatic_wrenches(body, afloat, R, env):
-            force += f
-            moment += m
+            force = [a + b for a, b in zip(force, f)]
+            moment = [a + b for a, b in zip(moment, m)]
             scale = max(scale, math.hypot(f[0], f[1], f[2]))
-        generalized = [*force.tolist(), *_about_angle_axes(R, q[5], moment.tolist())]
+        generalized = [*force, *_about_angle_axes(R, q[5], moment)]
         if body.stiffness is not None:
             q0 = np.array(list(body.position) + [math.radians(a) for a in
                                                  body.orientation_deg])
@@ -126,18 +128,6 @@ def _end_rows(lines) -> dict:
     return found
 
 
-def _moment_sum(arm: np.ndarray, force: np.ndarray) -> np.ndarray:
-    """``sum_i arm_i x force_i`` of (n, 3) arrays (numpy's cross costs more than it
-    computes)."""
-    m = arm.T @ force                  # m[j, k] = sum_i arm_ij force_ik
-    return np.array([m[1, 2] - m[2, 1], m[2, 0] - m[0, 2], m[0, 1] - m[1, 0]])
-
-
-def _cross3(a, b) -> np.ndarray:
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]])
-
-
 def _about_angle_axes(R: np.ndarray, yaw: float, moment) -> tuple:
     """A moment's components about the global axes roll, pitch and yaw turn about (z-y-x
     angles), for the body's rotation ``R = Rz Ry Rx``: ``Rz Ry e_x`` (R's first column, as
@@ -148,24 +138,32 @@ def _about_angle_axes(R: np.ndarray, yaw: float, moment) -> tuple:
 
 
 def _hydrostatic_wrenches(body, origin, R, env):
-    """Weight, buoyancy and heave restoring of a body, as ``(force, moment)`` pairs;
-    ``origin`` above the still-water level."""
+    """Weight, buoyancy and heave restoring of a body, as ``(force, moment)`` pairs of
+    3-sequences; ``origin`` above the still-water level."""
     g, rho = env.gravity, env.water_density
     out = []
+
+    def vertical(fz, at_body):       # a vertical force at a body-frame point
+        rx, ry, _ = _turn(R, at_body)
+        return (0.0, 0.0, fz), (ry * fz, -rx * fz, 0.0)
+
     if body.mass is not None:
-        w = np.array([0.0, 0.0, -body.mass * g])
-        out.append((w, _cross3(R @ np.asarray(body.centre_of_gravity, float), w)))
+        out.append(vertical(-body.mass * g, body.centre_of_gravity))
     hydro = body.hydrostatics
     if hydro is not None:
-        b = np.array([0.0, 0.0, rho * g * hydro.displaced_volume])
-        out.append((b, _cross3(R @ np.asarray(hydro.metacentre, float), b)))
-        out.append((np.array([0.0, 0.0, -rho * g * hydro.waterplane_area * origin[2]]),
-                    np.zeros(3)))
+        out.append(vertical(rho * g * hydro.displaced_volume, hydro.metacentre))
+        out.append(((0.0, 0.0, -rho * g * hydro.waterplane_area * origin[2]),
+                    (0.0, 0.0, 0.0)))
     for member in body.hull:
         volume, centroid = _member_volume(member, origin, R)
-        b = np.array([0.0, 0.0, rho * g * volume])
-        out.append((b, _cross3(R @ centroid, b)))
+        out.append(vertical(rho * g * volume, centroid))
     return out
+
+
+def _turn(R, v) -> tuple:
+    """``R @ v`` of a 3-vector, as floats."""
+    x, y, z = (float(c) for c in v)
+    return tuple(R[i, 0] * x + R[i, 1] * y + R[i, 2] * z for i in range(3))
 
 
 _GAUSS = np.polynomial.legendre.leggauss(24)

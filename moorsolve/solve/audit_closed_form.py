@@ -49,6 +49,9 @@ _B = [_COL[c] for c in ("bx", "by", "bz")]
 _FA = [_COL[c] for c in ("FAx", "FAy", "FAz")]
 _FB = [_COL[c] for c in ("FBx", "FBy", "FBz")]
 _GROUNDED = _COL["grounded"]
+#: Both ends' positions, and the forces on them, as table columns (index arrays: a list is
+#: converted at every call).
+_ENDS, _END_FORCES = np.array(_A + _B), np.array(_FA + _FB)
 
 #: Below this ratio of horizontal to vertical tension the closed forms lose digits (the
 #: catenary's parameter H/w shrinks to nothing): such a line is left to the profile audit.
@@ -122,14 +125,16 @@ def table_end_rows(table: np.ndarray) -> tuple:
     """Every line end's position and the force the line exerts on it, ``(2 n, 3)`` each,
     from the report's line table (:data:`~.problem.LINE_COLUMNS`): end A of line ``i`` in
     row ``2 i``, end B in row ``2 i + 1``."""
-    return table[:, _A + _B].reshape(-1, 3), table[:, _FA + _FB].reshape(-1, 3)
+    return (np.take(table, _ENDS, axis=1).reshape(-1, 3),
+            np.take(table, _END_FORCES, axis=1).reshape(-1, 3))
 
 
 def _columns(problem) -> tuple:
-    """Per line, the table columns of its lower end's position and force and its upper
-    end's, side by side, then its grounded length (the catenary is integrated from the
-    lower end, as each line's block is written); the seabed friction factor of its block
-    (1 or 0); whether its lower end is off the seabed."""
+    """Per line, the flat indices into the report's line table (C order) of its lower
+    end's position and force and its upper end's, side by side, then its grounded length
+    (the catenary is integrated from the lower end, as each line's block is written); the
+    seabed friction factor of its block (1 or 0); whether its lower end is off the seabed
+    (None where no line's is)."""
     hit = problem.derived.get("closed_form_columns")
     if hit is None:
         flipped = np.array([k.flipped for k in problem.kinds], bool)[:, None]
@@ -137,10 +142,30 @@ def _columns(problem) -> tuple:
         upper_first = np.array(_B + _A + _FB + _FA + [_GROUNDED])
         cols = np.where(flipped, upper_first, lower_first)
         rows = np.arange(len(problem.kinds))[:, None]
+        flat = rows * len(LINE_COLUMNS) + cols
         friction = np.array([1.0 if k.friction else 0.0 for k in problem.kinds])
         lifted = np.array([_lifted(k) for k in problem.kinds], bool)
-        hit = problem.derived["closed_form_columns"] = (rows, cols, friction, lifted)
+        hit = problem.derived["closed_form_columns"] = (flat, friction,
+                                                        lifted if lifted.any() else None)
     return hit
+
+
+#: The line-data columns of the checks' inputs (``L`` to ``depth``), per lines tuple,
+#: seabed friction and depth.
+_STATIC = LockedLRU(256)
+
+
+def _static_columns(problem, case) -> np.ndarray:
+    env = case.environment
+    key = (id(case.lines), id(problem), env.seabed.friction, env.depth)
+    hit = _STATIC.get(key)
+    if hit is not None and hit[0] is case.lines and hit[1] is problem:
+        return hit[2]
+    friction = _columns(problem)[1]
+    static = np.column_stack([_data(case.lines).columns, env.seabed.friction * friction,
+                              np.full(len(friction), float(env.depth))])
+    _STATIC.put(key, (case.lines, problem, static))
+    return static
 
 
 # ---- the checks of one line, symbolic --------------------------------------------------
@@ -303,19 +328,16 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     """``(findings, t_max)``: the per-line findings (one sentence each, prefixed with the
     leg's name) and the largest end tension [N]; findings None where a line is too steep
     for the closed forms (the profile audit must answer)."""
-    env = case.environment
-    data = _data(case.lines)
-    rows, cols, friction, lifted = _columns(problem)
+    flat, _, lifted = _columns(problem)
     # A line from an end off the seabed that touches down between its ends has two arcs:
     # the profile audit's.
-    if not np.isfinite(table).all() or (lifted & (table[:, _GROUNDED] > 0)).any():
+    if not np.isfinite(table).all() or (
+            lifted is not None and (lifted & (table[:, _GROUNDED] > 0)).any()):
         return None, 0.0
-    n = len(data.names)
+    n = len(flat)
     columns = np.empty((n, len(_INPUTS)))
-    columns[:, :13] = table[rows, cols]
-    columns[:, 13:16] = data.columns
-    columns[:, 16] = env.seabed.friction * friction
-    columns[:, 17] = env.depth
+    columns[:, :13] = np.take(table, flat)
+    columns[:, 13:18] = _static_columns(problem, case)
     columns[:, 18] = tol_rel
     out = _mapped(n)(columns)
     if not out[:, 0].all():
@@ -327,6 +349,6 @@ def closed_form_findings(problem, case, table, tol_rel: float):
         for i in bad.any(axis=1).nonzero()[0]:
             said = dict(zip(_OUTPUTS, out[i].tolist()), grounded=columns[i, 12],
                         L=columns[i, 13])
-            found += [f"leg {data.names[i]}: {_SAY[name](said)}"
+            found += [f"leg {case.lines[i].name}: {_SAY[name](said)}"
                       for name, failed in zip(_RATIOS, bad[i]) if failed]
     return found, float(out[:, 1].max())

@@ -271,8 +271,8 @@ def _may_warn(problem, case, post) -> bool:
     above the water (so their legs and profiles need not be made to find nothing)."""
     if not problem.all_single or line_facts(case).sealed:
         return True
-    # Rows of the transposed table are its columns (contiguous in the kernel's output).
-    return bool((np.atleast_2d(post["lines"]).T[_WARN_COLUMNS] > 0).any())
+    table = post["lines"]
+    return bool(np.take(table, _WARN_COLUMNS, axis=table.ndim - 1).max(initial=0.0) > 0)
 
 
 #: Solver statuses that are a success in their own terms (IPOPT's and the Newton kernel's).
