@@ -271,8 +271,11 @@ def _parameter_parts(case) -> tuple:
     of its body block. From a sibling (:func:`_sibling`) only the blocks that hold the
     constant forces, the environment's and the bodies', are made anew."""
     sibling = _sibling(case)
-    if sibling is not None:
-        p_sibling, bodies = _parameter_parts(sibling)
+    known = _values_of(sibling) if sibling is not None else None
+    # Only parts already made: asking a sibling to make its own could recurse down a chain.
+    parts = known.get(_parameter_parts.__wrapped__) if known is not None else None
+    if parts is not None:
+        p_sibling, bodies = parts
         p = p_sibling.copy()
         p[:len(layout.ENV_PARAMS)] = layout.environment_parameters(case, 1.0)
         p[bodies] = layout.body_parameters(case)

@@ -287,6 +287,17 @@ def test_a_case_differing_only_in_its_forces_derives_what_a_fresh_case_does(path
     assert prepared.case_parameters(heavier)[body][0] == heavier.bodies[0].mass
 
 
+def test_a_long_chain_of_siblings_derives_without_recursion():
+    """Cases made one after another are each other's siblings; asking the last for its
+    parameters first must not walk the chain back (a RecursionError past ~1000)."""
+    base = moorsolve.load_case(DOCK)
+    cases = [with_force(base, (1e3 * i, 0.0, 0.0)) for i in range(2500)]
+    for case in cases:
+        prepared.structure_key(case)
+    for i in (2499, 0, 1200):
+        assert prepared.case_parameters(cases[i])[6] == pytest.approx(1e3 * i)
+
+
 def test_rest_state_is_shared_by_loads_and_not_by_geometries():
     base = moorsolve.load_case(DOCK)
     a, b = with_force(base, (1e6, 0.0, 0.0)), with_force(base, (0.0, -3e6, 1e7))
