@@ -61,8 +61,7 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
             m = (arm.T @ pulls).tolist()     # m[j][k] = sum_i arm_ij pull_ik
             force = pulls.sum(axis=0).tolist()
             moment = [m[1][2] - m[2][1], m[2][0] - m[0][2], m[0][1] - m[1][0]]
-            reach = arm[:, :2]
-            radius = max(radius, math.sqrt(float(np.einsum("ij,ij->i", reach, reach).max())))
+            radius = max(radius, math.sqrt(max(x * x + y * y for x, y, _ in arm.tolist())))
         for name, load in result.loads.items():
             if len(case.bodies) > 1 and not name.startswith(body.name + "."):
                 continue

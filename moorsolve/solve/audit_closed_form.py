@@ -150,21 +150,19 @@ def _columns(problem) -> tuple:
     return hit
 
 
-#: The line-data columns of the checks' inputs (``L`` to ``depth``), per lines tuple,
-#: seabed friction and depth.
-_STATIC = LockedLRU(256)
-
-
 def _static_columns(problem, case) -> np.ndarray:
+    """The line-data columns of the checks' inputs (``L`` to ``depth``); the last made is
+    kept in the problem (one slot: a loop solves one scene's lines over and over)."""
     env = case.environment
-    key = (id(case.lines), id(problem), env.seabed.friction, env.depth)
-    hit = _STATIC.get(key)
-    if hit is not None and hit[0] is case.lines and hit[1] is problem:
+    hit = problem.derived.get("closed_form_static")
+    if hit is not None and hit[0] is case.lines and hit[1] == (env.seabed.friction,
+                                                                env.depth):
         return hit[2]
     friction = _columns(problem)[1]
     static = np.column_stack([_data(case.lines).columns, env.seabed.friction * friction,
                               np.full(len(friction), float(env.depth))])
-    _STATIC.put(key, (case.lines, problem, static))
+    problem.derived["closed_form_static"] = (case.lines, (env.seabed.friction, env.depth),
+                                             static)
     return static
 
 
@@ -283,22 +281,27 @@ class _Mapped:
         self._compiled = None
         self._lock = threading.Lock()
 
-    def __call__(self, columns: np.ndarray) -> np.ndarray:
-        """Outputs ``(k, len(_OUTPUTS))`` for inputs ``(k, len(_INPUTS))``, ``k <= n`` (the
-        rest of the ``n`` columns repeat the first line)."""
-        k, n = columns.shape[0], self.n
+    def __call__(self, table: np.ndarray, flat: np.ndarray, static: np.ndarray,
+                 tol_rel: float) -> tuple:
+        """The outputs ``(k, len(_OUTPUTS))`` of ``k <= n`` lines whose inputs are the report
+        table's entries at ``flat``, then ``static``, then ``tol_rel`` (the rest of the
+        ``n`` columns repeat the first line)."""
+        k, n = len(flat), self.n
         with self._lock:
             if self._compiled is None and self._library.ready:
                 self._compiled = self._library.instances()[0]
             lib = self._compiled
+            buffer = (lib.inputs[0] if lib is not None
+                      else np.empty(n * len(_INPUTS))).reshape(n, -1)
+            buffer[:k, :13] = table.take(flat)
+            buffer[:k, 13:18] = static
+            buffer[:k, 18] = tol_rel
+            if k < n:
+                buffer[k:] = buffer[0]
             if lib is not None:
-                buffer = lib.inputs[0].reshape(n, -1)
-                buffer[:k] = columns
-                buffer[k:] = columns[0]
                 lib()
                 return lib.output_buffer[:k * len(_OUTPUTS)].reshape(k, -1).copy()
-            padded = np.vstack([columns, np.repeat(columns[:1], n - k, axis=0)])
-            return np.asarray(self.function(padded.T), float).T[:k]
+            return np.asarray(self.function(buffer.T), float).T[:k]
 
 
 _MAPPED: dict = {}
@@ -334,21 +337,17 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     if not np.isfinite(table).all() or (
             lifted is not None and (lifted & (table[:, _GROUNDED] > 0)).any()):
         return None, 0.0
-    n = len(flat)
-    columns = np.empty((n, len(_INPUTS)))
-    columns[:, :13] = np.take(table, flat)
-    columns[:, 13:18] = _static_columns(problem, case)
-    columns[:, 18] = tol_rel
-    out = _mapped(n)(columns)
-    if not out[:, 0].all():
+    static = _static_columns(problem, case)
+    out = _mapped(len(flat))(table, flat, static, tol_rel)
+    if out[:, 0].min() < 1.0:
         return None, 0.0
-    # A defect is a ratio above 1, or not a number at all.
-    bad = ~(out[:, 2:2 + len(_RATIOS)] <= 1.0)
     found = []
-    if bad.any():
+    # A defect is a ratio above 1, or not a number at all (the largest is then NaN).
+    if not out[:, 2:2 + len(_RATIOS)].max() <= 1.0:
+        bad = ~(out[:, 2:2 + len(_RATIOS)] <= 1.0)
         for i in bad.any(axis=1).nonzero()[0]:
-            said = dict(zip(_OUTPUTS, out[i].tolist()), grounded=columns[i, 12],
-                        L=columns[i, 13])
+            said = dict(zip(_OUTPUTS, out[i].tolist()), grounded=table[i, _GROUNDED],
+                        L=static[i, 0])
             found += [f"leg {case.lines[i].name}: {_SAY[name](said)}"
                       for name, failed in zip(_RATIOS, bad[i]) if failed]
     return found, float(out[:, 1].max())
