@@ -63,13 +63,27 @@ def _values_of(case) -> dict | None:
 
 def _store(case, fn, value):
     """Memoise ``value`` as ``fn(case)``; the value kept (a racing thread's may win)."""
+    return _store_many(case, {fn: value})[fn]
+
+
+def _store_many(case, new: dict) -> dict:
+    """Memoise every ``fn: value`` of ``new`` for ``case`` (values already there win);
+    ``case``'s memoised values."""
     key = id(case)
     with _LOCK:
         entry = _TABLE.get(key)
         if entry is None or entry[0]() is not case:
             ref = weakref.ref(case, functools.partial(_forget, key))
             entry = _TABLE[key] = (ref, {})
-        return entry[1].setdefault(fn, value)
+        values = entry[1]
+        for fn, value in new.items():
+            values.setdefault(fn, value)
+        return values
+
+
+#: The functions memoised with ``load_independent=True`` (their undecorated selves).
+_LOAD_INDEPENDENT: set = set()
+_MISSING = object()
 
 
 def per_case(fn=None, *, load_independent: bool = False):
@@ -79,6 +93,8 @@ def per_case(fn=None, *, load_independent: bool = False):
     (:func:`_sibling`)."""
     if fn is None:
         return functools.partial(per_case, load_independent=load_independent)
+    if load_independent:
+        _LOAD_INDEPENDENT.add(fn)
 
     @functools.wraps(fn)
     def wrapper(case):
@@ -86,12 +102,12 @@ def per_case(fn=None, *, load_independent: bool = False):
         values = _values_of(case)
         if values is not None and fn in values:
             return values[fn]
-        if load_independent:
-            sibling = _sibling(case)
-            if sibling is not None:
-                known = _values_of(sibling)
-                if known is not None and fn in known:
-                    return _store(case, fn, known[fn])
+        if load_independent and (values is None or _SIBLING_KEY not in values):
+            # The first look for a sibling takes over everything it knows at once.
+            _sibling(case)
+            value = _values_of(case).get(fn, _MISSING)
+            if value is not _MISSING:
+                return value
         return _store(case, fn, fn(case))
 
     return wrapper
@@ -105,8 +121,9 @@ _SIBLING_KEY = "sibling"
 
 
 def _sibling(case):
-    """An earlier case whose load-independent values ``case`` may take over (it differs
-    only in the values of its bodies' constant forces), or None; found once per case."""
+    """An earlier case whose load-independent values ``case`` takes over (it differs only
+    in the values of its bodies' constant forces), or None; found once per case, when the
+    values then known of the sibling are taken over."""
     values = _values_of(case)
     if values is not None and _SIBLING_KEY in values:
         ref = values[_SIBLING_KEY]
@@ -118,8 +135,13 @@ def _sibling(case):
             and _only_forces_differ(case, newest[1]):
         found = newest[1]
     _NEWEST.put(id(lines), (lines, case))
+    taken = {}
+    if found is not None:
+        known = _values_of(found) or {}
+        taken = {fn: value for fn, value in list(known.items()) if fn in _LOAD_INDEPENDENT}
     # A weak reference: a chain of siblings must not keep every earlier case alive.
-    _store(case, _SIBLING_KEY, weakref.ref(found) if found is not None else None)
+    taken[_SIBLING_KEY] = weakref.ref(found) if found is not None else None
+    _store_many(case, taken)
     return found
 
 
