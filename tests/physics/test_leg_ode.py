@@ -128,6 +128,24 @@ def test_block_matches_the_ode_in_every_regime(leg):
     assert errors[worst] <= REL, (worst, errors, leg, ref, out)
 
 
+def test_friction_used_up_on_the_seabed_matches_the_closed_form():
+    """A leg whose seabed friction takes all its tension before the anchor: the ODE (which
+    stops at the known exhaustion point) and the block both give the closed form, the
+    catenary plus ``L_B + H^2 / (2 mu w EA)`` along the seabed. The integration used to
+    locate that point as an event, 4e-6 m off here (a hypothesis draw)."""
+    H, V, w, ea, mu = 14.063939753669327, 2.2204038347270307, 1.0, 1000.0, 1.3633519374350542
+    L = H
+    hanging = V / w
+    x = (H / w * math.asinh(V / H) + H * hanging / ea + (L - hanging)
+         + H * H / (2 * mu * w * ea))
+    leg = dict(regime="friction_exhausted", kind=LegKind(elastic=True, contact=True,
+                                                         friction=True),
+               H=H, V=V, L=L, w=w, ea=ea, mu=mu, u=H)
+    errors, ref, out = check_agreement(leg)
+    assert ref["X"] == pytest.approx(x, rel=1e-13)
+    assert max(errors.values()) <= REL, errors
+
+
 @pytest.mark.parametrize("regime", REGIMES)
 @settings(max_examples=examples(15), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
