@@ -3,7 +3,8 @@
 :func:`diagnose` turns a point that did not certify into the reasons an engineer can act
 on (a line that cannot reach, one that would break, a load the lines cannot balance, a
 solver that stopped, a segment lying along a boundary, a line too light to resolve);
-:func:`over_mbl` lists the lines above their breaking load; :func:`unbalanced_force` the
+:func:`over_mbl` lists the lines above their breaking load; :func:`pulled_straight` the
+inextensible lines whose sag double precision no longer holds; :func:`unbalanced_force` the
 residual reached.
 """
 
@@ -21,7 +22,7 @@ from .problem import LINE_COLUMNS
 from .result import Result
 from .start import end_positions
 
-__all__ = ["diagnose", "over_mbl", "unbalanced_force", "SUCCESS_STATUSES"]
+__all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCESS_STATUSES"]
 
 SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
                     STATUS_TEXT[CONVERGED])
@@ -81,6 +82,49 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
                        f"it would break: tension {tension}")
         else:
             out.append(f"leg {name} would break: tension {tension}")
+    return out
+
+
+#: Below this sag (length less chord, relative to the length) an inextensible line's shape
+#: is straight to within a few hundred units in the last place of its coordinates.
+STRAIGHT_SAG = 1e-13
+#: A chord steeper than this (horizontal span over length) hangs straight by itself.
+_VERTICAL = 1e-3
+_H, _X = LINE_COLUMNS.index("H"), LINE_COLUMNS.index("X")
+
+
+def pulled_straight(problem, case, post) -> list:
+    """``"leg NAME is pulled straight ..."`` for every one-segment inextensible line, not
+    hanging vertically, whose sag at the reported horizontal tension (its length less its
+    chord, ``w^2 X^4 / (24 H^2 L)`` for span X: Irvine's catenary to leading order) is
+    below :data:`STRAIGHT_SAG` of its length.
+
+    Such a line would need an unbounded tension to be straight: its tension is set by
+    digits double precision does not hold, so a point the certificate accepts there (by
+    the luck of the round-off) is not an answer (``tests/data/hard_cases/cannot_reach``).
+    """
+    candidates = problem.derived.get("inextensible_lines")
+    if candidates is None:
+        candidates = problem.derived["inextensible_lines"] = np.array(
+            [i for i, (line, kind) in enumerate(zip(case.lines, problem.kinds))
+             if kind.single and not line.line_type.elastic
+             and line.line_type.weight_in_water != 0], int)
+    if not len(candidates):
+        return []
+    table = np.atleast_2d(post["lines"])
+    out = []
+    for i in candidates.tolist():
+        line = case.lines[i]
+        H, X = abs(float(table[i, _H])), abs(float(table[i, _X]))
+        L, w = line.length, line.line_type.weight_in_water
+        if H <= 0 or X <= _VERTICAL * L:
+            continue
+        sag = (w * X * X / H) ** 2 / (24.0 * L)
+        if sag < STRAIGHT_SAG * L:
+            out.append(f"leg {line.name} is pulled straight: at {H / 1e3:.4g} kN its "
+                       f"{L:.6g} m would exceed its chord by {sag:.2g} m, below what double "
+                       "precision resolves; an inextensible line would need an unbounded "
+                       "tension; give the line type an ea")
     return out
 
 

@@ -33,7 +33,7 @@ from ..errors import ConvergenceError
 from ..model import Case
 from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
-from .diagnosis import SUCCESS_STATUSES, diagnose, over_mbl, unbalanced_force
+from .diagnosis import SUCCESS_STATUSES, diagnose, over_mbl, pulled_straight, unbalanced_force
 from .audit import audit as audit_result
 from .audit import result_warnings
 from .newton import STATUS_TEXT
@@ -221,7 +221,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             if x is not x_found:
                 post = problem.post(_finite(x), p_full)
                 certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
-        outside = hull_out_of_range(problem, x, p_full, post) if certified else []
+        outside = (hull_out_of_range(problem, x, p_full, post)
+                   + pulled_straight(problem, case, post)) if certified else []
         elapsed = time.perf_counter() - t0
         stats["status"] = explain_status(stats["status"], certified,
                                          stats.get("polish_steps", 0))

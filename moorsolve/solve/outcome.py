@@ -84,8 +84,10 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
     bodies = []
     for bi, body in enumerate(case.bodies):
         q = poses[6 * bi: 6 * bi + 6]
-        q0 = [*body.position, *(math.radians(a) for a in body.orientation_deg)]
-        d = [a - b for a, b in zip(q, q0)]
+        roll0, pitch0, yaw0 = body.orientation_deg
+        d = [q[0] - body.position[0], q[1] - body.position[1], q[2] - body.position[2],
+             q[3] - math.radians(roll0), q[4] - math.radians(pitch0),
+             q[5] - math.radians(yaw0)]
         bodies.append({"name": body.name, "x_m": q[0], "y_m": q[1], "z_m": q[2],
                        "roll_deg": math.degrees(q[3]), "pitch_deg": math.degrees(q[4]),
                        "yaw_deg": wrap_degrees(math.degrees(q[5])),

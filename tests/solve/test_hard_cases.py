@@ -12,6 +12,9 @@ import pytest
 import yaml
 
 from moorsolve import ConvergenceError, load_case, solve
+from moorsolve.solve.cache import get_problem
+from moorsolve.solve.diagnosis import pulled_straight
+from moorsolve.solve.problem import LINE_COLUMNS
 from conftest import ROOT
 
 CASES = ROOT / "cases"
@@ -233,6 +236,31 @@ def test_inextensible_mooring_pulled_straight_is_explained():
         assert_certified(taut)
         west = taut.leg("W")
         assert 1 - 1e-9 < math.dist(west.anchor, west.fairlead) / 50.0 <= 1
+
+
+def test_inextensible_line_straighter_than_double_precision_is_refused_even_certified():
+    """Whether a solver certifies a point where an inextensible line's length exceeds its
+    chord by less than double precision resolves is round-off luck (numpy 2.4's OpenBLAS
+    certifies tests/data/hard_cases/cannot_reach.yaml): such a point is refused by rule,
+    and a line double precision still resolves, or one hanging vertically, is not."""
+    case = buoy_with_force(1e12)
+    problem = get_problem(case)
+    table = np.zeros((len(case.lines), len(LINE_COLUMNS)))
+    w = case.lines[0].line_type.weight_in_water
+    west = [line.name for line in case.lines].index("W")
+
+    def straight(H, X):
+        table[west, LINE_COLUMNS.index("H")] = H
+        table[west, LINE_COLUMNS.index("X")] = X
+        return pulled_straight(problem, case, {"lines": table})
+
+    assert "leg W is pulled straight" in " ".join(straight(1e12, 44.9))
+    # Length less chord w^2 X^4 / (24 H^2 L): 1e-11 of the length at 5e8 N (resolved).
+    assert (w * 44.9 ** 2 / 5e8) ** 2 / 24 / 50.0 ** 2 > 1e-12
+    assert straight(5e8, 44.9) == [] and straight(5e7, 44.9) == []
+    assert straight(1e12, 0.01) == []          # hanging vertically: straight by itself
+    with pytest.raises(ConvergenceError, match="leg W is pulled straight"):
+        solve(case)
 
 
 def test_allow_overload_returns_the_equilibrium():
