@@ -15,6 +15,9 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 # The suite compares compiled kernels with the reference: each first solve waits for its
 # compile (the default compiles in the background; tests/solve/test_compile.py checks that).
 os.environ.setdefault("MOORSOLVE_COMPILE", "wait")
+# ... at -O0: a quarter of -O2's compile time (most of a cold suite's), and the same IEEE
+# arithmetic (the libraries are cached apart from the -O2 ones benchmarks and users get).
+os.environ.setdefault("MOORSOLVE_COMPILE_OPT", "-O0")
 
 TESTS = Path(__file__).resolve().parent
 ROOT = TESTS.parent
