@@ -116,8 +116,9 @@ def per_case(fn=None, *, load_independent: bool = False):
 #: Per lines tuple, the newest case seen on it (a strong reference: a loop's previous case
 #: is usually freed before the next is made).
 _NEWEST = LockedLRU(64)
-#: The key of a case's sibling (or None) among its memoised values.
-_SIBLING_KEY = "sibling"
+#: The keys of a case's sibling (a weak reference, or None) and of the sibling's parameter
+#: parts (:func:`_parameter_parts`) among its memoised values.
+_SIBLING_KEY, _SIBLING_PARTS_KEY = "sibling", "sibling parameters"
 
 
 def _sibling(case):
@@ -139,6 +140,11 @@ def _sibling(case):
     if found is not None:
         known = _values_of(found) or {}
         taken = {fn: value for fn, value in list(known.items()) if fn in _LOAD_INDEPENDENT}
+        # Its parameter vector too, to be remade in its force blocks only: the sibling
+        # itself is usually freed next (a loop's previous case).
+        parts = known.get(_PARTS_KEY)
+        if parts is not None:
+            taken[_SIBLING_PARTS_KEY] = parts
     # A weak reference: a chain of siblings must not keep every earlier case alive.
     taken[_SIBLING_KEY] = weakref.ref(found) if found is not None else None
     _store_many(case, taken)
@@ -292,10 +298,9 @@ def _parameter_parts(case) -> tuple:
     """``(p, body_block)``: the parameter vector at load factor 1 (read-only) and the slice
     of its body block. From a sibling (:func:`_sibling`) only the blocks that hold the
     constant forces, the environment's and the bodies', are made anew."""
-    sibling = _sibling(case)
-    known = _values_of(sibling) if sibling is not None else None
-    # Only parts already made: asking a sibling to make its own could recurse down a chain.
-    parts = known.get(_parameter_parts.__wrapped__) if known is not None else None
+    _sibling(case)
+    # Only parts the sibling had made: asking it to make its own could recurse down a chain.
+    parts = _values_of(case).get(_SIBLING_PARTS_KEY)
     if parts is not None:
         p_sibling, bodies = parts
         p = p_sibling.copy()
@@ -322,6 +327,10 @@ def _parameter_parts(case) -> tuple:
                         layout.point_parameters(case), layout.contact_parameters(case), laws])
     p.setflags(write=False)
     return p, slice(start, start + len(body_block))
+
+
+#: How :func:`_parameter_parts` is memoised (its undecorated self).
+_PARTS_KEY = _parameter_parts.__wrapped__
 
 
 def _parameters(case) -> np.ndarray:
