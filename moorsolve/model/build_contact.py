@@ -79,7 +79,8 @@ def _wall(raw, path: str) -> Wall:
                                "be [nx, ny, nz]")
     normal = np.array([quantity(v, field_path(npath, i), "dimensionless")
                        for i, v in enumerate(items)])
-    size = float(np.linalg.norm(normal))
+    # hypot: a huge component must not overflow the length to inf (and the normal to 0).
+    size = math.hypot(*normal.tolist())
     if not size > 0:
         raise CaseError(npath, f"{show_value(m['normal'])} has zero length; give the wall's "
                                "outward normal (from the wall toward the water)")

@@ -306,7 +306,7 @@ def _pretensioned_length(segments: tuple, path: str, a: End, b: End, bodies: dic
         raise CaseError(field_path(path, 0), "a pretension gives the length of a one-segment "
                                              "line; give the segments of this line lengths")
     seg = segments[0]
-    distance = float(np.linalg.norm(end_position(a, bodies) - end_position(b, bodies)))
+    distance = math.dist(end_position(a, bodies), end_position(b, bodies))
     if not distance > 0:
         raise CaseError(field_path(field_path(path, 0), "pretension"),
                         "the line's ends coincide at the case-file pose; a pretension cannot "

@@ -316,6 +316,14 @@ def test_a_wall_normal_of_zero_length_is_refused():
     assert err.value.field == "walls[0].normal" and "zero length" in str(err.value)
 
 
+def test_a_wall_normal_of_huge_components_is_made_unit_not_zero():
+    """Its length must not overflow to inf (the fuzz test's "overflow in dot"): that made
+    the unit normal zero."""
+    data = berth([-F, 0, 0])
+    data["walls"][0]["normal"] = [1e300, 0, 0]
+    assert load_case(data).contacts.walls[0].normal == (1.0, 0.0, 0.0)
+
+
 def test_a_reaction_table_that_does_not_increase_is_refused():
     data = berth([-F, 0, 0], reaction={"table": [[0.1, "150 kN"], [0.3, "600 kN"],
                                                  [0.4, "550 kN"]]})
