@@ -205,10 +205,12 @@ class ParameterLayout:
 
     def load_mask(self) -> np.ndarray:
         """True for every entry that only scales with the load factor (flow speeds and
-        headings, wave height, constant forces): the rest state does not depend on them."""
+        headings, wave height, constant forces): the rest state does not depend on them.
+        Not the water level (a tide), which moves the rest state itself."""
         mask = np.zeros(self.size, dtype=bool)
         for name, s in self.names.items():
-            if name.startswith("env.") and name != "env.load_factor" or \
+            if name.startswith("env.") and name not in ("env.load_factor",
+                                                        "env.water_level") or \
                     name.startswith("body[") and name.endswith("].force"):
                 mask[s] = True
         return mask

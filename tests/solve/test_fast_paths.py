@@ -320,6 +320,18 @@ def test_rest_state_is_shared_by_loads_and_not_by_geometries():
                        moorsolve.solve(longer, solver="newton"), 1e-12)
 
 
+def test_a_tide_is_geometry_not_load():
+    """The water level moves the rest state (a floating body rises with it): two cases
+    differing in it alone must not share a rest state, as two loads do."""
+    base = with_force(moorsolve.load_case(SPAR), (6e5, 0.0, 0.0, 0.0, 0.0, 0.0))
+    tide = dataclasses.replace(base, environment=dataclasses.replace(
+        base.environment, water_level=2.0))
+    problem = get_problem(base)
+    assert get_problem(tide) is problem
+    assert prepared.geometry_key(base) != prepared.geometry_key(tide)
+    assert not np.array_equal(rest_point(problem, base, 1e-9), rest_point(problem, tide, 1e-9))
+
+
 # ---- the Newton path over the whole yaw range ---------------------------------------------
 
 
