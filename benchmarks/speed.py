@@ -18,6 +18,7 @@ Sections:
    OC4-DeepCwind semi and the IEA-15 MW VolturnUS-S (surge, sway, yaw), the OC3 spar (six
    DOFs) and the OC3 spar held (only its three lines solved); columns Newton and IPOPT, each
    with the audit (the default) and without (``audit=False``), and the compiled kernel alone;
+   timed in rounds that interleave MoorPy and every column (:data:`ROUNDS`);
 3. a load table: 10,000 distinct constant loads on the dock through
    ``moorsolve.sweep(case, table=...)`` on two threads, per point against MoorPy per load;
    peak memory in a fresh process;
@@ -148,18 +149,14 @@ COLUMNS = {
 }
 
 
-def time_solves(case, make, loads, options) -> dict:
-    moorsolve.solve(make(case, loads[0]), **options)         # build (and compile) first
-    wait_steady(make(case, loads[0]))
+def time_solves(case, make, loads, options, clock: Clock) -> None:
     cases = [make(case, load) for load in loads]
-    clock = Clock()
     for c in cases:
         with clock:
             moorsolve.solve(c, **options)
-    return clock.medians()
 
 
-def time_kernel(case, make, loads) -> dict:
+def time_kernel(case, make, loads, clock: Clock) -> None:
     from moorsolve.solve.cache import get_problem
     from moorsolve.solve.equilibrium import rest_point
     cases = [make(case, load) for load in loads]
@@ -168,15 +165,12 @@ def time_kernel(case, make, loads) -> dict:
     kernel.wait_compiled()
     x0 = rest_point(problem, cases[0], 1e-9, kernel)
     params = [problem.parameters(c) for c in cases]
-    clock = Clock()
     for p in params:
         with clock:
             kernel.raw(x0, p, 1e-9)
-    return clock.medians()
 
 
-def time_moorpy(case, make, loads, kind) -> dict:
-    clock = Clock()
+def time_moorpy(case, make, loads, kind, clock: Clock) -> None:
     if kind == "legs":
         peer = moorpy_system(make(case, loads[0]), tol=MOORPY_TOL)
         for load in loads:
@@ -189,7 +183,6 @@ def time_moorpy(case, make, loads, kind) -> dict:
             scene = NetworkScene(make(case, load))
             with clock:
                 scene.solve(tol=MOORPY_TOL, maxIter=2000)
-    return clock.medians()
 
 
 def wait_steady(case) -> None:
@@ -205,15 +198,29 @@ def wait_steady(case) -> None:
     audit_closed_form.wait_compiled(len(case.lines))
 
 
+#: Rounds of a scene's single solves: each times MoorPy, the kernel and every column on
+#: every ROUNDS-th load, so a drift of the machine's speed (tens of per cent within a minute
+#: on a shared machine) falls on the peer and on moorsolve alike.
+ROUNDS = 6
+
+
 def single_solves(n_loads: int) -> dict:
     out = {}
     rng = np.random.default_rng(SEED)
     for name, (case, make, draw, kind) in scenes().items():
         loads = draw_loads(case, make, draw, n_loads, rng)
-        row = {"moorpy": time_moorpy(case, make, loads, kind), "loads": len(loads)}
-        row["kernel"] = time_kernel(case, make, loads)
-        for column, options in COLUMNS.items():
-            row[column] = time_solves(case, make, loads, options)
+        for options in COLUMNS.values():                 # build (and compile) first
+            moorsolve.solve(make(case, loads[0]), **options)
+        wait_steady(make(case, loads[0]))
+        clocks = {column: Clock() for column in ("moorpy", "kernel", *COLUMNS)}
+        for k in range(ROUNDS):
+            part = loads[k::ROUNDS]
+            time_moorpy(case, make, part, kind, clocks["moorpy"])
+            time_kernel(case, make, part, clocks["kernel"])
+            for column, options in COLUMNS.items():
+                time_solves(case, make, part, options, clocks[column])
+        row = {column: clock.medians() for column, clock in clocks.items()}
+        row["loads"] = len(loads)
         for column in ("kernel", *COLUMNS):
             row[column]["ratio"] = ratios(row["moorpy"], row[column])
         out[name] = row
