@@ -282,7 +282,7 @@ class _Mapped:
         self._lock = threading.Lock()
 
     def __call__(self, table: np.ndarray, flat: np.ndarray, static: np.ndarray,
-                 tol_rel: float) -> tuple:
+                 tol_rel: float) -> np.ndarray:
         """The outputs ``(k, len(_OUTPUTS))`` of ``k <= n`` lines whose inputs are the report
         table's entries at ``flat``, then ``static``, then ``tol_rel`` (the rest of the
         ``n`` columns repeat the first line)."""

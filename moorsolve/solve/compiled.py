@@ -52,6 +52,9 @@ _FLAGS = ("-O2", "-fPIC", "-shared")
 _LARGE_SOURCE = 1_500_000
 #: Optimisation levels ``MOORSOLVE_COMPILE_OPT`` may set instead of the size-based one.
 OPT_LEVELS = ("-O0", "-O1", "-O2", "-O3")
+_LOCK = threading.Lock()
+_LOADED: dict[str, ctypes.CDLL] = {}
+MODES = ("background", "wait", "off")
 
 
 def _opt_override() -> str:
@@ -59,9 +62,6 @@ def _opt_override() -> str:
     test suite compiles at -O0: a quarter of the compile time, the same IEEE arithmetic."""
     level = os.environ.get("MOORSOLVE_COMPILE_OPT", "").strip()
     return level if level in OPT_LEVELS else ""
-_LOCK = threading.Lock()
-_LOADED: dict[str, ctypes.CDLL] = {}
-MODES = ("background", "wait", "off")
 
 
 def cache_dir() -> Path:

@@ -103,28 +103,28 @@ def pulled_straight(problem, case, post) -> list:
     digits double precision does not hold, so a point the certificate accepts there (by
     the luck of the round-off) is not an answer (``tests/data/hard_cases/cannot_reach``).
     """
+    # Which lines can be is the problem's structure (the kinds say elastic and neutral).
     candidates = problem.derived.get("inextensible_lines")
     if candidates is None:
-        candidates = problem.derived["inextensible_lines"] = np.array(
-            [i for i, (line, kind) in enumerate(zip(case.lines, problem.kinds))
-             if kind.single and not line.line_type.elastic
-             and line.line_type.weight_in_water != 0], int)
-    if not len(candidates):
+        candidates = problem.derived["inextensible_lines"] = [
+            i for i, kind in enumerate(problem.kinds)
+            if kind.single and not kind.block.elastic and not kind.block.neutral]
+    if not candidates:
         return []
     table = np.atleast_2d(post["lines"])
     out = []
-    for i in candidates.tolist():
+    for i in candidates:
         line = case.lines[i]
         H, X = abs(float(table[i, _H])), abs(float(table[i, _X]))
         L, w = line.length, line.line_type.weight_in_water
         if H <= 0 or X <= _VERTICAL * L:
             continue
-        sag = (w * X * X / H) ** 2 / (24.0 * L)
-        if sag < STRAIGHT_SAG * L:
+        excess = (w * X * X / H) ** 2 / (24.0 * L)          # length less chord
+        if excess < STRAIGHT_SAG * L:
             out.append(f"leg {line.name} is pulled straight: at {H / 1e3:.4g} kN its "
-                       f"{L:.6g} m would exceed its chord by {sag:.2g} m, below what double "
-                       "precision resolves; an inextensible line would need an unbounded "
-                       "tension; give the line type an ea")
+                       f"{L:.6g} m would exceed its chord by {excess:.2g} m, below what "
+                       "double precision resolves; an inextensible line would need an "
+                       "unbounded tension; give the line type an ea")
     return out
 
 
