@@ -241,8 +241,8 @@ def test_inextensible_mooring_pulled_straight_is_explained():
 def test_inextensible_line_straighter_than_double_precision_is_refused_even_certified():
     """Whether a solver certifies a point where an inextensible line's length exceeds its
     chord by less than double precision resolves is round-off luck (numpy 2.4's OpenBLAS
-    certifies tests/data/hard_cases/cannot_reach.yaml): such a point is refused by rule,
-    and a line double precision still resolves, or one hanging vertically, is not."""
+    certifies tests/data/hard_cases/cannot_reach.yaml on some CPUs): such a point is refused
+    by rule, and a line double precision still resolves, or one hanging vertically, is not."""
     case = buoy_with_force(1e12)
     problem = get_problem(case)
     table = np.zeros((len(case.lines), len(LINE_COLUMNS)))
@@ -259,7 +259,10 @@ def test_inextensible_line_straighter_than_double_precision_is_refused_even_cert
     assert (w * 44.9 ** 2 / 5e8) ** 2 / 24 / 50.0 ** 2 > 1e-12
     assert straight(5e8, 44.9) == [] and straight(5e7, 44.9) == []
     assert straight(1e12, 0.01) == []          # hanging vertically: straight by itself
-    with pytest.raises(ConvergenceError, match="leg W is pulled straight"):
+    # End to end, whether the solver reaches the near-straight point at all is round-off
+    # luck too (it does on some CPUs' OpenBLAS kernels; on an AMD EPYC with AVX-512 IPOPT
+    # runs away to a point where W cannot reach): never an answer, always leg W named.
+    with pytest.raises(ConvergenceError, match="leg W (is pulled straight|cannot reach)"):
         solve(case)
 
 
