@@ -24,8 +24,11 @@ from .start import end_positions
 
 __all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCESS_STATUSES"]
 
+#: The status of a scene with nothing free whose lines' remembered state certifies as it
+#: stands (:func:`~.equilibrium.rest_point`): there is nothing for IPOPT to do.
+START_CERTIFIED = "the remembered state of the lines certifies; IPOPT not needed"
 SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
-                    STATUS_TEXT[CONVERGED])
+                    STATUS_TEXT[CONVERGED], START_CERTIFIED)
 
 
 def unbalanced_force(problem, x, p) -> float:

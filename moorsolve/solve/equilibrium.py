@@ -33,7 +33,8 @@ from ..errors import ConvergenceError
 from ..model import Case
 from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
-from .diagnosis import SUCCESS_STATUSES, diagnose, over_mbl, pulled_straight, unbalanced_force
+from .diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, pulled_straight,
+                        unbalanced_force)
 from .audit import audit as audit_result
 from .audit import result_warnings
 from .newton import STATUS_TEXT
@@ -84,10 +85,13 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     (seen at 36.5 deg yaw instead of 20.8 deg under a large couple, issue 7). Solved once
     per problem and parameters and remembered: by the Newton ``kernel`` when the caller
     has one and it certifies (building an IPOPT solver costs seconds for hundreds of
-    lines), else with IPOPT; the closed-form state when the scene has nothing free or no
-    loads, or when the rest state does not certify.
+    lines), else with IPOPT; the closed-form state when the scene has free bodies or points
+    but no loads (its one solve is the rest solve), or when the rest state does not certify.
+    With nothing free the lines' solved state is remembered too: no body load moves a held
+    fairlead, so every loaded solve starts at (or, with a current on lumped lines, next to)
+    its answer.
     """
-    if not (problem.n_q and problem.load_names):
+    if problem.n_q and not problem.load_names:
         return initial_point(problem, case)
     # At load factor 0 nothing acts through the loads: one rest state per geometry (a
     # lumped line's start is drawn under its current, so there all parameters count).
@@ -373,6 +377,11 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     def run(x0, p):
         if time.perf_counter() >= deadline:
             return x0, False
+        if not problem.n_q and problem.ipopt_solvers.certify(x0, p, tol):
+            # Nothing free: the lines' remembered state is the answer whatever the body
+            # loads; an IPOPT call would spend its setup to return it unchanged.
+            stats["status"] = START_CERTIFIED
+            return x0, True
         # Each IPOPT run is capped at the whole budget; the deadline check above stops
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)

@@ -188,6 +188,32 @@ def test_held_body_on_three_lines_newton_equals_ipopt():
                            1e-9)
 
 
+def test_held_body_lines_state_is_remembered_and_never_stale():
+    """With nothing free no body load moves a fairlead: the lines' solved state is
+    remembered per geometry, so later solves start at their answer (no iteration, no IPOPT
+    call), and a geometry change (the body held elsewhere) solves afresh."""
+    from moorsolve.solve.diagnosis import START_CERTIFIED
+    spar = moorsolve.load_case(SPAR)
+    held = dataclasses.replace(spar, bodies=(dataclasses.replace(spar.bodies[0], free=()),))
+    first = {s: moorsolve.solve(with_force(held, (1e5, 0, 0, 0, 0, 0)), solver=s)
+             for s in ("ipopt", "newton")}
+    for load in random_loads(3, 1e6, 1e6, six=True, seed=5):
+        for solver, reference in first.items():
+            result = moorsolve.solve(with_force(held, load), solver=solver)
+            assert result.certificate.iterations == 0
+            if solver == "ipopt":
+                assert result.certificate.status == START_CERTIFIED
+            assert_same_answer(reference, result, 1e-12)
+    body = held.bodies[0]
+    moved = dataclasses.replace(body, position=(body.position[0] + 5.0, *body.position[1:]))
+    elsewhere = with_force(dataclasses.replace(held, bodies=(moved,)), (1e5, 0, 0, 0, 0, 0))
+    for solver, reference in first.items():
+        result = moorsolve.solve(elsewhere, solver=solver)
+        assert all(a.fairlead_tension_N != pytest.approx(b.fairlead_tension_N, rel=1e-3)
+                   for a, b in zip(result.legs, reference.legs))
+        assert_same_answer(result, moorsolve.solve(elsewhere, solver="ipopt"), 1e-9)
+
+
 # ---- lazy legs and profiles ----------------------------------------------------------------
 
 
