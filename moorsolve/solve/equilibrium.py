@@ -77,6 +77,15 @@ def run_ipopt(problem, solver, x0, p, lb, ub, stats) -> np.ndarray:
     return x
 
 
+def _rest_key(problem, case: Case) -> tuple:
+    """``(p_rest or None, key)``: the start cache's key of ``case``'s rest state. At load
+    factor 0 nothing acts through the loads: one rest state per geometry (a lumped line's
+    start is drawn under its current, so there all parameters count, ``p_rest`` given)."""
+    p_rest = problem.parameters(case, 0.0) if problem.any_discrete else None
+    return p_rest, b"rest:" + (p_rest.tobytes() if problem.any_discrete
+                               else geometry_key(case)[1])
+
+
 def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     """The unloaded (pretensioned) equilibrium, the start of every loaded solve.
 
@@ -87,20 +96,21 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     has one and it certifies (building an IPOPT solver costs seconds for hundreds of
     lines), else with IPOPT; the closed-form state when the scene has free bodies or points
     but no loads (its one solve is the rest solve), or when the rest state does not certify.
-    With nothing free the lines' solved state is remembered too: no body load moves a held
-    fairlead, so every loaded solve starts at (or, with a current on lumped lines, next to)
-    its answer.
+
+    With nothing free no body load moves a fairlead: the lines' state a solve certified
+    (:func:`_remember_lines`) is the start of the next, which it then is the answer of (or,
+    with a current on lumped lines, next to). It is not solved here, so a first solve
+    reports its own solver's work.
     """
     if problem.n_q and not problem.load_names:
         return initial_point(problem, case)
-    # At load factor 0 nothing acts through the loads: one rest state per geometry (a
-    # lumped line's start is drawn under its current, so there all parameters count).
-    p_rest = problem.parameters(case, 0.0) if problem.any_discrete else None
-    key = b"rest:" + (p_rest.tobytes() if problem.any_discrete else geometry_key(case)[1])
+    p_rest, key = _rest_key(problem, case)
     with problem.lock:
         cached = problem.start_cache.get(key)
         if cached is not None:
             return cached.copy()
+        if not problem.n_q:
+            return initial_point(problem, case)
         if p_rest is None:
             p_rest = problem.parameters(case, 0.0)
         # Only a rest state not yet solved needs the closed-form start.
@@ -108,7 +118,7 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
         if kernel is not None:
             out = kernel.solve(x0, p_rest, tol)
             if _kernel_certified(problem, out, tol):
-                problem.start_cache[key] = out["x"]
+                problem.keep_start(key, out["x"])
                 return out["x"].copy()
         lb, ub = problem.bounds()
         opts = case.solver
@@ -116,8 +126,14 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
         x = run_ipopt(problem, solver, x0, p_rest, lb, ub, {"iterations": 0})
         x, certified = polish_certified(problem, x, p_rest, lb, ub, {"iterations": 0}, tol)
         x = x if certified else x0
-        problem.start_cache[key] = x
+        problem.keep_start(key, x)
     return x.copy()
+
+
+def _remember_lines(problem, case: Case, x: np.ndarray) -> None:
+    """Keep the certified state ``x`` of a scene with nothing free as the start of its
+    next solve (:func:`rest_point`)."""
+    problem.keep_start(_rest_key(problem, case)[1], np.array(x, dtype=float))
 
 
 def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
@@ -227,6 +243,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                 certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
         outside = (hull_out_of_range(problem, x, p_full, post)
                    + pulled_straight(problem, case, post)) if certified else []
+        if certified and not outside and not problem.n_q and _planes is None:
+            _remember_lines(problem, case, x)
         elapsed = time.perf_counter() - t0
         stats["status"] = explain_status(stats["status"], certified,
                                          stats.get("polish_steps", 0))

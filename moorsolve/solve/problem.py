@@ -481,9 +481,21 @@ class EquilibriumProblem(Certification, SolverAccess):
         return dict(speed=E["current_speed"], toward=E["current_toward"], profile=profile,
                     headings=headings, factor=E["load_factor"])
 
+    def keep_start(self, key: bytes, x: np.ndarray) -> None:
+        """Remember the start ``x`` under ``key`` in :attr:`start_cache` (at most
+        :data:`_STARTS_KEPT`, the oldest dropped: a sweep over geometries adds one each)."""
+        with self._lock:
+            if key not in self.start_cache and len(self.start_cache) >= _STARTS_KEPT:
+                self.start_cache.pop(next(iter(self.start_cache)))
+            self.start_cache[key] = x
+
     def parameters(self, case: Case, load_factor: float = 1.0) -> np.ndarray:
         """The parameter vector of ``case`` (same structure) for this problem."""
         return parameter_vector(case, load_factor, self.kinds)
+
+
+#: Starting points a problem remembers (:meth:`EquilibriumProblem.keep_start`).
+_STARTS_KEPT = 64
 
 
 def _blockwise_jacobian(g, x, sizes):

@@ -331,8 +331,5 @@ def initial_point(problem, case: Case) -> np.ndarray:
             block = [u, V]
         x[start: start + len(block)] = block
     x = x / problem.x_scale
-    with problem.lock:
-        if len(problem.start_cache) >= 64:
-            problem.start_cache.pop(next(iter(problem.start_cache)))
-        problem.start_cache[key] = x
+    problem.keep_start(key, x)
     return x.copy()

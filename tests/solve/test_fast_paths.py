@@ -189,29 +189,34 @@ def test_held_body_on_three_lines_newton_equals_ipopt():
 
 
 def test_held_body_lines_state_is_remembered_and_never_stale():
-    """With nothing free no body load moves a fairlead: the lines' solved state is
-    remembered per geometry, so later solves start at their answer (no iteration, no IPOPT
-    call), and a geometry change (the body held elsewhere) solves afresh."""
+    """With nothing free no body load moves a fairlead: the lines' state a solve certified
+    is remembered per geometry, so later solves start at their answer (no iteration, no
+    IPOPT call); the first solve reports its own solver's work, and a geometry change (the
+    body held elsewhere) solves afresh."""
     from moorsolve.solve.diagnosis import START_CERTIFIED
     spar = moorsolve.load_case(SPAR)
-    held = dataclasses.replace(spar, bodies=(dataclasses.replace(spar.bodies[0], free=()),))
-    first = {s: moorsolve.solve(with_force(held, (1e5, 0, 0, 0, 0, 0)), solver=s)
-             for s in ("ipopt", "newton")}
+
+    def held_at(dx):      # a geometry of this test's own: none solved before it
+        body = spar.bodies[0]
+        return dataclasses.replace(spar, bodies=(dataclasses.replace(
+            body, free=(), position=(body.position[0] + dx, *body.position[1:])),))
+
+    held = held_at(1.25)
+    fresh = moorsolve.solve(with_force(held, (1e5, 0, 0, 0, 0, 0)))
+    assert fresh.certificate.iterations > 0 and fresh.certificate.status != START_CERTIFIED
     for load in random_loads(3, 1e6, 1e6, six=True, seed=5):
-        for solver, reference in first.items():
+        for solver in ("ipopt", "newton"):
             result = moorsolve.solve(with_force(held, load), solver=solver)
             assert result.certificate.iterations == 0
             if solver == "ipopt":
                 assert result.certificate.status == START_CERTIFIED
-            assert_same_answer(reference, result, 1e-12)
-    body = held.bodies[0]
-    moved = dataclasses.replace(body, position=(body.position[0] + 5.0, *body.position[1:]))
-    elsewhere = with_force(dataclasses.replace(held, bodies=(moved,)), (1e5, 0, 0, 0, 0, 0))
-    for solver, reference in first.items():
-        result = moorsolve.solve(elsewhere, solver=solver)
-        assert all(a.fairlead_tension_N != pytest.approx(b.fairlead_tension_N, rel=1e-3)
-                   for a, b in zip(result.legs, reference.legs))
-        assert_same_answer(result, moorsolve.solve(elsewhere, solver="ipopt"), 1e-9)
+            assert_same_answer(fresh, result, 1e-12)
+    elsewhere = with_force(held_at(6.25), (1e5, 0, 0, 0, 0, 0))
+    newton = moorsolve.solve(elsewhere, solver="newton")
+    assert newton.certificate.iterations > 0
+    assert all(a.fairlead_tension_N != pytest.approx(b.fairlead_tension_N, rel=1e-3)
+               for a, b in zip(newton.legs, fresh.legs))
+    assert_same_answer(newton, moorsolve.solve(elsewhere, solver="ipopt"), 1e-9)
 
 
 # ---- lazy legs and profiles ----------------------------------------------------------------
