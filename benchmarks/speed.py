@@ -291,7 +291,9 @@ def load_table(n_rows: int, n_peer: int) -> dict:
                          "newton": int((result["solver"] == "newton").sum())}
     loads = [tuple(1e3 * v for v in row) for row in table.head(n_peer).itertuples(index=False)]
     base = with_constant_force(case, (0, 0, 0))
-    peer = time_moorpy(base, with_constant_force, loads, "legs")
+    clock = Clock()
+    time_moorpy(base, with_constant_force, loads, "legs", clock)
+    peer = clock.medians()
     mem = _subprocess_json(TABLE_MEMORY.format(paths=[str(HERE), str(ROOT)], n=n_rows))
     out = {"rows": n_rows, "threads": runs, "moorpy_per_load": peer, "memory": mem}
     per_point = runs[2]["wall_s"] / n_rows
@@ -389,7 +391,9 @@ def scaling(sizes, budget_s: float, moorpy_max: int) -> list:
             case = ring_case(n)
             force = case.body.loads.force
             loads = [tuple(f * (0.6 + 0.4 * k / 2) for f in force) for k in range(3)]
-            row["moorpy_s"] = time_moorpy(case, with_constant_force, loads, "legs")["wall_s"]
+            clock = Clock()
+            time_moorpy(case, with_constant_force, loads, "legs", clock)
+            row["moorpy_s"] = clock.medians()["wall_s"]
         rows.append(row)
         compile_note = (f"{_ms(row['compiled_s'])} compiled (compile ready {row['ready']} "
                         f"after {row['compile_wait_s']:.1f} s more)" if row["compiles"]

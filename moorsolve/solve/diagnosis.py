@@ -25,8 +25,9 @@ from .start import end_positions
 __all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCESS_STATUSES"]
 
 #: The status of a scene with nothing free whose lines' remembered state certifies as it
-#: stands (:func:`~.equilibrium.rest_point`): there is nothing for IPOPT to do.
-START_CERTIFIED = "the remembered state of the lines certifies; IPOPT not needed"
+#: stands (:func:`~.equilibrium.rest_point`): there is nothing for a solver to do.
+START_CERTIFIED = ("nothing free: the lines' remembered state certifies as it stands; no "
+                   "solver called")
 SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
                     STATUS_TEXT[CONVERGED], START_CERTIFIED)
 

@@ -130,6 +130,23 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
     return x.copy()
 
 
+def _remembered_answer(problem, case: Case, p, tol: float, start) -> tuple:
+    """``(x, post)``: with nothing free and no ``start``, the lines' remembered state
+    (:func:`_remember_lines`) with :meth:`EquilibriumProblem.post` at it where it
+    certifies at ``p`` as it stands (no body load moves a held fairlead, so it does
+    unless a current drags lumped lines); else ``(None, None)``. Neither solver is called
+    for an answer already known: the certificate decides, as for any point."""
+    if problem.n_q or start is not None:
+        return None, None
+    with problem.lock:
+        x = problem.start_cache.get(_rest_key(problem, case)[1])
+    if x is None:
+        return None, None
+    x = x.copy()
+    post = problem.post(x, p)
+    return (x, post) if _judge(problem, x, post, tol)[0] else (None, None)
+
+
 def _remember_lines(problem, case: Case, x: np.ndarray) -> None:
     """Keep the certified state ``x`` of a scene with nothing free as the start of its
     next solve (:func:`rest_point`)."""
@@ -211,8 +228,12 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         t0 = time.perf_counter()
         stats = dict(iterations=0, status="not run")
         notes = []
-        x, used = None, "ipopt"
-        if kernel is not None:
+        x, post = (_remembered_answer(problem, case, p_full, tol, start) if _planes is None
+                   else (None, None))
+        used = solver if x is not None else "ipopt"
+        if x is not None:
+            stats["status"] = START_CERTIFIED
+        elif kernel is not None:
             x, notes = _newton_strategy(problem, case, kernel, p_full, tol, start, stats)
             used = "newton" if x is not None else "ipopt"
         if x is None:
@@ -227,7 +248,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                     notes.append("IPOPT did not certify this point; the Newton path did "
                                  "(semismooth Newton on the contacts' complementarities)")
         # One evaluation gives the certificate, the stiffness and every reported array.
-        post = problem.post(_finite(x), p_full)
+        post = problem.post(_finite(x), p_full) if post is None else post
         certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
         failed_status = stats["status"] in _FAILED_STATUSES
         if certified and failed_status:
@@ -395,11 +416,6 @@ def _ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     def run(x0, p):
         if time.perf_counter() >= deadline:
             return x0, False
-        if not problem.n_q and problem.ipopt_solvers.certify(x0, p, tol):
-            # Nothing free: the lines' remembered state is the answer whatever the body
-            # loads; an IPOPT call would spend its setup to return it unchanged.
-            stats["status"] = START_CERTIFIED
-            return x0, True
         # Each IPOPT run is capped at the whole budget; the deadline check above stops
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
