@@ -40,8 +40,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
-from .audit_bodies import body_findings
-from .audit_closed_form import closed_form_findings, covers, table_end_rows
+from .audit_bodies import bodies_balance_in_table, body_findings, one_body_inputs
+from .audit_closed_form import closed_form_check, covers, table_end_rows
 from .audit_lines import is_lumped, line_findings
 
 __all__ = ["audit", "audit_findings", "result_warnings", "AuditFailure"]
@@ -106,10 +106,15 @@ def closed_form_audit(result, case, problem, post) -> list[str] | None:
         return None
     table = np.atleast_2d(np.asarray(post["lines"], float))
     tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
-    problems, t_lines = closed_form_findings(problem, case, table, tol_rel)
+    problems, t_lines, balanced = closed_form_check(problem, case, table, tol_rel,
+                                                    one_body_inputs(problem, result, case))
     if problems is None:
         return None
-    if not (case.free_points or any(body.free for body in case.bodies)):
+    # The balance with margin (compiled with the line checks, or read from the table);
+    # else the plain balance decides, and words what it finds.
+    if balanced or not (case.free_points or any(body.free for body in case.bodies)):
+        return problems
+    if bodies_balance_in_table(problem, result, case, table, max(t_lines, 1.0)):
         return problems
     positions, forces = table_end_rows(table)
     return problems + body_findings(result, case, positions, forces, max(t_lines, 1.0))

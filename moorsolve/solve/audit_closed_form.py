@@ -38,12 +38,14 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from .audit_bodies import BODY_DATA, BODY_POSE, symbolic_balance
 from .audit_lines import FORCE_REL
 from .concurrency import SYMBOLIC_LOCK, LockedLRU
 from .problem import LINE_COLUMNS
 from .stretch_params import numeric_law
 
-__all__ = ["covers", "closed_form_findings", "table_end_rows", "wait_compiled"]
+__all__ = ["covers", "closed_form_findings", "closed_form_check", "table_end_rows",
+           "wait_compiled"]
 
 _COL = {name: k for k, name in enumerate(LINE_COLUMNS)}
 _A = [_COL[c] for c in ("ax", "ay", "az")]
@@ -134,8 +136,9 @@ def table_end_rows(table: np.ndarray) -> tuple:
 #: Per line, what the compiled checks read besides its row of the report table: its data
 #: (the checks' inputs from ``L`` to ``tol_rel``), whether its block integrates from end B
 #: (``flipped``), whether its lower end may be off the seabed (``lifted``), and 1 for a
-#: line of the scene (0 for the padding up to the mapped size).
-_STATIC = (*_INPUTS[13:], "flipped", "lifted", "line")
+#: line of the scene (0 for the padding up to the mapped size); whether its ends A and B
+#: are on the body the verdict balances (:func:`.audit_bodies.symbolic_balance`).
+_STATIC = (*_INPUTS[13:], "flipped", "lifted", "line", "on_a", "on_b")
 
 
 def _columns(problem) -> tuple:
@@ -152,13 +155,13 @@ def _columns(problem) -> tuple:
     return hit
 
 
-def _static_columns(problem, case, tol_rel: float) -> np.ndarray:
+def _static_columns(problem, case, tol_rel: float, body: str | None) -> np.ndarray:
     """The :data:`_STATIC` columns, one row per line of the mapped checks (the padding
     rows repeat the first line's data, marked no line); the last made is kept in the
     problem (one slot: a loop solves one scene's lines over and over). Never changed once
     made: the compiled checks keep the last one they were given."""
     env = case.environment
-    key = (env.seabed.friction, env.depth, tol_rel)
+    key = (env.seabed.friction, env.depth, tol_rel, body)
     hit = problem.derived.get("closed_form_static")
     if hit is not None and hit[0] is case.lines and hit[1] == key:
         return hit[2]
@@ -167,9 +170,13 @@ def _static_columns(problem, case, tol_rel: float) -> np.ndarray:
     static = np.column_stack([_data(case.lines).columns, env.seabed.friction * friction,
                               np.full(k, float(env.depth)), np.full(k, float(tol_rel)),
                               flipped, np.zeros(k) if lifted is None else lifted,
-                              np.ones(k)])
+                              np.ones(k),
+                              [float(body is not None and line.a.body == body)
+                               for line in case.lines],
+                              [float(body is not None and line.b.body == body)
+                               for line in case.lines]])
     padding = np.repeat(static[:1], mapped.n - k, axis=0)
-    padding[:, -1] = 0.0
+    padding[:, -3:] = 0.0
     static = np.concatenate([static, padding])
     static.flags.writeable = False
     problem.derived["closed_form_static"] = (case.lines, key, static)
@@ -296,13 +303,15 @@ class _Mapped:
         self._library = Library([self.function], key=f"closed-form line audit/{n}/verdict",
                                 label=f"the closed-form audit of {n} lines")
         self._compiled = None
-        self._static = None       # the static columns in the compiled inputs (they persist)
+        self._static = self._data = None   # the inputs last given (they persist)
         self._lock = threading.Lock()
 
-    def __call__(self, table: np.ndarray, static: np.ndarray) -> tuple:
-        """``(ok, t_max, out)``: the verdict, the largest end tension, and where not ok
-        every line's outputs ``(k, len(_OUTPUTS))`` (None where ok), for the ``k`` rows of
-        ``table`` and the ``n`` rows of ``static``."""
+    def __call__(self, table: np.ndarray, static: np.ndarray, pose=None, data=None) -> tuple:
+        """``(ok, t_max, out, balanced)``: the verdict, the largest end tension, where not
+        ok every line's outputs ``(k, len(_OUTPUTS))`` (None where ok), and whether the
+        body given by ``pose`` and ``data`` balances (:func:`.audit_bodies.one_body_inputs`;
+        False without them), for the ``k`` rows of ``table`` and the ``n`` rows of
+        ``static``."""
         k, n = len(table), self.n
         with self._lock:
             if self._compiled is None and self._library.ready:
@@ -311,46 +320,56 @@ class _Mapped:
             if lib is None:
                 rows = np.zeros((n, len(LINE_COLUMNS)))
                 rows[:k] = table
-                out, verdict = (np.asarray(v, float) for v in self.function(rows.T, static.T))
+                out, verdict = (np.asarray(v, float) for v in self.function(
+                    rows.T, static.T, np.zeros(BODY_POSE) if pose is None else pose,
+                    np.zeros(BODY_DATA) if data is None else data))
                 out, verdict = out.T, verdict.ravel()
             else:
                 lib.inputs[0].reshape(n, -1)[:k] = table
                 if self._static is not static:
                     lib.inputs[1].reshape(n, -1)[:] = static
                     self._static = static
+                if pose is not None:
+                    lib.inputs[2][:] = pose
+                    if self._data is not data:
+                        lib.inputs[3][:] = data
+                        self._data = data
                 lib()
-                verdict = lib.output_buffer[-2:]
-                if verdict[0] == 1.0:
-                    return True, float(verdict[1]), None
+                verdict = lib.output_buffer[-3:]
                 out = lib.output_buffer[:n * len(_OUTPUTS)].reshape(n, -1)
+            balanced = pose is not None and verdict[2] == 1.0
             if verdict[0] == 1.0:
-                return True, float(verdict[1]), None
-            return False, 0.0, out[:k].copy()
+                return True, float(verdict[1]), None, balanced
+            return False, 0.0, out[:k].copy(), balanced
 
 
 def _verdict_function(n: int) -> ca.Function:
     rows = ca.SX.sym("table", len(LINE_COLUMNS), n)
     static = ca.SX.sym("static", len(_STATIC), n)
+    pose, data = ca.SX.sym("pose", BODY_POSE), ca.SX.sym("body", BODY_DATA)
     one = _line_checks()
     first, t_ends = _OUTPUTS.index(_RATIOS[0]), _OUTPUTS.index("t_ends")
-    outs, ok, t_max = [], 1, 0.0
+    outs, ends, ok, t_max = [], [], 1, 0.0
     for j in range(n):
-        row, data = rows[:, j], dict(zip(_STATIC, ca.vertsplit(static[:, j])))
+        row, data_j = rows[:, j], dict(zip(_STATIC, ca.vertsplit(static[:, j])))
         lower = ca.vertcat(*[row[c] for c in _A + _B + _FA + _FB + [_GROUNDED]])
         upper = ca.vertcat(*[row[c] for c in _B + _A + _FB + _FA + [_GROUNDED]])
-        out = one(ca.vertcat(ca.if_else(data["flipped"], upper, lower),
+        out = one(ca.vertcat(ca.if_else(data_j["flipped"], upper, lower),
                              static[:len(_INPUTS) - 13, j]))
         outs.append(out)
         # Finite: a sum of finite numbers is (or overflows, and the caller then decides).
         good = ca.logic_and(out[0] >= 1, ca.fabs(ca.sum1(row)) <= 1.7e308)
-        good = ca.logic_and(good, ca.logic_not(ca.logic_and(data["lifted"],
+        good = ca.logic_and(good, ca.logic_not(ca.logic_and(data_j["lifted"],
                                                             row[_GROUNDED] > 0)))
         for r in range(len(_RATIOS)):
             good = ca.logic_and(good, out[first + r] <= 1.0)
-        ok = ca.logic_and(ok, ca.logic_or(data["line"] == 0, good))
-        t_max = ca.fmax(t_max, ca.if_else(data["line"], out[t_ends], 0.0))
-    return ca.Function("moorsolve_line_audit", [rows, static],
-                       [ca.horzcat(*outs), ca.vertcat(ok, t_max)])
+        ok = ca.logic_and(ok, ca.logic_or(data_j["line"] == 0, good))
+        t_max = ca.fmax(t_max, ca.if_else(data_j["line"], out[t_ends], 0.0))
+        for on, at, pull in (("on_a", _A, _FA), ("on_b", _B, _FB)):
+            ends.append((data_j[on], [row[c] for c in at], [row[c] for c in pull]))
+    balanced = symbolic_balance(ends, ca.fmax(t_max, 1.0), pose, data)
+    return ca.Function("moorsolve_line_audit", [rows, static, pose, data],
+                       [ca.horzcat(*outs), ca.vertcat(ok, t_max, balanced)])
 
 
 _MAPPED: dict = {}
@@ -380,18 +399,26 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     """``(findings, t_max)``: the per-line findings (one sentence each, prefixed with the
     leg's name) and the largest end tension [N]; findings None where a line is too steep
     for the closed forms (the profile audit must answer)."""
+    return closed_form_check(problem, case, table, tol_rel)[:2]
+
+
+def closed_form_check(problem, case, table, tol_rel: float, body=None):
+    """:func:`closed_form_findings`, and whether the scene's one free body balances by half
+    the margin :func:`.audit_bodies.body_findings` allows (False: let it answer), given
+    ``body``, the ``(name, pose, data)`` of :func:`.audit_bodies.one_body_inputs`."""
     lifted, mapped = _columns(problem)[2:]
-    static = _static_columns(problem, case, tol_rel)
-    ok, t_max, out = mapped(table, static)
+    name, pose, data = (None, None, None) if body is None else body
+    static = _static_columns(problem, case, tol_rel, name)
+    ok, t_max, out, balanced = mapped(table, static, pose, data)
     if ok:          # the checks below all passed, in the compiled verdict
-        return [], t_max
+        return [], t_max, balanced
     # A line from an end off the seabed that touches down between its ends has two arcs:
     # the profile audit's.
     if not np.isfinite(table).all() or (
             lifted is not None and (lifted & (table[:, _GROUNDED] > 0)).any()):
-        return None, 0.0
+        return None, 0.0, False
     if out[:, 0].min() < 1.0:
-        return None, 0.0
+        return None, 0.0, False
     found = []
     # A defect is a ratio above 1, or not a number at all (the largest is then NaN).
     if not out[:, 2:2 + len(_RATIOS)].max() <= 1.0:
@@ -401,4 +428,4 @@ def closed_form_findings(problem, case, table, tol_rel: float):
                         L=static[i, 0])
             found += [f"leg {case.lines[i].name}: {_SAY[name](said)}"
                       for name, failed in zip(_RATIOS, bad[i]) if failed]
-    return found, float(out[:, 1].max())
+    return found, float(out[:, 1].max()), False
