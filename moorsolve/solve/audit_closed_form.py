@@ -337,7 +337,7 @@ class _Mapped:
                 lib()
                 verdict = lib.output_buffer[-3:]
                 out = lib.output_buffer[:n * len(_OUTPUTS)].reshape(n, -1)
-            balanced = pose is not None and verdict[2] == 1.0
+            balanced = pose is not None and bool(verdict[2] == 1.0)
             if verdict[0] == 1.0:
                 return True, float(verdict[1]), None, balanced
             return False, 0.0, out[:k].copy(), balanced
