@@ -3,10 +3,11 @@
 The certificate says the solver's residuals vanish. The audit asks a different question:
 do the quantities *reported* make a physically consistent equilibrium? It reads only the
 result (each line's profile, end forces, joints; the body position and loads) and the case
-data (weights, lengths, stiffness, the seabed), and recomputes everything with plain numpy:
-none of the solver's blocks, residuals or profile functions. A result that fails it is an
-error (:class:`~moorsolve.errors.ConvergenceError` naming what failed), never a note: an
-answer that is certified and wrong is the worst defect a solver can have.
+data (weights, lengths, stiffness, the seabed), and recomputes everything with its own
+numpy and CasADi formulas: none of the solver's blocks, residuals or profile functions.
+A result that fails it is an error (:class:`~moorsolve.errors.ConvergenceError` naming
+what failed), never a note: an answer that is certified and wrong is the worst defect a
+solver can have.
 
 Per line:
 
@@ -28,6 +29,8 @@ Per free body, in every free degree of freedom of six: the reported end forces a
 reported positions, the reported forces of its fenders and pile guides at their contact
 points, the reported loads, the weight, the hydrostatics (recomputed here: the linear model,
 and hull members by quadrature rather than the solver's closed form) and the springs balance.
+A scene of one-segment lines is first screened at half that margin, compiled with the
+line checks (:mod:`.audit_closed_form`); only a failed screen runs the plain balance.
 
 Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
 engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
