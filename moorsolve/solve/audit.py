@@ -3,10 +3,11 @@
 The certificate says the solver's residuals vanish. The audit asks a different question:
 do the quantities *reported* make a physically consistent equilibrium? It reads only the
 result (each line's profile, end forces, joints; the body position and loads) and the case
-data (weights, lengths, stiffness, the seabed), and recomputes everything with plain numpy:
-none of the solver's blocks, residuals or profile functions. A result that fails it is an
-error (:class:`~moorsolve.errors.ConvergenceError` naming what failed), never a note: an
-answer that is certified and wrong is the worst defect a solver can have.
+data (weights, lengths, stiffness, the seabed), and recomputes everything with its own
+numpy and CasADi formulas: none of the solver's blocks, residuals or profile functions.
+A result that fails it is an error (:class:`~moorsolve.errors.ConvergenceError` naming
+what failed), never a note: an answer that is certified and wrong is the worst defect a
+solver can have.
 
 Per line:
 
@@ -28,6 +29,8 @@ Per free body, in every free degree of freedom of six: the reported end forces a
 reported positions, the reported forces of its fenders and pile guides at their contact
 points, the reported loads, the weight, the hydrostatics (recomputed here: the linear model,
 and hull members by quadrature rather than the solver's closed form) and the springs balance.
+A scene of one-segment lines is first screened at half that margin, compiled with the
+line checks (:mod:`.audit_closed_form`); only a failed screen runs the plain balance.
 
 Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
 engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
@@ -40,8 +43,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
-from .audit_bodies import body_findings
-from .audit_closed_form import closed_form_findings, covers, table_end_rows
+from .audit_bodies import bodies_balance_in_table, body_findings, one_body_inputs
+from .audit_closed_form import closed_form_check, covers, table_end_rows
 from .audit_lines import is_lumped, line_findings
 
 __all__ = ["audit", "audit_findings", "result_warnings", "AuditFailure"]
@@ -106,10 +109,15 @@ def closed_form_audit(result, case, problem, post) -> list[str] | None:
         return None
     table = np.atleast_2d(np.asarray(post["lines"], float))
     tol_rel = max(GEOMETRY_REL, 100.0 * result.certificate.tolerance)
-    problems, t_lines = closed_form_findings(problem, case, table, tol_rel)
+    problems, t_lines, balanced = closed_form_check(problem, case, table, tol_rel,
+                                                    one_body_inputs(problem, result, case))
     if problems is None:
         return None
-    if not (case.free_points or any(body.free for body in case.bodies)):
+    # The balance with margin (compiled with the line checks, or read from the table);
+    # else the plain balance decides, and words what it finds.
+    if balanced or not (case.free_points or any(body.free for body in case.bodies)):
+        return problems
+    if bodies_balance_in_table(problem, result, case, table, max(t_lines, 1.0)):
         return problems
     positions, forces = table_end_rows(table)
     return problems + body_findings(result, case, positions, forces, max(t_lines, 1.0))

@@ -23,10 +23,12 @@ import numpy as np
 from ..model.build_network import rotation
 from .audit_lines import FORCE_REL
 from .concurrency import LockedLRU
+from .problem import LINE_COLUMNS
 
-__all__ = ["body_findings"]
+__all__ = ["body_findings", "bodies_balance_in_table"]
 
 _DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+_DOF_INDEX = {dof: k for k, dof in enumerate(_DOFS)}
 
 
 def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
@@ -104,6 +106,215 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
             out.append(f"point {point.name} is not in balance: {np.linalg.norm(total):.4g} N "
                        "unbalanced by the reported line forces, its weight and the seabed")
     return out
+
+
+def bodies_balance_in_table(problem, result, case, table, t_lines: float) -> bool:
+    """Whether every free body balances, by half the margin :func:`body_findings` allows,
+    with its line ends read straight from the report's line table (``problem``'s,
+    :data:`~.problem.LINE_COLUMNS`): the common scene's audit at a few numpy calls.
+
+    The same sums as :func:`body_findings` (the reported end forces and positions, loads,
+    weight, linear hydrostatics), in another order; False (let :func:`body_findings`
+    answer, and word what it finds) for anything else: a failed or NaN balance, free
+    points, fenders, pile guides, hull members, extra springs.
+    """
+    if case.free_points or result.fenders or result.guides:
+        return False
+    env = case.environment
+    g, rho, level = env.gravity, env.water_density, env.water_level
+    rows = _table_rows(problem, case.lines)
+    half_tol = 0.5 * max(10.0 * result.certificate.tolerance, FORCE_REL)
+    several = len(case.bodies) > 1
+    for bi, body in enumerate(case.bodies):
+        if not body.free:
+            continue
+        if bi >= len(result.bodies):
+            continue
+        if body.hull or body.stiffness is not None:
+            return False
+        pose = result.bodies[bi]
+        x, y, z = pose["x_m"], pose["y_m"], pose["z_m"]
+        roll, pitch, yaw = (math.radians(pose["roll_deg"]), math.radians(pose["pitch_deg"]),
+                            math.radians(pose["yaw_deg"]))
+        fx = fy = fz = mx = my = mz = 0.0
+        at = None
+        taken = rows.get(body.name)
+        if taken is not None:
+            at, pulls = table.take(taken)
+            (fx, fy, fz), m = pulls.sum(axis=0).tolist(), (at.T @ pulls).tolist()
+            # sum (p - origin) x f = sum p x f - origin x sum f
+            mx = m[1][2] - m[2][1] - (y * fz - z * fy)
+            my = m[2][0] - m[0][2] - (z * fx - x * fz)
+            mz = m[0][1] - m[1][0] - (x * fy - y * fx)
+        scale = t_lines
+        for name, load in result.loads.items():
+            if several and not name.startswith(body.name + "."):
+                continue
+            f = [float(v) for v in load]
+            if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
+                f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
+            fx, fy, fz, mx, my, mz = (fx + f[0], fy + f[1], fz + f[2], mx + f[3], my + f[4],
+                                      mz + f[5])
+            scale = max(scale, math.hypot(f[0], f[1], f[2]))
+        cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
+                                  math.sin(pitch), math.cos(yaw), math.sin(yaw))
+        # Vertical forces at body-frame points: the moment needs R's first two rows.
+        r0 = (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr)
+        r1 = (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr)
+        vertical = []
+        if body.mass is not None:
+            vertical.append((-body.mass * g, body.centre_of_gravity))
+        hydro = body.hydrostatics
+        if hydro is not None:
+            vertical.append((rho * g * hydro.displaced_volume, hydro.metacentre))
+            heave = -rho * g * hydro.waterplane_area * (z - level)
+            fz += heave
+            scale = max(scale, abs(heave))
+        for f, (bx, by, bz) in vertical:
+            rx = r0[0] * bx + r0[1] * by + r0[2] * bz
+            ry = r1[0] * bx + r1[1] * by + r1[2] * bz
+            fz, mx, my = fz + f, mx + ry * f, my - rx * f
+            scale = max(scale, abs(f))
+        generalized = (fx, fy, fz, r0[0] * mx + r1[0] * my - sp * mz, -sy * mx + cy * my, mz)
+        tol = half_tol * scale
+        radius = None
+        for dof in body.free:
+            k = _DOF_INDEX[dof]
+            if k < 3:
+                if not abs(generalized[k]) <= tol:
+                    return False
+            elif not abs(generalized[k]) <= tol * 10.0:
+                # The moment's tolerance grows with the arm (the longest to an end): the
+                # first end's arm, a lower bound, then only if needed the longest.
+                if radius is None and at is not None:
+                    radius = max(1.0, math.hypot(float(at[0, 0]) - x, float(at[0, 1]) - y))
+                    if not abs(generalized[k]) <= tol * 10.0 * radius:
+                        arm = at[:, :2] - (x, y)
+                        radius = max(1.0, math.sqrt(float((arm * arm).sum(axis=1).max())))
+                if not abs(generalized[k]) <= tol * 10.0 * (radius or 1.0):
+                    return False
+    return True
+
+
+#: What the compiled verdict (:mod:`.audit_closed_form`) reads of a scene's one free body
+#: per solve: its pose (m, rad), the sum of its loads (force, moment about its origin) and
+#: their largest force; and per body: its weight, centre of gravity, buoyancy, metacentre,
+#: waterplane stiffness, the water level, half the balance's relative tolerance and which
+#: degrees of freedom are free (1 or 0).
+BODY_POSE = 13
+BODY_DATA = 17
+
+
+def one_body_inputs(problem, result, case):
+    """``(name, pose, data)`` for the compiled verdict's balance of the scene's one free body
+    (``pose`` a list of :data:`BODY_POSE` numbers, ``data`` an array of :data:`BODY_DATA`,
+    the same array while the body's data are), or None where the scene is not that (free
+    points, several free bodies, fenders, pile guides, hull members, extra springs)."""
+    if case.free_points or result.fenders or result.guides:
+        return None
+    free = [bi for bi, body in enumerate(case.bodies) if body.free]
+    if len(free) != 1 or free[0] >= len(result.bodies):
+        return None
+    body = case.bodies[free[0]]
+    if body.hull or body.stiffness is not None:
+        return None
+    pose = result.bodies[free[0]]
+    fx = fy = fz = mx = my = mz = scale = 0.0
+    several = len(case.bodies) > 1
+    for name, load in result.loads.items():
+        if several and not name.startswith(body.name + "."):
+            continue
+        f = [float(v) for v in load]
+        if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
+            f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
+        fx, fy, fz, mx, my, mz = (fx + f[0], fy + f[1], fz + f[2], mx + f[3], my + f[4],
+                                  mz + f[5])
+        scale = max(scale, math.hypot(f[0], f[1], f[2]))
+    inputs = [pose["x_m"], pose["y_m"], pose["z_m"], math.radians(pose["roll_deg"]),
+              math.radians(pose["pitch_deg"]), math.radians(pose["yaw_deg"]),
+              fx, fy, fz, mx, my, mz, scale]
+    env = case.environment
+    key = (body.mass, body.centre_of_gravity, body.hydrostatics, body.free, env.gravity,
+           env.water_density, env.water_level, result.certificate.tolerance)
+    hit = problem.derived.get("audit_body_data")
+    if hit is None or hit[0] != key:
+        g, rho, hydro = env.gravity, env.water_density, body.hydrostatics
+        weight = 0.0 if body.mass is None else body.mass * g
+        data = np.array([weight, *(body.centre_of_gravity if body.mass is not None
+                                   else (0.0, 0.0, 0.0)),
+                         0.0 if hydro is None else rho * g * hydro.displaced_volume,
+                         *((0.0, 0.0, 0.0) if hydro is None else hydro.metacentre),
+                         0.0 if hydro is None else rho * g * hydro.waterplane_area,
+                         env.water_level,
+                         0.5 * max(10.0 * result.certificate.tolerance, FORCE_REL),
+                         *(1.0 if dof in body.free else 0.0 for dof in _DOFS)], float)
+        data.flags.writeable = False
+        hit = problem.derived["audit_body_data"] = (key, data)
+    return body.name, inputs, hit[1]
+
+
+def symbolic_balance(ends, t_lines, pose, data):
+    """1 where the body balances by half the margin :func:`body_findings` allows, else 0
+    (a NaN fails): the same sums, written as a CasADi expression for the compiled verdict.
+    ``ends``: ``(on, position, force)`` per line end (``on`` 1 where the end is on the
+    body); ``t_lines`` the largest line tension; ``pose`` and ``data`` as
+    :func:`one_body_inputs` gives them."""
+    import casadi as ca
+
+    x, y, z, roll, pitch, yaw = (pose[i] for i in range(6))
+    weight, buoyancy, kwp, level, half_tol = data[0], data[4], data[8], data[9], data[10]
+    force, moment, radius2 = [pose[6], pose[7], pose[8]], [pose[9], pose[10], pose[11]], 0.0
+    for on, (px, py, pz), (fx, fy, fz) in ends:
+        ax, ay, az = px - x, py - y, pz - z
+        force = [a + ca.if_else(on, b, 0.0) for a, b in zip(force, (fx, fy, fz))]
+        moment = [a + ca.if_else(on, b, 0.0) for a, b in
+                  zip(moment, (ay * fz - az * fy, az * fx - ax * fz, ax * fy - ay * fx))]
+        radius2 = ca.fmax(radius2, ca.if_else(on, ax * ax + ay * ay, 0.0))
+    cr, sr, cp, sp, cy, sy = (ca.cos(roll), ca.sin(roll), ca.cos(pitch), ca.sin(pitch),
+                              ca.cos(yaw), ca.sin(yaw))
+    r0 = (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr)
+    r1 = (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr)
+    heave = -kwp * (z - level)
+    force[2] = force[2] + heave
+    scale = ca.fmax(ca.fmax(t_lines, pose[12]), ca.fmax(weight, ca.fabs(buoyancy)))
+    scale = ca.fmax(scale, ca.fabs(heave))
+    for f, at in ((-weight, (data[1], data[2], data[3])), (buoyancy, (data[5], data[6], data[7]))):
+        rx = r0[0] * at[0] + r0[1] * at[1] + r0[2] * at[2]
+        ry = r1[0] * at[0] + r1[1] * at[1] + r1[2] * at[2]
+        force[2], moment[0], moment[1] = force[2] + f, moment[0] + ry * f, moment[1] - rx * f
+    mx, my, mz = moment
+    generalized = (*force, r0[0] * mx + r1[0] * my - sp * mz, -sy * mx + cy * my, mz)
+    tol = half_tol * scale
+    arm = 10.0 * ca.fmax(ca.sqrt(radius2), 1.0)
+    ok = 1
+    for k, g in enumerate(generalized):
+        ok = ca.logic_and(ok, ca.logic_or(data[11 + k] == 0,
+                                          ca.fabs(g) <= (tol if k < 3 else tol * arm)))
+    return ok
+
+
+def _table_rows(problem, lines) -> dict:
+    """Per body name, the flat indices into the report's line table (C order) of the
+    positions and the forces of the line ends on it, ``(2, k, 3)``; kept in the problem
+    per lines tuple."""
+    hit = problem.derived.get("audit_body_rows")
+    if hit is not None and hit[0] is lines:
+        return hit[1]
+    col = {name: k for k, name in enumerate(LINE_COLUMNS)}
+    ends = ([col[c] for c in ("ax", "ay", "az")], [col[c] for c in ("FAx", "FAy", "FAz")],
+            [col[c] for c in ("bx", "by", "bz")], [col[c] for c in ("FBx", "FBy", "FBz")])
+    found: dict = {}
+    for side in (0, 1):
+        for i, line in enumerate(lines):
+            name = (line.a, line.b)[side].body
+            if name is not None:
+                at, pull = ends[2 * side], ends[2 * side + 1]
+                found.setdefault(name, []).append(
+                    [[i * len(LINE_COLUMNS) + c for c in at],
+                     [i * len(LINE_COLUMNS) + c for c in pull]])
+    found = {name: np.array(v, int).transpose(1, 0, 2) for name, v in found.items()}
+    problem.derived["audit_body_rows"] = (lines, found)
+    return found
 
 
 _END_ROWS = LockedLRU(256)

@@ -25,7 +25,9 @@ The checks of one line are one small CasADi function of its reported numbers (th
 formulas, none of the solver's blocks), mapped over the lines and compiled into a cached
 library (:mod:`.compiled`; interpreted until it is ready) for 8, 16, 32, ... lines, the
 lines padded up to that: numpy spends more in calling its functions on a dozen lines than
-the checks compute.
+the checks compute. The compiled function reads the report table's rows whole and also
+gives the verdict (every check passed, every number finite), so a clean report costs one
+copy and one call; only a failed verdict reads the table of ratios, for the sentences.
 """
 
 from __future__ import annotations
@@ -36,12 +38,14 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from .audit_bodies import BODY_DATA, BODY_POSE, symbolic_balance
 from .audit_lines import FORCE_REL
 from .concurrency import SYMBOLIC_LOCK, LockedLRU
 from .problem import LINE_COLUMNS
 from .stretch_params import numeric_law
 
-__all__ = ["covers", "closed_form_findings", "table_end_rows", "wait_compiled"]
+__all__ = ["covers", "closed_form_findings", "closed_form_check", "table_end_rows",
+           "wait_compiled"]
 
 _COL = {name: k for k, name in enumerate(LINE_COLUMNS)}
 _A = [_COL[c] for c in ("ax", "ay", "az")]
@@ -86,13 +90,19 @@ def _lifted(kind) -> bool:
 def covers(problem, case) -> bool:
     """Whether every line of ``case`` (built as ``problem``) can be audited here: one-segment
     sinking Hooke or inextensible lines in the water, on a flat seabed without a grid."""
+    seabed = case.environment.seabed
+    # The last answer, while the lines and the seabed are the same objects (a loop).
+    last = problem.derived.get("closed_form_covers")
+    if last is not None and last[0] is case.lines and last[1] is seabed:
+        return last[2]
     key = "closed_form_audit"
     hit = problem.derived.get(key)
     if hit is None:
         hit = problem.derived[key] = all(_closed_kind(k) for k in problem.kinds)
-    env = case.environment
-    return (hit and env.seabed.bathymetry is None and not env.seabed.sloped
-            and bool(case.lines) and _data(case.lines).sinking)
+    verdict = (hit and seabed.bathymetry is None and not seabed.sloped
+               and bool(case.lines) and _data(case.lines).sinking)
+    problem.derived["closed_form_covers"] = (case.lines, seabed, verdict)
+    return verdict
 
 
 @dataclass(frozen=True)
@@ -129,40 +139,53 @@ def table_end_rows(table: np.ndarray) -> tuple:
             np.take(table, _END_FORCES, axis=1).reshape(-1, 3))
 
 
+#: Per line, what the compiled checks read besides its row of the report table: its data
+#: (the checks' inputs from ``L`` to ``tol_rel``), whether its block integrates from end B
+#: (``flipped``), whether its lower end may be off the seabed (``lifted``), and 1 for a
+#: line of the scene (0 for the padding up to the mapped size); whether its ends A and B
+#: are on the body the verdict balances (:func:`.audit_bodies.symbolic_balance`).
+_STATIC = (*_INPUTS[13:], "flipped", "lifted", "line", "on_a", "on_b")
+
+
 def _columns(problem) -> tuple:
-    """Per line, the flat indices into the report's line table (C order) of its lower
-    end's position and force and its upper end's, side by side, then its grounded length
-    (the catenary is integrated from the lower end, as each line's block is written); the
-    seabed friction factor of its block (1 or 0); whether its lower end is off the seabed
-    (None where no line's is)."""
+    """Per line, the seabed friction factor of its block (1 or 0), whether it integrates
+    from end B, whether its lower end is off the seabed (None where no line's is); the
+    mapped checks."""
     hit = problem.derived.get("closed_form_columns")
     if hit is None:
-        flipped = np.array([k.flipped for k in problem.kinds], bool)[:, None]
-        lower_first = np.array(_A + _B + _FA + _FB + [_GROUNDED])
-        upper_first = np.array(_B + _A + _FB + _FA + [_GROUNDED])
-        cols = np.where(flipped, upper_first, lower_first)
-        rows = np.arange(len(problem.kinds))[:, None]
-        flat = rows * len(LINE_COLUMNS) + cols
         friction = np.array([1.0 if k.friction else 0.0 for k in problem.kinds])
+        flipped = np.array([1.0 if k.flipped else 0.0 for k in problem.kinds])
         lifted = np.array([_lifted(k) for k in problem.kinds], bool)
-        hit = problem.derived["closed_form_columns"] = (flat, friction,
-                                                        lifted if lifted.any() else None)
+        hit = problem.derived["closed_form_columns"] = (
+            friction, flipped, lifted if lifted.any() else None, _mapped(len(friction)))
     return hit
 
 
-def _static_columns(problem, case) -> np.ndarray:
-    """The line-data columns of the checks' inputs (``L`` to ``depth``); the last made is
-    kept in the problem (one slot: a loop solves one scene's lines over and over)."""
+def _static_columns(problem, case, tol_rel: float, body: str | None) -> np.ndarray:
+    """The :data:`_STATIC` columns, one row per line of the mapped checks (the padding
+    rows repeat the first line's data, marked no line); the last made is kept in the
+    problem (one slot: a loop solves one scene's lines over and over). Never changed once
+    made: the compiled checks keep the last one they were given."""
     env = case.environment
+    key = (env.seabed.friction, env.depth, tol_rel, body)
     hit = problem.derived.get("closed_form_static")
-    if hit is not None and hit[0] is case.lines and hit[1] == (env.seabed.friction,
-                                                                env.depth):
+    if hit is not None and hit[0] is case.lines and hit[1] == key:
         return hit[2]
-    friction = _columns(problem)[1]
+    friction, flipped, lifted, mapped = _columns(problem)
+    k = len(friction)
     static = np.column_stack([_data(case.lines).columns, env.seabed.friction * friction,
-                              np.full(len(friction), float(env.depth))])
-    problem.derived["closed_form_static"] = (case.lines, (env.seabed.friction, env.depth),
-                                             static)
+                              np.full(k, float(env.depth)), np.full(k, float(tol_rel)),
+                              flipped, np.zeros(k) if lifted is None else lifted,
+                              np.ones(k),
+                              [float(body is not None and line.a.body == body)
+                               for line in case.lines],
+                              [float(body is not None and line.b.body == body)
+                               for line in case.lines]])
+    padding = np.repeat(static[:1], mapped.n - k, axis=0)
+    padding[:, -3:] = 0.0
+    static = np.concatenate([static, padding])
+    static.flags.writeable = False
+    problem.derived["closed_form_static"] = (case.lines, key, static)
     return static
 
 
@@ -268,40 +291,91 @@ _SAY = {
 class _Mapped:
     """The checks mapped over ``n`` lines: compiled when the library is ready (built in the
     background, :class:`.compiled.Library`), else CasADi's interpreter. One call at a time
-    (the compiled function's buffers are shared)."""
+    (the compiled function's buffers are shared).
+
+    Its inputs are the report table's rows and the :data:`_STATIC` columns; its outputs
+    every line's outputs and the verdict: 1 where every line's row is finite, its closed
+    forms hold, it is not a lifted line touching down and every ratio is at most 1 (each a
+    comparison, so a NaN fails it), and the largest end tension. A clean report costs
+    one copy of the table into the inputs and reads two numbers.
+    """
 
     def __init__(self, n: int):
         from .compiled import Library
 
         self.n = n
         with SYMBOLIC_LOCK:
-            self.function = _line_checks().map(n)
-        self._library = Library([self.function], key=f"closed-form line audit/{n}",
+            self.function = _verdict_function(n)
+        self._library = Library([self.function], key=f"closed-form line audit/{n}/verdict",
                                 label=f"the closed-form audit of {n} lines")
         self._compiled = None
+        self._static = self._data = None   # the inputs last given (they persist)
         self._lock = threading.Lock()
 
-    def __call__(self, table: np.ndarray, flat: np.ndarray, static: np.ndarray,
-                 tol_rel: float) -> np.ndarray:
-        """The outputs ``(k, len(_OUTPUTS))`` of ``k <= n`` lines whose inputs are the report
-        table's entries at ``flat``, then ``static``, then ``tol_rel`` (the rest of the
-        ``n`` columns repeat the first line)."""
-        k, n = len(flat), self.n
+    def __call__(self, table: np.ndarray, static: np.ndarray, pose=None, data=None) -> tuple:
+        """``(ok, t_max, out, balanced)``: the verdict, the largest end tension, where not
+        ok every line's outputs ``(k, len(_OUTPUTS))`` (None where ok), and whether the
+        body given by ``pose`` and ``data`` balances (:func:`.audit_bodies.one_body_inputs`;
+        False without them), for the ``k`` rows of ``table`` and the ``n`` rows of
+        ``static``."""
+        k, n = len(table), self.n
         with self._lock:
             if self._compiled is None and self._library.ready:
                 self._compiled = self._library.instances()[0]
             lib = self._compiled
-            buffer = (lib.inputs[0] if lib is not None
-                      else np.empty(n * len(_INPUTS))).reshape(n, -1)
-            buffer[:k, :13] = table.take(flat)
-            buffer[:k, 13:18] = static
-            buffer[:k, 18] = tol_rel
-            if k < n:
-                buffer[k:] = buffer[0]
-            if lib is not None:
+            if lib is None:
+                rows = np.zeros((n, len(LINE_COLUMNS)))
+                rows[:k] = table
+                out, verdict = (np.asarray(v, float) for v in self.function(
+                    rows.T, static.T, np.zeros(BODY_POSE) if pose is None else pose,
+                    np.zeros(BODY_DATA) if data is None else data))
+                out, verdict = out.T, verdict.ravel()
+            else:
+                lib.inputs[0].reshape(n, -1)[:k] = table
+                if self._static is not static:
+                    lib.inputs[1].reshape(n, -1)[:] = static
+                    self._static = static
+                if pose is not None:
+                    lib.inputs[2][:] = pose
+                    if self._data is not data:
+                        lib.inputs[3][:] = data
+                        self._data = data
                 lib()
-                return lib.output_buffer[:k * len(_OUTPUTS)].reshape(k, -1).copy()
-            return np.asarray(self.function(buffer.T), float).T[:k]
+                verdict = lib.output_buffer[-3:]
+                out = lib.output_buffer[:n * len(_OUTPUTS)].reshape(n, -1)
+            balanced = pose is not None and bool(verdict[2] == 1.0)
+            if verdict[0] == 1.0:
+                return True, float(verdict[1]), None, balanced
+            return False, 0.0, out[:k].copy(), balanced
+
+
+def _verdict_function(n: int) -> ca.Function:
+    rows = ca.SX.sym("table", len(LINE_COLUMNS), n)
+    static = ca.SX.sym("static", len(_STATIC), n)
+    pose, data = ca.SX.sym("pose", BODY_POSE), ca.SX.sym("body", BODY_DATA)
+    one = _line_checks()
+    first, t_ends = _OUTPUTS.index(_RATIOS[0]), _OUTPUTS.index("t_ends")
+    outs, ends, ok, t_max = [], [], 1, 0.0
+    for j in range(n):
+        row, data_j = rows[:, j], dict(zip(_STATIC, ca.vertsplit(static[:, j])))
+        lower = ca.vertcat(*[row[c] for c in _A + _B + _FA + _FB + [_GROUNDED]])
+        upper = ca.vertcat(*[row[c] for c in _B + _A + _FB + _FA + [_GROUNDED]])
+        out = one(ca.vertcat(ca.if_else(data_j["flipped"], upper, lower),
+                             static[:len(_INPUTS) - 13, j]))
+        outs.append(out)
+        # Finite: a sum of finite numbers is (or overflows, and the caller then decides).
+        good = ca.logic_and(out[0] >= 1, ca.fabs(ca.sum1(row)) <= 1.7e308)
+        good = ca.logic_and(good, ca.logic_not(ca.logic_and(data_j["lifted"],
+                                                            row[_GROUNDED] > 0)))
+        for r in range(len(_RATIOS)):
+            good = ca.logic_and(good, out[first + r] <= 1.0)
+        ok = ca.logic_and(ok, ca.logic_or(data_j["line"] == 0, good))
+        t_max = ca.fmax(t_max, ca.if_else(data_j["line"], out[t_ends], 0.0))
+        for on, at, pull in (("on_a", _A, _FA), ("on_b", _B, _FB)):
+            ends.append((data_j[on], [row[c] for c in at], [row[c] for c in pull]))
+    balanced = symbolic_balance(ends, ca.fmax(t_max, 1.0), pose, data)
+    return ca.Function("moorsolve_line_audit", [rows, static, pose, data],
+                       [ca.horzcat(*outs), ca.vertcat(ok, t_max, balanced)])
 
 
 _MAPPED: dict = {}
@@ -331,16 +405,26 @@ def closed_form_findings(problem, case, table, tol_rel: float):
     """``(findings, t_max)``: the per-line findings (one sentence each, prefixed with the
     leg's name) and the largest end tension [N]; findings None where a line is too steep
     for the closed forms (the profile audit must answer)."""
-    flat, _, lifted = _columns(problem)
+    return closed_form_check(problem, case, table, tol_rel)[:2]
+
+
+def closed_form_check(problem, case, table, tol_rel: float, body=None):
+    """:func:`closed_form_findings`, and whether the scene's one free body balances by half
+    the margin :func:`.audit_bodies.body_findings` allows (False: let it answer), given
+    ``body``, the ``(name, pose, data)`` of :func:`.audit_bodies.one_body_inputs`."""
+    lifted, mapped = _columns(problem)[2:]
+    name, pose, data = (None, None, None) if body is None else body
+    static = _static_columns(problem, case, tol_rel, name)
+    ok, t_max, out, balanced = mapped(table, static, pose, data)
+    if ok:          # the checks below all passed, in the compiled verdict
+        return [], t_max, balanced
     # A line from an end off the seabed that touches down between its ends has two arcs:
     # the profile audit's.
     if not np.isfinite(table).all() or (
             lifted is not None and (lifted & (table[:, _GROUNDED] > 0)).any()):
-        return None, 0.0
-    static = _static_columns(problem, case)
-    out = _mapped(len(flat))(table, flat, static, tol_rel)
+        return None, 0.0, False
     if out[:, 0].min() < 1.0:
-        return None, 0.0
+        return None, 0.0, False
     found = []
     # A defect is a ratio above 1, or not a number at all (the largest is then NaN).
     if not out[:, 2:2 + len(_RATIOS)].max() <= 1.0:
@@ -350,4 +434,4 @@ def closed_form_findings(problem, case, table, tol_rel: float):
                         L=static[i, 0])
             found += [f"leg {case.lines[i].name}: {_SAY[name](said)}"
                       for name, failed in zip(_RATIOS, bad[i]) if failed]
-    return found, float(out[:, 1].max())
+    return found, float(out[:, 1].max()), False
