@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
-from .audit_bodies import bodies_balance_in_table, body_findings, one_body_inputs
+from .audit_bodies import body_findings, one_body_inputs
 from .audit_closed_form import closed_form_check, covers, table_end_rows
 from .audit_lines import is_lumped, line_findings
 
@@ -113,11 +113,10 @@ def closed_form_audit(result, case, problem, post) -> list[str] | None:
                                                     one_body_inputs(problem, result, case))
     if problems is None:
         return None
-    # The balance with margin (compiled with the line checks, or read from the table);
-    # else the plain balance decides, and words what it finds.
+    # The one free body's balance with half the margin, compiled with the line checks;
+    # else (a failed screen, or a scene it does not cover) the plain balance decides, and
+    # words what it finds.
     if balanced or not (case.free_points or any(body.free for body in case.bodies)):
-        return problems
-    if bodies_balance_in_table(problem, result, case, table, max(t_lines, 1.0)):
         return problems
     positions, forces = table_end_rows(table)
     return problems + body_findings(result, case, positions, forces, max(t_lines, 1.0))

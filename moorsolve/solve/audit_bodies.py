@@ -23,12 +23,10 @@ import numpy as np
 from ..model.build_network import rotation
 from .audit_lines import FORCE_REL
 from .concurrency import LockedLRU
-from .problem import LINE_COLUMNS
 
-__all__ = ["body_findings", "bodies_balance_in_table"]
+__all__ = ["body_findings", "one_body_inputs", "symbolic_balance"]
 
 _DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
-_DOF_INDEX = {dof: k for k, dof in enumerate(_DOFS)}
 
 
 def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
@@ -88,7 +86,8 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
         tol = certified_tol * scale
         for dof in body.free:
             k = _DOFS.index(dof)
-            if abs(generalized[k]) > tol * (1.0 if k < 3 else max(radius, 1.0) * 10.0):
+            # Written so that a NaN (a pose or force not a number) is unbalanced.
+            if not abs(generalized[k]) <= tol * (1.0 if k < 3 else max(radius, 1.0) * 10.0):
                 out.append(f"body {body.name} is not in balance in {dof}: "
                            f"{generalized[k]:.4g} {'N' if k < 3 else 'N m'} unbalanced by "
                            "the reported line forces, loads, weight and hydrostatics")
@@ -102,98 +101,10 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
         gx, gy = env.seabed.gradient
         normal = np.array([-gx, -gy, 1.0]) / math.sqrt(1 + gx * gx + gy * gy)
         total += reported.get("seabed_reaction_N", 0.0) * normal
-        if np.linalg.norm(total) > tol:
+        if not np.linalg.norm(total) <= tol:
             out.append(f"point {point.name} is not in balance: {np.linalg.norm(total):.4g} N "
                        "unbalanced by the reported line forces, its weight and the seabed")
     return out
-
-
-def bodies_balance_in_table(problem, result, case, table, t_lines: float) -> bool:
-    """Whether every free body balances, by half the margin :func:`body_findings` allows,
-    with its line ends read straight from the report's line table (``problem``'s,
-    :data:`~.problem.LINE_COLUMNS`): the common scene's audit at a few numpy calls.
-
-    The same sums as :func:`body_findings` (the reported end forces and positions, loads,
-    weight, linear hydrostatics), in another order; False (let :func:`body_findings`
-    answer, and word what it finds) for anything else: a failed or NaN balance, free
-    points, fenders, pile guides, hull members, extra springs.
-    """
-    if case.free_points or result.fenders or result.guides:
-        return False
-    env = case.environment
-    g, rho, level = env.gravity, env.water_density, env.water_level
-    rows = _table_rows(problem, case.lines)
-    half_tol = 0.5 * max(10.0 * result.certificate.tolerance, FORCE_REL)
-    several = len(case.bodies) > 1
-    for bi, body in enumerate(case.bodies):
-        if not body.free:
-            continue
-        if bi >= len(result.bodies):
-            continue
-        if body.hull or body.stiffness is not None:
-            return False
-        pose = result.bodies[bi]
-        x, y, z = pose["x_m"], pose["y_m"], pose["z_m"]
-        roll, pitch, yaw = (math.radians(pose["roll_deg"]), math.radians(pose["pitch_deg"]),
-                            math.radians(pose["yaw_deg"]))
-        fx = fy = fz = mx = my = mz = 0.0
-        at = None
-        taken = rows.get(body.name)
-        if taken is not None:
-            at, pulls = table.take(taken)
-            (fx, fy, fz), m = pulls.sum(axis=0).tolist(), (at.T @ pulls).tolist()
-            # sum (p - origin) x f = sum p x f - origin x sum f
-            mx = m[1][2] - m[2][1] - (y * fz - z * fy)
-            my = m[2][0] - m[0][2] - (z * fx - x * fz)
-            mz = m[0][1] - m[1][0] - (x * fy - y * fx)
-        scale = t_lines
-        for name, load in result.loads.items():
-            if several and not name.startswith(body.name + "."):
-                continue
-            f = [float(v) for v in load]
-            if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
-                f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
-            fx, fy, fz, mx, my, mz = (fx + f[0], fy + f[1], fz + f[2], mx + f[3], my + f[4],
-                                      mz + f[5])
-            scale = max(scale, math.hypot(f[0], f[1], f[2]))
-        cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch),
-                                  math.sin(pitch), math.cos(yaw), math.sin(yaw))
-        # Vertical forces at body-frame points: the moment needs R's first two rows.
-        r0 = (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr)
-        r1 = (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr)
-        vertical = []
-        if body.mass is not None:
-            vertical.append((-body.mass * g, body.centre_of_gravity))
-        hydro = body.hydrostatics
-        if hydro is not None:
-            vertical.append((rho * g * hydro.displaced_volume, hydro.metacentre))
-            heave = -rho * g * hydro.waterplane_area * (z - level)
-            fz += heave
-            scale = max(scale, abs(heave))
-        for f, (bx, by, bz) in vertical:
-            rx = r0[0] * bx + r0[1] * by + r0[2] * bz
-            ry = r1[0] * bx + r1[1] * by + r1[2] * bz
-            fz, mx, my = fz + f, mx + ry * f, my - rx * f
-            scale = max(scale, abs(f))
-        generalized = (fx, fy, fz, r0[0] * mx + r1[0] * my - sp * mz, -sy * mx + cy * my, mz)
-        tol = half_tol * scale
-        radius = None
-        for dof in body.free:
-            k = _DOF_INDEX[dof]
-            if k < 3:
-                if not abs(generalized[k]) <= tol:
-                    return False
-            elif not abs(generalized[k]) <= tol * 10.0:
-                # The moment's tolerance grows with the arm (the longest to an end): the
-                # first end's arm, a lower bound, then only if needed the longest.
-                if radius is None and at is not None:
-                    radius = max(1.0, math.hypot(float(at[0, 0]) - x, float(at[0, 1]) - y))
-                    if not abs(generalized[k]) <= tol * 10.0 * radius:
-                        arm = at[:, :2] - (x, y)
-                        radius = max(1.0, math.sqrt(float((arm * arm).sum(axis=1).max())))
-                if not abs(generalized[k]) <= tol * 10.0 * (radius or 1.0):
-                    return False
-    return True
 
 
 #: What the compiled verdict (:mod:`.audit_closed_form`) reads of a scene's one free body
@@ -291,30 +202,6 @@ def symbolic_balance(ends, t_lines, pose, data):
         ok = ca.logic_and(ok, ca.logic_or(data[11 + k] == 0,
                                           ca.fabs(g) <= (tol if k < 3 else tol * arm)))
     return ok
-
-
-def _table_rows(problem, lines) -> dict:
-    """Per body name, the flat indices into the report's line table (C order) of the
-    positions and the forces of the line ends on it, ``(2, k, 3)``; kept in the problem
-    per lines tuple."""
-    hit = problem.derived.get("audit_body_rows")
-    if hit is not None and hit[0] is lines:
-        return hit[1]
-    col = {name: k for k, name in enumerate(LINE_COLUMNS)}
-    ends = ([col[c] for c in ("ax", "ay", "az")], [col[c] for c in ("FAx", "FAy", "FAz")],
-            [col[c] for c in ("bx", "by", "bz")], [col[c] for c in ("FBx", "FBy", "FBz")])
-    found: dict = {}
-    for side in (0, 1):
-        for i, line in enumerate(lines):
-            name = (line.a, line.b)[side].body
-            if name is not None:
-                at, pull = ends[2 * side], ends[2 * side + 1]
-                found.setdefault(name, []).append(
-                    [[i * len(LINE_COLUMNS) + c for c in at],
-                     [i * len(LINE_COLUMNS) + c for c in pull]])
-    found = {name: np.array(v, int).transpose(1, 0, 2) for name, v in found.items()}
-    problem.derived["audit_body_rows"] = (lines, found)
-    return found
 
 
 _END_ROWS = LockedLRU(256)

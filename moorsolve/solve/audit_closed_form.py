@@ -306,8 +306,12 @@ class _Mapped:
         self.n = n
         with SYMBOLIC_LOCK:
             self.function = _verdict_function(n)
+        # Its lines are unrolled (the body balance sums over them): past
+        # _COMPILE_MAX_LINES the C takes minutes to compile, and the interpreted checks
+        # cost little beside a solve of so many lines.
         self._library = Library([self.function], key=f"closed-form line audit/{n}/verdict",
-                                label=f"the closed-form audit of {n} lines")
+                                label=f"the closed-form audit of {n} lines",
+                                mode="off" if n > _COMPILE_MAX_LINES else None)
         self._compiled = None
         self._static = self._data = None   # the inputs last given (they persist)
         self._lock = threading.Lock()
@@ -380,6 +384,8 @@ def _verdict_function(n: int) -> ca.Function:
 
 _MAPPED: dict = {}
 _MAPPED_LOCK = threading.Lock()
+#: Most lines whose checks are compiled (1.4 MB of C at 128; 6 MB, 100 s at -O0, at 512).
+_COMPILE_MAX_LINES = 128
 
 
 def _mapped(lines: int) -> _Mapped:
