@@ -148,12 +148,18 @@ def _rest_chords(case: Case) -> dict:
 def diagnose(problem, case, result) -> str:
     """The physical reason an equilibrium was not found, at the best point reached."""
     reasons = []
+    rest = None
+    ran_away = []           # (name, chord at the best point, length) of lines that span at rest
     for line, lr in zip(case.lines, result.legs):
         lt = line.line_type
         chord = math.dist(lr.anchor, lr.fairlead)
         fixed = line.a.fixed and (line.b.fixed or line.b.body is not None)
         if fixed and not any(s.line_type.elastic for s in line.segments) \
                 and chord > line.length * (1 + 1e-9):
+            rest = _rest_chords(case) if rest is None else rest
+            if rest.get(line.name, (line.length, math.inf))[1] <= line.length:
+                ran_away.append((line.name, chord, line.length))
+                continue
             reasons.append(f"leg {line.name} cannot reach: anchor-fairlead distance "
                            f"{chord:.2f} m exceeds its inextensible length {line.length:.2f} m "
                            f"by {chord - line.length:.2f} m")
@@ -161,6 +167,18 @@ def diagnose(problem, case, result) -> str:
             reasons.append(f"leg {line.name} is pulled straight (chord {chord:.3f} m of "
                            f"{line.length:.3f} m): an inextensible line would need an "
                            f"unbounded tension; give the line type an ea")
+    if ran_away:
+        names = [name for name, _, _ in ran_away]
+        listed = (f"legs {', '.join(names[:-1])} and {names[-1]}" if len(names) > 1
+                  else f"leg {names[0]}")
+        chords = [chord for _, chord, _ in ran_away]
+        lengths = sorted({f"{length:.2f} m" for _, _, length in ran_away})
+        reasons.append(
+            f"{listed} cannot reach at the best point reached ({min(chords):.2f} to "
+            f"{max(chords):.2f} m between their ends, beyond their inextensible lengths, "
+            f"{', '.join(lengths)}), though each spans its ends at the case's pose: the "
+            "solver ran away, most likely pulled toward a straight inextensible line, whose "
+            "tension double precision cannot resolve; give the line types an ea")
     reasons += over_mbl(result)
     if result.bodies and problem.load_names:
         total = np.sum([v[:2] for v in result.loads.values()], axis=0)

@@ -5,6 +5,7 @@ vertical legs, a fully grounded leg, uplifted anchors, buoyant and weightless li
 loads beyond capacity.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -261,9 +262,34 @@ def test_inextensible_line_straighter_than_double_precision_is_refused_even_cert
     assert straight(1e12, 0.01) == []          # hanging vertically: straight by itself
     # End to end, whether the solver reaches the near-straight point at all is round-off
     # luck too (it does on some CPUs' OpenBLAS kernels; on an AMD EPYC with AVX-512 IPOPT
-    # runs away to a point where W cannot reach): never an answer, always leg W named.
-    with pytest.raises(ConvergenceError, match="leg W (is pulled straight|cannot reach)"):
+    # runs away to a point where the legs cannot reach, though they span at rest): never an
+    # answer, always leg W named, and a run-away said to be one.
+    with pytest.raises(ConvergenceError,
+                       match="leg W is pulled straight|W cannot reach at the best point "
+                             "reached .* though each spans its ends at the case's pose"):
         solve(case)
+
+
+def test_a_run_away_is_not_called_a_line_that_cannot_reach():
+    """A best point where inextensible lines that span their ends at the case's pose are
+    stretched beyond their length is the solver's excursion, not a scene that cannot
+    close; a line too short at the case's pose still cannot reach."""
+    from moorsolve.solve.diagnosis import diagnose
+    case = buoy_with_force(1e3)
+    result = solve(case)
+    far = [dataclasses.replace(leg, fairlead=(leg.fairlead[0] + 300.0, *leg.fairlead[1:]))
+           for leg in result.legs]
+    reason = diagnose(get_problem(case), case, dataclasses.replace(result, legs=far))
+    assert "cannot reach at the best point reached" in reason
+    assert "though each spans its ends at the case's pose" in reason
+    assert "anchor-fairlead distance" not in reason
+    short = buoy_with_force(1e3)
+    lines = tuple(dataclasses.replace(line, segments=tuple(
+        dataclasses.replace(seg, length=30.0) for seg in line.segments))
+        for line in short.lines)
+    short = dataclasses.replace(short, lines=lines)
+    reason = diagnose(get_problem(short), short, dataclasses.replace(result, legs=far))
+    assert "anchor-fairlead distance" in reason and "at the best point" not in reason
 
 
 def test_allow_overload_returns_the_equilibrium():
