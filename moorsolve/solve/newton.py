@@ -41,7 +41,7 @@ _ARROW_NODES = 24
 #: radian), and of a line's (a tension's: four typical tensions). The whole step is scaled
 #: down to the tightest, so it stays a Newton direction (a descent direction for the line
 #: search). A line's tension may need several typical tensions from rest under a large
-#: load: at one, the 12-chain dock under 9 MN took 10.2 iterations, at four 8.6.
+#: load: at one, the 12-chain dock under up to 9 MN took 9.7 iterations, at four 8.2.
 STEP_LIMIT = 1.0
 LINE_STEP_LIMIT = 4.0
 #: Largest problem (unknowns) whose kernel is compiled: beyond (some 190 one-segment lines)

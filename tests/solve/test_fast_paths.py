@@ -218,6 +218,33 @@ def test_held_body_lines_state_is_remembered_and_never_stale():
     assert_same_answer(newton, moorsolve.solve(elsewhere, solver="ipopt"), 1e-9)
 
 
+def test_held_body_solves_from_many_threads_share_one_remembered_state():
+    spar = moorsolve.load_case(SPAR)
+    body = spar.bodies[0]
+    held = dataclasses.replace(spar, bodies=(dataclasses.replace(
+        body, free=(), position=(body.position[0] - 2.5, *body.position[1:])),))
+    loads = random_loads(16, 1e6, 1e6, six=True, seed=11)
+    results, errors = [None] * len(loads), []
+
+    def work(k):
+        try:
+            for i in range(k, len(loads), 4):
+                results[i] = moorsolve.solve(with_force(held, loads[i]),
+                                             solver=("ipopt", "newton")[i % 2])
+        except Exception as err:          # pragma: no cover - reported below
+            errors.append(err)
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    for result in results:
+        assert result.converged
+        assert_same_answer(results[0], result, 1e-9)
+
+
 # ---- lazy legs and profiles ----------------------------------------------------------------
 
 
