@@ -218,6 +218,29 @@ def test_held_body_lines_state_is_remembered_and_never_stale():
     assert_same_answer(newton, moorsolve.solve(elsewhere, solver="ipopt"), 1e-9)
 
 
+def test_held_body_in_a_current_on_lumped_lines_is_never_served_a_stale_state():
+    """The current moves lumped lines: each current has its own remembered state, and a
+    state remembered under one current never answers another."""
+    case = moorsolve.load_case(CASES / "buoy_vida_current.yaml")
+    held = dataclasses.replace(case, bodies=(dataclasses.replace(case.bodies[0], free=()),))
+
+    def in_current(scale):
+        cur = held.environment.current
+        flow = dataclasses.replace(cur, speed=cur.speed * scale,
+                                   profile=tuple((z, v * scale) for z, v in cur.profile))
+        return dataclasses.replace(held, environment=dataclasses.replace(
+            held.environment, current=flow))
+
+    first = {scale: moorsolve.solve(in_current(scale)) for scale in (1.3, 2.1)}
+    assert first[1.3].legs[0].fairlead_tension_N != pytest.approx(
+        first[2.1].legs[0].fairlead_tension_N, rel=1e-4)
+    for scale in (2.1, 1.3, 2.1):
+        for solver in ("newton", "ipopt"):
+            result = moorsolve.solve(in_current(scale), solver=solver)
+            assert result.converged
+            assert_same_answer(first[scale], result, 1e-9)
+
+
 def test_held_body_solves_from_many_threads_share_one_remembered_state():
     spar = moorsolve.load_case(SPAR)
     body = spar.bodies[0]
