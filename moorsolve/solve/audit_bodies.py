@@ -110,24 +110,26 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
 #: What the compiled verdict (:mod:`.audit_closed_form`) reads of a scene's one free body
 #: per solve: its pose (m, rad), the sum of its loads (force, moment about its origin) and
 #: their largest force; and per body: its weight, centre of gravity, buoyancy, metacentre,
-#: waterplane stiffness, the water level, half the balance's relative tolerance and which
-#: degrees of freedom are free (1 or 0).
+#: waterplane stiffness, the water level, half the balance's relative tolerance, which
+#: degrees of freedom are free (1 or 0), its extra stiffness (6 x 6, by rows; zero without)
+#: and the pose it acts from (m, rad).
 BODY_POSE = 13
-BODY_DATA = 17
+BODY_DATA = 59
+_STIFFNESS, _SPRING_REST = 17, 53
 
 
 def one_body_inputs(problem, result, case):
     """``(name, pose, data)`` for the compiled verdict's balance of the scene's one free body
     (``pose`` a list of :data:`BODY_POSE` numbers, ``data`` an array of :data:`BODY_DATA`,
     the same array while the body's data are), or None where the scene is not that (free
-    points, several free bodies, fenders, pile guides, hull members, extra springs)."""
+    points, several free bodies, fenders, pile guides, hull members)."""
     if case.free_points or result.fenders or result.guides:
         return None
     free = [bi for bi, body in enumerate(case.bodies) if body.free]
     if len(free) != 1 or free[0] >= len(result.bodies):
         return None
     body = case.bodies[free[0]]
-    if body.hull or body.stiffness is not None:
+    if body.hull:
         return None
     pose = result.bodies[free[0]]
     fx = fy = fz = mx = my = mz = scale = 0.0
@@ -145,8 +147,9 @@ def one_body_inputs(problem, result, case):
               math.radians(pose["pitch_deg"]), math.radians(pose["yaw_deg"]),
               fx, fy, fz, mx, my, mz, scale]
     env = case.environment
-    key = (body.mass, body.centre_of_gravity, body.hydrostatics, body.free, env.gravity,
-           env.water_density, env.water_level, result.certificate.tolerance)
+    key = (body.mass, body.centre_of_gravity, body.hydrostatics, body.free, body.stiffness,
+           body.position, body.orientation_deg, env.gravity, env.water_density,
+           env.water_level, result.certificate.tolerance)
     hit = problem.derived.get("audit_body_data")
     if hit is None or hit[0] != key:
         g, rho, hydro = env.gravity, env.water_density, body.hydrostatics
@@ -158,7 +161,11 @@ def one_body_inputs(problem, result, case):
                          0.0 if hydro is None else rho * g * hydro.waterplane_area,
                          env.water_level,
                          0.5 * max(10.0 * result.certificate.tolerance, FORCE_REL),
-                         *(1.0 if dof in body.free else 0.0 for dof in _DOFS)], float)
+                         *(1.0 if dof in body.free else 0.0 for dof in _DOFS),
+                         *(np.ravel(np.asarray(body.stiffness, float))
+                           if body.stiffness is not None else np.zeros(36)),
+                         *body.position, *(math.radians(a) for a in body.orientation_deg)],
+                        float)
         data.flags.writeable = False
         hit = problem.derived["audit_body_data"] = (key, data)
     return body.name, inputs, hit[1]
@@ -195,6 +202,10 @@ def symbolic_balance(ends, t_lines, pose, data):
         force[2], moment[0], moment[1] = force[2] + f, moment[0] + ry * f, moment[1] - rx * f
     mx, my, mz = moment
     generalized = (*force, r0[0] * mx + r1[0] * my - sp * mz, -sy * mx + cy * my, mz)
+    # The extra springs act on the generalized coordinates, from the case's pose.
+    moved = [pose[j] - data[_SPRING_REST + j] for j in range(6)]
+    generalized = [g - sum(data[_STIFFNESS + 6 * k + j] * moved[j] for j in range(6))
+                   for k, g in enumerate(generalized)]
     tol = half_tol * scale
     arm = 10.0 * ca.fmax(ca.sqrt(radius2), 1.0)
     ok = 1

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from moorsolve import load_case, solve
+from moorsolve.model import BodyLoads
 from moorsolve.solve import audit as audit_module
 from moorsolve.solve.audit import AuditFailure
 from moorsolve.solve.audit_bodies import body_findings, one_body_inputs
@@ -29,8 +30,8 @@ COL = {name: k for k, name in enumerate(LINE_COLUMNS)}
 
 def solved(name):
     """Solved and its report; ``oc3_spar`` without its extra springs (as the benchmarks
-    solve it: the springs are left to the plain balance)."""
-    case = load_case(CASES / f"{name}.yaml")
+    solve it), ``oc3_spar_springs`` the shipped case with them."""
+    case = load_case(CASES / f"{name.removesuffix('_springs')}.yaml")
     if name == "oc3_spar":
         case = dataclasses.replace(case, bodies=(dataclasses.replace(case.bodies[0],
                                                                      stiffness=None),))
@@ -51,8 +52,8 @@ def screens(problem, result, case, table):
 
 
 @pytest.mark.parametrize("name, covered", [
-    ("floating_dock", True), ("oc4_semi", True), ("oc3_spar", True), ("ship_97m", True),
-    ("three_platforms", False)])
+    ("floating_dock", True), ("oc4_semi", True), ("oc3_spar", True),
+    ("oc3_spar_springs", True), ("ship_97m", True), ("three_platforms", False)])
 def test_a_certified_result_passes_every_screen_that_covers_it(name, covered):
     case, result, problem, post, table = solved(name)
     assert wait_compiled(len(case.lines), 600)
@@ -87,6 +88,8 @@ def _nan_pose(result, _):
     ("floating_dock", _shifted, 1.0, "yaw"),
     ("oc3_spar", _shifted, 1.0, ""),
     ("oc3_spar", _sunk, 0.01, "heave"),
+    ("oc3_spar_springs", _shifted, 1.0, ""),
+    ("oc3_spar_springs", _sunk, 0.01, "heave"),
     ("oc4_semi", _pushed, 1e4, "surge"),
 ])
 def test_a_planted_body_defect_fails_every_screen_and_the_audit(name, plant, size, dof):
@@ -124,8 +127,22 @@ def test_a_planted_fairlead_force_fails_the_screens():
     assert compiled is False and found
 
 
-def test_a_body_with_extra_springs_is_left_to_the_plain_balance():
-    case, result, problem, post, table = solved("floating_dock")
-    stiff = dataclasses.replace(case, bodies=(dataclasses.replace(
-        case.bodies[0], stiffness=tuple(tuple(0.0 for _ in range(6)) for _ in range(6))),))
-    assert one_body_inputs(problem, result, stiff) is None
+def test_the_screen_counts_a_body_s_extra_springs():
+    """The shipped OC3 spar's springs (its crow's foot's yaw stiffness) are in the compiled
+    balance: under a yaw moment they carry part of it, and the screen passes the certified
+    result with them and fails it without them (as the plain balance does)."""
+    case = load_case(CASES / "oc3_spar.yaml")
+    body = case.bodies[0]
+    case = dataclasses.replace(case, bodies=(dataclasses.replace(
+        body, loads=BodyLoads(force=(3e5, 0.0, 0.0, 0.0, 0.0, 5e6))),))
+    result = solve(case, solver="newton")
+    assert abs(result.bodies[0]["yaw_deg"]) > 0.1
+    problem = get_problem(case)
+    post = problem.post(result.state, problem.parameters(case, 1.0))
+    table = np.atleast_2d(np.array(post["lines"], float))
+    assert wait_compiled(len(case.lines), 600)
+    assert screens(problem, result, case, table) == (True, [])
+    bare = dataclasses.replace(case, bodies=(dataclasses.replace(case.bodies[0],
+                                                                 stiffness=None),))
+    compiled, found = screens(problem, result, bare, table)
+    assert compiled is False and any("in yaw" in f for f in found), found
