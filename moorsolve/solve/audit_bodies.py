@@ -62,15 +62,10 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
             force = pulls.sum(axis=0).tolist()
             moment = [m[1][2] - m[2][1], m[2][0] - m[0][2], m[0][1] - m[1][0]]
             radius = max(radius, math.sqrt(max(x * x + y * y for x, y, _ in arm.tolist())))
-        for name, load in result.loads.items():
-            if len(case.bodies) > 1 and not name.startswith(body.name + "."):
-                continue
-            f = [float(v) for v in load]
-            if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
-                f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
-            force = [a + b for a, b in zip(force, f[:3])]
-            moment = [a + b for a, b in zip(moment, f[3:])]
-            scale = max(scale, math.hypot(f[0], f[1], f[2]))
+        loads, largest = body_loads(result, case, body.name)
+        force = [a + b for a, b in zip(force, loads[:3])]
+        moment = [a + b for a, b in zip(moment, loads[3:])]
+        scale = max(scale, largest)
         # Hydrostatics act about the still-water level (above the datum by a tide).
         afloat = (q[0], q[1], q[2] - env.water_level)
         for f, m in _hydrostatic_wrenches(body, afloat, R, env):
@@ -107,6 +102,22 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
     return out
 
 
+def body_loads(result, case, name: str) -> tuple:
+    """``([Fx, Fy, Fz, Mx, My, Mz], largest)``: the sum of the reported loads on body
+    ``name`` (force, and moment about its origin) and the largest force among them."""
+    total, largest = [0.0] * 6, 0.0
+    several = len(case.bodies) > 1
+    for key, load in result.loads.items():
+        if several and not key.startswith(name + "."):
+            continue
+        f = [float(v) for v in load]
+        if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
+            f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
+        total = [a + b for a, b in zip(total, f)]
+        largest = max(largest, math.hypot(f[0], f[1], f[2]))
+    return total, largest
+
+
 #: What the compiled verdict (:mod:`.audit_closed_form`) reads of a scene's one free body
 #: per solve: its pose (m, rad), the sum of its loads (force, moment about its origin) and
 #: their largest force; and per body: its weight, centre of gravity, buoyancy, metacentre,
@@ -132,20 +143,10 @@ def one_body_inputs(problem, result, case):
     if body.hull:
         return None
     pose = result.bodies[free[0]]
-    fx = fy = fz = mx = my = mz = scale = 0.0
-    several = len(case.bodies) > 1
-    for name, load in result.loads.items():
-        if several and not name.startswith(body.name + "."):
-            continue
-        f = [float(v) for v in load]
-        if len(f) == 3:                       # the legs form: [Fx, Fy, Mz]
-            f = [f[0], f[1], 0.0, 0.0, 0.0, f[2]]
-        fx, fy, fz, mx, my, mz = (fx + f[0], fy + f[1], fz + f[2], mx + f[3], my + f[4],
-                                  mz + f[5])
-        scale = max(scale, math.hypot(f[0], f[1], f[2]))
+    loads, largest = body_loads(result, case, body.name)
     inputs = [pose["x_m"], pose["y_m"], pose["z_m"], math.radians(pose["roll_deg"]),
               math.radians(pose["pitch_deg"]), math.radians(pose["yaw_deg"]),
-              fx, fy, fz, mx, my, mz, scale]
+              *loads, largest]
     env = case.environment
     key = (body.mass, body.centre_of_gravity, body.hydrostatics, body.free, body.stiffness,
            body.position, body.orientation_deg, env.gravity, env.water_density,
