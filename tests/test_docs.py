@@ -1,6 +1,7 @@
-"""Every code block of the documentation runs (issue 18): the pages of docs/ block by block
-in a fresh folder (docs/run_blocks.py), the README's Python blocks from the repository
-root, and the script that draws the documentation's pictures."""
+"""Every code block of the documentation runs: the pages of docs/ block by block in a fresh
+folder (docs/run_blocks.py), the README's Python blocks from the repository root, and the
+script that draws the documentation's pictures; the site builds with warnings as errors and
+every link of the README resolves."""
 
 from __future__ import annotations
 
@@ -18,17 +19,31 @@ import run_blocks  # noqa: E402
 PAGES = sorted(DOCS.glob("*.md"))
 
 
+def _runnable(block) -> bool:
+    return block.lang in ("bash", "python") or (block.lang == "yaml" and "file" in block.attrs)
+
+
+RUNNABLE = [p for p in PAGES
+            if any(_runnable(b) for b in run_blocks.blocks(p.read_text(encoding="utf-8")))]
+# Files a page's commands must leave behind (the command reference writes one of each).
+LEAVES = {"commands.md": ("ship.html", "dock_optimised.yaml", "dock.png", "envelope.png")}
+
+
 def test_there_is_a_walkthrough_linked_from_the_readme():
     assert DOCS / "walkthrough.md" in PAGES
     assert "docs/walkthrough.md" in (ROOT / "README.md").read_text(encoding="utf-8")
 
 
-@pytest.mark.parametrize("page", PAGES, ids=[p.name for p in PAGES])
+def test_the_pages_that_teach_by_example_have_runnable_blocks():
+    names = {p.name for p in RUNNABLE}
+    assert {"walkthrough.md", "commands.md", "python.md", "studies.md", "berths.md"} <= names
+
+
+@pytest.mark.parametrize("page", RUNNABLE, ids=[p.name for p in RUNNABLE])
 def test_every_block_of_a_docs_page_runs(page, tmp_path):
-    runnable = [b for b in run_blocks.blocks(page.read_text(encoding="utf-8"))
-                if b.lang in ("bash", "python") or (b.lang == "yaml" and "file" in b.attrs)]
-    assert runnable, f"{page.name} has no runnable block"
     run_blocks.run(page, tmp_path, log=lambda *_: None, in_process=True)
+    for name in LEAVES.get(page.name, ()):
+        assert (tmp_path / name).exists(), f"{page.name} should have written {name}"
 
 
 def test_the_readme_python_blocks_run(monkeypatch):
@@ -41,17 +56,31 @@ def test_the_readme_python_blocks_run(monkeypatch):
         exec(compile(block.code, f"README.md:{block.line}", "exec"), namespace)
 
 
-def test_the_readme_command_examples_run(tmp_path):
-    """The README's shell blocks, from an empty folder; the ones that install packages
-    are the quick start (run by .ci/run) and the benchmarks' setup."""
-    def runnable(block):
-        return block.lang == "bash" and "pip install" not in block.code
-    blocks = [b for b in run_blocks.blocks((ROOT / "README.md").read_text(encoding="utf-8"))
-              if runnable(b)]
-    assert any("moorsolve check" in b.code and "moorsolve stiffness" in b.code for b in blocks)
-    run_blocks.run(ROOT / "README.md", tmp_path, log=lambda *_: None, select=runnable,
-                   in_process=True)
-    assert (tmp_path / "ship.html").exists() and (tmp_path / "dock_optimised.yaml").exists()
+def test_the_command_reference_shows_every_command():
+    text = (DOCS / "commands.md").read_text(encoding="utf-8")
+    examples = "\n".join(b.code for b in run_blocks.blocks(text) if b.lang == "bash")
+    from moorsolve.cli import _parser
+    commands = set(_parser()._subparsers._group_actions[0].choices)
+    missing = sorted(c for c in commands if f"moorsolve {c}" not in examples)
+    assert not missing, f"docs/commands.md has no example of: {missing}"
+
+
+def test_every_relative_link_of_the_readme_resolves():
+    import re
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    for target in re.findall(r"\]\(([^)#:]+)(?:#[^)]*)?\)", text):
+        assert (ROOT / target).exists(), f"README.md links to {target}, which does not exist"
+
+
+def test_the_site_builds_strictly(tmp_path):
+    pytest.importorskip("mkdocs", reason="the docs extra (pip install -e '.[docs]')")
+    pytest.importorskip("mkdocstrings")
+    from mkdocs.commands.build import build
+    from mkdocs.config import load_config
+    config = load_config(str(ROOT / "mkdocs.yml"), site_dir=str(tmp_path / "site"),
+                         strict=True)
+    build(config)
+    assert (tmp_path / "site" / "reference" / "index.html").exists()
 
 
 def test_unknown_block_attributes_and_exit_codes_are_honoured(tmp_path):
@@ -73,7 +102,7 @@ def test_the_pictures_of_the_docs_are_drawn_by_their_script(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     for name in ("directions.png", "equilibrium_dock_sloped.png"):
         assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    text = (ROOT / "README.md").read_text() + (DOCS / "walkthrough.md").read_text()
+    text = "".join(p.read_text() for p in [ROOT / "README.md", *PAGES])
     import re
     for name in re.findall(r"\]\(((?:docs/)?[\w]+\.png)\)", text):
         assert (ROOT / name).exists() or (DOCS / name).exists(), f"{name} is not committed"
