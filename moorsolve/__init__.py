@@ -11,6 +11,8 @@ Importing the package is light: each public name below is imported when first us
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from . import solve as _solve_package  # noqa: F401  (light; binds before solve() below)
 from ._lazy import lazy_exports
 from .errors import (CaseError, ConvergenceError, MoorsolveError, MoorsolveWarning,
@@ -39,7 +41,8 @@ __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
 
 class _Solve:
-    """Static equilibrium of ``case``, certified: :func:`moorsolve.solve.equilibrium.solve`
+    """Static equilibrium of ``case`` (a Case, or a dict of a case file's shape, loaded as
+    :func:`moorsolve.load_case` would), certified: :func:`moorsolve.solve.equilibrium.solve`
     (keyword options ``tol``, ``solver``, ``allow_overload``, ``start``, ``stability``,
     ``audit``).
 
@@ -55,6 +58,9 @@ class _Solve:
     _run = None             # the solver entry, imported on the first call
 
     def __call__(self, case, **options):
+        if isinstance(case, Mapping):          # a dict of a case file's shape
+            from .io.case_file import load_case
+            case = load_case(case)
         run = self._run
         if run is None:
             from .solve.equilibrium import solve as run

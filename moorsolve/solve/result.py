@@ -226,6 +226,15 @@ class LegResult:
         return d
 
 
+#: The vector fields of a leg's dict and their columns in :meth:`Result.to_frame`.
+_FRAME_VECTORS = {
+    **{f"{stem}_{unit}": tuple(f"{stem}_{axis}_{unit}" for axis in "xyz")
+       for stem, unit in (("anchor", "m"), ("fairlead", "m"), ("touchdown_point", "m"),
+                          ("fairlead_force", "N"), ("anchor_force", "N"))},
+    "seabed_plane": ("seabed_plane_z0_m", "seabed_plane_dz_dx", "seabed_plane_dz_dy"),
+}
+
+
 @dataclass(frozen=True)
 class Stability:
     """Static stability of an equilibrium, from the total tangent stiffness.
@@ -379,8 +388,32 @@ class Result:
                 return leg
         raise KeyError(name)
 
+    def to_frame(self):
+        """The lines as a pandas DataFrame: one row per line, indexed by name, SI columns.
+
+        The columns are the scalar fields of ``to_dict()["legs"]`` (forces [N], lengths [m],
+        angles [deg], ``utilisation``); a vector field ``<name>_m`` or ``<name>_N`` becomes
+        one column per component (``anchor_x_m``, ``fairlead_force_z_N``). Profiles,
+        segments and joints stay in :meth:`to_dict`.
+        """
+        import pandas as pd
+        rows = []
+        for leg in self.legs:
+            row = {}
+            for key, value in leg.to_dict(profile=False).items():
+                if key in ("segments", "joints"):
+                    continue
+                columns = _FRAME_VECTORS.get(key)
+                if columns is None:
+                    row[key] = value
+                else:               # a vector, or None where the line has none (NaN)
+                    values = [np.nan] * 3 if value is None else value
+                    row.update(zip(columns, values))
+            rows.append(row)
+        return pd.DataFrame(rows).set_index("name")
+
     def to_dict(self, profiles: bool = True) -> dict:
-        """The result as JSON-ready data (CONTRACT.md "Result"), plus extensions."""
+        """The result as JSON-ready data (the ``solve --json`` document)."""
         c = self.certificate
         out = {
             "converged": self.converged,
