@@ -189,7 +189,7 @@ def wait_steady(case) -> None:
     """The steady state of a process that solves the scene repeatedly: the Newton kernel,
     IPOPT's functions (a process compiles them after a few solves) and the closed-form
     audit's checks compiled."""
-    from moorsolve.solve import audit_closed_form
+    from moorsolve.audit import closed_form as audit_closed_form
     from moorsolve.solve.cache import get_problem
     problem = get_problem(case)
     if problem._newton is not None:

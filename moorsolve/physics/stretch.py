@@ -58,7 +58,7 @@ from .stretch_table import _Table, pchip_slopes
 
 __all__ = ["StretchModel", "Law", "HOOKE", "BARANOV", "TABLE", "MODELS", "strain",
            "compliance", "energy", "mean_strain", "horizontal", "descent", "pchip_slopes",
-           "law_function", "evaluate", "NumericLaw"]
+           "law_function", "evaluate", "NumericLaw", "law_model", "numeric_law"]
 
 HOOKE, BARANOV, TABLE = "hooke", "baranov", "table"
 MODELS = (HOOKE, BARANOV, TABLE)
@@ -344,3 +344,20 @@ class NumericLaw:
     def secant_ea(self, T: float) -> float:
         """``T / eps(T)`` [N]: the stiffness of a Hooke line that stretches as much at ``T``."""
         return float(T / self.strain(T))
+
+
+def law_model(line_type) -> StretchModel | None:
+    """The :class:`StretchModel` of a line type (of :mod:`moorsolve.model`) with a law
+    other than Hooke's, else None."""
+    law = line_type.stretch
+    if law is None:
+        return None
+    if law.model == "baranov":
+        return StretchModel(BARANOV)
+    return StretchModel(TABLE, law.rows)
+
+
+def numeric_law(line_type) -> NumericLaw | None:
+    """The line type's law as a :class:`NumericLaw` for profiles (None for Hooke lines)."""
+    model = law_model(line_type)
+    return None if model is None else NumericLaw(model, line_type.stretch.parameters())

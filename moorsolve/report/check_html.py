@@ -173,7 +173,7 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
              ], left=2, cls="meta").replace('<td class="l">' + digest,
                                             '<td class="l mono">' + digest)]
     if report.warnings:
-        # What no engineer may miss (moorsolve.solve.audit.result_warnings), before all else.
+        # What no engineer may miss (moorsolve.audit.result_warnings), before all else.
         parts.append('<div class="fail"><p>Warnings:</p><ul>' + "".join(
             f"<li>{_e(w['condition'])}: {_e(w['message'])}</li>" for w in report.warnings)
             + "</ul></div>")

@@ -83,7 +83,7 @@ def format_table(result) -> str:
     if over:
         lines.append(f"OVERLOAD: {', '.join(over)} above the minimum breaking load "
                      "(accepted with --allow-overload)")
-    # Last, where a terminal leaves them in view (moorsolve.solve.audit.result_warnings).
+    # Last, where a terminal leaves them in view (moorsolve.audit.result_warnings).
     lines += [f"WARNING: {w['message']}" for w in result.warnings]
     return "\n".join(lines)
 

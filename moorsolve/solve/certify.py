@@ -12,7 +12,7 @@ import math
 import casadi as ca
 import numpy as np
 
-from .concurrency import SYMBOLIC_LOCK
+from ..concurrency import SYMBOLIC_LOCK
 
 #: Outputs of :meth:`EquilibriumProblem.post_function`: the certificate, the condensed
 #: stiffness and its stability test, the seven outputs of ``report``, and the segment and

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from ..model import Case
-from .audit import audit_findings
+from ..audit import audit_findings
 from .newton import CONVERGED, STATUS_TEXT
 from .prepared import line_facts
 from .problem import LINE_COLUMNS

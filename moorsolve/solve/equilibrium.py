@@ -35,8 +35,8 @@ from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
 from .diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, pulled_straight,
                         unbalanced_force)
-from .audit import audit as audit_result
-from .audit import result_warnings
+from ..audit import audit as audit_result
+from ..audit import result_warnings
 from .newton import STATUS_TEXT
 from .outcome import build_result, hull_out_of_range
 from .polish import polish, polish_certified
@@ -180,9 +180,9 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         examination (``Result.stability`` is then None), for sweeps that only want numbers.
     audit : bool or "full"
         Check the reported quantities independently before returning
-        (:mod:`moorsolve.solve.audit`; the default). One-segment lines on a flat seabed are
+        (:mod:`moorsolve.audit`; the default). One-segment lines on a flat seabed are
         audited in closed form from their reported end positions and forces
-        (:mod:`moorsolve.solve.audit_closed_form`); other scenes by drawing every line's
+        (:mod:`moorsolve.audit.closed_form`); other scenes by drawing every line's
         profile, which costs a few times a compiled Newton solve. ``"full"`` runs the
         profile audit on every scene as well; ``False`` skips the audit for loops that need
         the speed (the certificate, the stability check and the warnings stay).

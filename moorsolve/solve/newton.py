@@ -291,7 +291,7 @@ class NewtonKernel:
     """
 
     def __init__(self, problem, *, compile: bool = True):
-        from .compiled import Library
+        from ..compiled import Library
 
         self.problem = problem
         self.function = newton_function(problem)

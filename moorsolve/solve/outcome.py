@@ -20,7 +20,7 @@ from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
-from .audit import AuditFailure
+from ..audit import AuditFailure
 from .bathymetry import plane_slices
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
@@ -154,7 +154,7 @@ def hull_out_of_range(problem, x, p, post=None) -> list:
 
 def _line_notes(case, problem, legs) -> list:
     # A line through the seabed or out of the water, a joint held off its boundary: the
-    # audit's findings (moorsolve.solve.audit), errors of a certified point and reasons of
+    # audit's findings (moorsolve.audit), errors of a certified point and reasons of
     # one that is not; not notes.
     notes = []
     quiet = problem.derived.get("anchored_one_segment_lines")
@@ -321,8 +321,9 @@ def _single_result(case, line, kind, row, u, stiffness, cert, batch=None,
 
 def _ends_checked(draw, line, env, a, b, fa, fb, cert):
     """``draw`` made to check what it drew: the profile runs from end A to end B with their
-    reported tensions, or :class:`~.audit.AuditFailure` says it does not (where the audit
-    ran in closed form, :mod:`.audit_closed_form`, this is the only look at a profile)."""
+    reported tensions, or :class:`~moorsolve.audit.AuditFailure` says it does not (where
+    the audit ran in closed form, :mod:`moorsolve.audit.closed_form`, this is the only look
+    at a profile)."""
     def checked() -> dict:
         prof = draw()
         ta, tb = math.hypot(*fa), math.hypot(*fb)

@@ -39,7 +39,7 @@ import numpy as np
 
 from . import layout
 from ..model import Body, BodyLoads
-from .concurrency import LockedLRU
+from ..concurrency import LockedLRU
 from .contact import contact_points
 
 # Re-entrant: a case freed while the table is locked calls _forget on the same thread.

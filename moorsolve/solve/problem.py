@@ -32,10 +32,11 @@ import casadi as ca
 import numpy as np
 
 from ..model import DOFS, Case
+from ..model.line_table import LINE_COLUMNS
 from ..physics.kinematics import cross, rotation_matrix
 from . import body_loads as body_load_models
 from .certify import Certification
-from .concurrency import SYMBOLIC_LOCK
+from ..concurrency import SYMBOLIC_LOCK
 from .nodes import node_balances
 from .numerics import SolverAccess
 from .discrete import discrete_leg
@@ -46,16 +47,6 @@ from .line_kinds import LineKind, line_kinds
 from .lines import closing_force, multi_block, plane_geometry, seabed_height, single_block
 from .prepared import parameter_vector
 
-#: Columns of the lines table of ``EquilibriumProblem.report``: the horizontal and vertical
-#: tension at end B (``H``, ``VF``: the upward force B exerts on the line), the horizontal
-#: pull on end A and its upward pull (``HA``, ``VA``); the grounded length and the
-#: horizontal extent of the part rising to the upper end [m]; the line's mismatch as a force
-#: and 0 (multi-segment and lumped lines) or its span residuals [m]; its spans ``X``, ``Z``;
-#: end B's global x, y; the horizontal force on end B; the 2x2 block of a single line
-#: (column-major); end A's global position and end B's z; the forces on A and B [N].
-LINE_COLUMNS = ("H", "VF", "HA", "VA", "grounded", "suspended_x", "rX", "rZ", "X", "Z",
-                "bx", "by", "fx", "fy", "J00", "J10", "J01", "J11",
-                "ax", "ay", "az", "bz", "FAx", "FAy", "FAz", "FBx", "FBy", "FBz", "floating")
 ROTATIONS = ("roll", "pitch", "yaw")
 POINT_DOFS = ("x", "y", "zeta")
 

@@ -332,7 +332,7 @@ class Result:
     stability: Optional[Stability] = None
     form: str = "legs"
     #: What an engineer must not miss (wall compression, line floating, an end in air):
-    #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.solve.audit.result_warnings`.
+    #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.audit.result_warnings`.
     warnings: tuple = ()
     #: Per fender: in_contact, compression_m, reaction_N, friction_N, stick, slip_m,
     #: energy_J, utilisation (compression over rated deflection), force_N, contact_point_m

@@ -20,7 +20,7 @@ from ..physics.closed_form import initial_state
 from ..physics.profile import leg_profile
 from .prepared import parameter_vector
 from .line_kinds import can_ground, discretised, line_kind
-from .concurrency import LockedLRU
+from ..concurrency import LockedLRU
 from .prepared import geometry_key, line_kinds_of, per_case
 from .stretch_params import start_ea
 

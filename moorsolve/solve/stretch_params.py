@@ -16,20 +16,10 @@ import casadi as ca
 import numpy as np
 
 from ..model import Case
-from ..physics.stretch import BARANOV, TABLE, NumericLaw, StretchModel
+from ..physics.stretch import law_model, numeric_law
 
 __all__ = ["law_model", "stretch_parameters", "law_slot", "line_laws", "numeric_law",
            "start_ea", "stiffness_scale_column", "baranov_n_column"]
-
-
-def law_model(line_type) -> StretchModel | None:
-    """The :class:`StretchModel` of a line type with a law other than Hooke's, else None."""
-    law = line_type.stretch
-    if law is None:
-        return None
-    if law.model == "baranov":
-        return StretchModel(BARANOV)
-    return StretchModel(TABLE, law.rows)
 
 
 def stretch_parameters(case: Case) -> np.ndarray:
@@ -51,12 +41,6 @@ def line_laws(case: Case, layout, p) -> list:
     return [[list(ca.vertsplit(p[layout.slice(law_slot(line, k))]))
              if seg.line_type.stretch is not None else None
              for k, seg in enumerate(line.segments)] for line in case.lines]
-
-
-def numeric_law(line_type) -> NumericLaw | None:
-    """The line type's law as a :class:`NumericLaw` for profiles (None for Hooke lines)."""
-    model = law_model(line_type)
-    return None if model is None else NumericLaw(model, line_type.stretch.parameters())
 
 
 def start_ea(line_type) -> float | None:

@@ -14,7 +14,7 @@ from moorsolve.io import read_import
 from moorsolve.io.bathymetry import read_bathymetry
 from moorsolve.io.moordyn import MoorDynError
 from moorsolve.io.moordyn_write import export_moordyn
-from moorsolve.solve.audit import AuditFailure
+from moorsolve.audit import AuditFailure
 from conftest import DATA
 
 FOLDER = DATA / "moordyn_bathymetry"

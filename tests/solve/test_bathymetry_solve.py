@@ -10,7 +10,7 @@ import pytest
 import yaml
 
 from moorsolve import load_case, solve
-from moorsolve.solve.audit import AuditFailure
+from moorsolve.audit import AuditFailure
 from moorsolve.solve.bathymetry import TOUCHDOWN_REL
 from conftest import CASES
 

@@ -10,7 +10,7 @@ chain); lines in a current (lumped nodes); a body on a spread of such legs under
 
 Every solve either raises ConvergenceError (refused: counted) or returns a result that
 must pass (1) both audits, which ``solve(..., audit="full")`` runs on it
-(``moorsolve.solve.audit``: the profile audit of boundaries, end forces and body balance,
+(``moorsolve.audit``: the profile audit of boundaries, end forces and body balance,
 and for one-segment lines on a flat seabed the closed-form audit of the end forces), and
 (2) for every analytic one-segment leg, an independent integration of the line's
 equilibrium ODE (``tests/reference_ode.py``) from the reported end forces, which must land

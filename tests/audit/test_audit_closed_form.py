@@ -18,11 +18,11 @@ import pytest
 import moorsolve
 from moorsolve import load_case, solve
 from moorsolve.model import BodyLoads
-from moorsolve.solve import audit as audit_module
-from moorsolve.solve.audit import AuditFailure, closed_form_audit
-from moorsolve.solve.audit_closed_form import closed_form_findings, covers
+from moorsolve.audit import run as audit_module
+from moorsolve.audit import AuditFailure, closed_form_audit
+from moorsolve.audit.closed_form import closed_form_findings, covers
 from moorsolve.solve.cache import get_problem
-from moorsolve.solve.problem import LINE_COLUMNS
+from moorsolve.model.line_table import LINE_COLUMNS
 from conftest import ROOT
 
 CASES = ROOT / "cases"

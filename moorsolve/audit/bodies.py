@@ -1,4 +1,4 @@
-"""The audit's balance of every free body and free point (:mod:`moorsolve.solve.audit`).
+"""The audit's balance of every free body and free point (:mod:`moorsolve.audit`).
 
 Per body, in every free degree of freedom: the force and the moment about the body's origin
 (global axes) of every line end on the body (the reported end forces at the reported end
@@ -21,8 +21,8 @@ import math
 import numpy as np
 
 from ..model.build_network import rotation
-from .audit_lines import FORCE_REL
-from .concurrency import LockedLRU
+from ..concurrency import LockedLRU
+from .lines import FORCE_REL
 
 __all__ = ["body_findings", "one_body_inputs", "symbolic_balance"]
 
@@ -118,7 +118,7 @@ def body_loads(result, case, name: str) -> tuple:
     return total, largest
 
 
-#: What the compiled verdict (:mod:`.audit_closed_form`) reads of a scene's one free body
+#: What the compiled verdict (:mod:`.closed_form`) reads of a scene's one free body
 #: per solve: its pose (m, rad), the sum of its loads (force, moment about its origin) and
 #: their largest force; and per body: its weight, centre of gravity, buoyancy, metacentre,
 #: waterplane stiffness, the water level, half the balance's relative tolerance, which

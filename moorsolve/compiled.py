@@ -91,13 +91,15 @@ def _compiler() -> list[str] | None:
 
 @functools.lru_cache(maxsize=None)
 def code_version() -> str:
-    """A hash of the code that builds the compiled graphs (moorsolve's solve/ and
-    physics/ sources) and of CasADi's version: part of every structural key."""
-    root = Path(__file__).resolve().parent.parent
+    """A hash of the code that builds the compiled graphs (moorsolve's solve/, physics/
+    and audit/ sources, and this module) and of CasADi's version: part of every structural
+    key."""
+    root = Path(__file__).resolve().parent
     digest = hashlib.sha256(ca.__version__.encode())
-    for folder in ("solve", "physics"):
+    for folder in ("solve", "physics", "audit"):
         for path in sorted((root / folder).glob("*.py")):
             digest.update(path.name.encode() + path.read_bytes())
+    digest.update(Path(__file__).name.encode() + Path(__file__).read_bytes())
     return digest.hexdigest()
 
 

@@ -16,12 +16,12 @@ import pytest
 
 from moorsolve import load_case, solve
 from moorsolve.model import BodyLoads
-from moorsolve.solve import audit as audit_module
-from moorsolve.solve.audit import AuditFailure
-from moorsolve.solve.audit_bodies import body_findings, one_body_inputs
-from moorsolve.solve.audit_closed_form import closed_form_check, table_end_rows, wait_compiled
+from moorsolve.audit import run as audit_module
+from moorsolve.audit import AuditFailure
+from moorsolve.audit.bodies import body_findings, one_body_inputs
+from moorsolve.audit.closed_form import closed_form_check, table_end_rows, wait_compiled
 from moorsolve.solve.cache import get_problem
-from moorsolve.solve.problem import LINE_COLUMNS
+from moorsolve.model.line_table import LINE_COLUMNS
 from conftest import ROOT
 
 CASES = ROOT / "cases"

@@ -1,6 +1,6 @@
 """The independent audit of every result, and the warnings nobody may miss (issue 20).
 
-The audit (``moorsolve.solve.audit``) recomputes from the reported profile, end forces and
+The audit (``moorsolve.audit``) recomputes from the reported profile, end forces and
 loads alone. These tests feed it the defects issue 20 found (a buoyant line drawn in the
 air, a folded line's profile ending at the wrong point, an end force not along its line,
 unbalanced body forces) and check each is an error, not a note; and that the warnings reach
@@ -21,7 +21,7 @@ from moorsolve import ConvergenceError, load_case, solve
 from moorsolve.cli import main
 from moorsolve.report.text import format_table
 from moorsolve.solve import outcome
-from moorsolve.solve.audit import AuditFailure, audit
+from moorsolve.audit import AuditFailure, audit
 from moorsolve.solve.profile_batch import ProfileBatch
 from conftest import ROOT
 
@@ -223,7 +223,7 @@ def test_audit_checks_every_free_dof_of_a_six_dof_body_with_its_hydrostatics():
     import dataclasses as dc
 
     from conftest import CASES
-    from moorsolve.solve.audit import audit_findings
+    from moorsolve.audit import audit_findings
     case = moorsolve.load_case(CASES / "oc3_spar.yaml")
     result = moorsolve.solve(case)
     assert audit_findings(result, case) == []
@@ -241,7 +241,7 @@ def test_audit_checks_every_free_dof_of_a_six_dof_body_with_its_hydrostatics():
 def test_audit_integrates_hull_members_by_quadrature():
     """A floating box solved with the exact (closed-form) buoyancy passes the audit, which
     integrates the submerged volume by Gauss quadrature instead; heeled as well."""
-    from moorsolve.solve.audit import audit_findings
+    from moorsolve.audit import audit_findings
     data = {
         "environment": {"depth": 100.0},
         "line_types": {"rope": {"weight_in_water": 0.0, "ea": 1e8}},

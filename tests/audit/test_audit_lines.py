@@ -1,4 +1,4 @@
-"""The audit's per-line checks run over all lines at once (``moorsolve.solve.audit_lines``).
+"""The audit's per-line checks run over all lines at once (``moorsolve.audit.lines``).
 
 Every line's profile is laid end to end in one array, so the checks must keep the lines
 apart: a defect in one line is found in that line only, whichever line it is (the first,
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from moorsolve import load_case, solve
-from moorsolve.solve.audit import audit_findings
+from moorsolve.audit import audit_findings
 from conftest import ROOT
 
 CASES = ROOT / "cases"

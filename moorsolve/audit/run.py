@@ -30,7 +30,7 @@ reported positions, the reported forces of its fenders and pile guides at their 
 points, the reported loads, the weight, the hydrostatics (recomputed here: the linear model,
 and hull members by quadrature rather than the solver's closed form) and the springs balance.
 A scene of one-segment lines is first screened at half that margin, compiled with the
-line checks (:mod:`.audit_closed_form`); only a failed screen runs the plain balance.
+line checks (:mod:`.closed_form`); only a failed screen runs the plain balance.
 
 Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
 engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
@@ -43,9 +43,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
-from .audit_bodies import body_findings, one_body_inputs
-from .audit_closed_form import closed_form_check, covers, table_end_rows
-from .audit_lines import is_lumped, line_findings
+from .bodies import body_findings, one_body_inputs
+from .closed_form import closed_form_check, covers, table_end_rows
+from .lines import is_lumped, line_findings
 
 __all__ = ["audit", "audit_findings", "result_warnings", "AuditFailure"]
 
@@ -63,7 +63,7 @@ def audit(result, case, problem=None, post=None, full: bool = False) -> list[str
 
     Given the ``problem`` and its report arrays ``post`` at the result, a scene of
     one-segment lines on a flat seabed is audited in closed form from the reported end
-    positions and forces (:mod:`.audit_closed_form`), without drawing a profile; ``full``
+    positions and forces (:mod:`.closed_form`), without drawing a profile; ``full``
     also runs the profile audit. Returns the names of the lines audited.
     """
     problems = (None if problem is None or post is None
@@ -104,7 +104,7 @@ def audit_findings(result, case, boundaries_only: bool = False) -> list[str]:
 
 def closed_form_audit(result, case, problem, post) -> list[str] | None:
     """The audit's findings from the report arrays, or None where the closed forms do not
-    cover the scene (:func:`.audit_closed_form.covers`)."""
+    cover the scene (:func:`.closed_form.covers`)."""
     if not covers(problem, case):
         return None
     table = np.atleast_2d(np.asarray(post["lines"], float))

@@ -1,4 +1,4 @@
-"""The audit's per-line checks (:mod:`moorsolve.solve.audit`), over all lines at once.
+"""The audit's per-line checks (:mod:`moorsolve.audit`), over all lines at once.
 
 Every line's profile is laid end to end in one set of arrays and each check is one numpy
 expression over all profile points (or all steps between them), reduced per line; messages
@@ -10,12 +10,12 @@ on the case data: nothing of the solver's.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from .concurrency import LockedLRU
-from .stretch_params import numeric_law
+from .line_data import line_data as _line_data
+from .line_data import strain as _strain
+from .line_data import weights_in_air
 
 __all__ = ["line_findings", "is_lumped", "weights_in_air", "FORCE_REL"]
 
@@ -26,88 +26,6 @@ FORCE_REL = 1e-6
 def is_lumped(case, leg_case) -> bool:
     return case.environment.current is not None and any(
         seg.line_type.drag is not None for seg in leg_case.segments)
-
-
-def weights_in_air(leg_case) -> np.ndarray:
-    """Per segment, its weight [N/m] above the water: its weight in air where the case
-    gives it, else its weight in water."""
-    return np.array([sg.line_type.weight_in_air if sg.line_type.weight_in_air is not None
-                     else sg.line_type.weight_in_water for sg in leg_case.segments])
-
-
-@dataclass(frozen=True)
-class _LineData:
-    """The case's lines as flat arrays (segments of all lines end to end), made once per
-    lines tuple: what the audit reads of the case, not of the result."""
-
-    seg_off: np.ndarray        # per line: its first segment in the flat arrays
-    nseg: np.ndarray
-    length: np.ndarray         # per segment: unstretched length, weights [N/m]
-    weight: np.ndarray
-    in_air: np.ndarray
-    compliance: np.ndarray     # 1/EA (0 for inextensible or a stretch law's segment)
-    laws: tuple                # (flat segment, law) of segments with a stretch law
-    ends: tuple                # per line: cumulative segment ends from end A
-    L: np.ndarray              # per line: total unstretched length
-    wsum: np.ndarray           # sum |w| * length
-    wsum_ends: np.ndarray      # the same over the cumulative ends' differences
-    wmax: np.ndarray
-    clumps: np.ndarray         # sum of joint clump weights
-    multi: np.ndarray          # more than one segment
-    segments: np.ndarray       # 0, 1, ... per flat segment, and the line of each
-    seg_line: np.ndarray
-
-
-_DATA = LockedLRU(256)
-
-
-def _line_data(lines) -> _LineData:
-    hit = _DATA.get(id(lines))
-    if hit is not None and hit[0] is lines:
-        return hit[1]
-    segs = [s for line in lines for s in line.segments]
-    nseg = np.array([len(line.segments) for line in lines], int)
-    seg_off = np.concatenate([[0], np.cumsum(nseg)[:-1]]).astype(int)
-    laws, compliance = [], np.zeros(len(segs))
-    for k, s in enumerate(segs):
-        law = numeric_law(s.line_type)
-        if law is not None:
-            laws.append((k, law))
-        elif s.line_type.ea:
-            compliance[k] = 1.0 / s.line_type.ea
-    length = np.array([s.length for s in segs], float)
-    weight = np.array([s.line_type.weight_in_water for s in segs], float)
-    ends = []
-    for i, line in enumerate(lines):
-        lens = length[seg_off[i]:seg_off[i] + nseg[i]]
-        ends.append(np.concatenate([[0.0], np.cumsum(lens)]))
-    aw = np.abs(weight)
-    data = _LineData(
-        seg_off=seg_off, nseg=nseg, length=length, weight=weight,
-        in_air=np.concatenate([weights_in_air(line) for line in lines]),
-        compliance=compliance, laws=tuple(laws), ends=tuple(ends),
-        L=np.array([float(e[-1]) for e in ends]),
-        wsum=np.array([float(np.sum(aw[o:o + m] * length[o:o + m]))
-                       for o, m in zip(seg_off, nseg)]),
-        wsum_ends=np.array([float(np.sum(aw[o:o + m] * np.diff(e)))
-                            for o, m, e in zip(seg_off, nseg, ends)]),
-        wmax=np.array([float(np.max(aw[o:o + m])) for o, m in zip(seg_off, nseg)]),
-        clumps=np.array([float(sum(c.weight for c in line.joint_clumps if c is not None))
-                         for line in lines]),
-        multi=nseg > 1, segments=np.arange(len(segs)),
-        seg_line=np.repeat(np.arange(len(lines)), nseg))
-    _DATA.put(id(lines), (lines, data))
-    return data
-
-
-def _strain(data: _LineData, gseg: np.ndarray, T: np.ndarray) -> np.ndarray:
-    """Strain of flat segments ``gseg`` at tensions ``T`` (the same shape)."""
-    eps = data.compliance[gseg] * T
-    for k, law in data.laws:
-        mask = gseg == k
-        if np.any(mask):
-            eps[mask] = law.strain(np.maximum(T[mask], 0.0))
-    return eps
 
 
 class _Profiles:

@@ -1,6 +1,6 @@
 """The audit's per-line checks in closed form, for one-segment catenaries on a flat seabed.
 
-The profile audit (:mod:`.audit_lines`) samples every line's drawn profile. For the common
+The profile audit (:mod:`.lines`) samples every line's drawn profile. For the common
 line (one segment, Hooke or inextensible, sinking, on a flat seabed or clear of it, in the
 water) the same questions have closed answers, asked here of the reported end positions
 and end forces alone, all lines at once:
@@ -23,7 +23,7 @@ to the profile audit: :func:`covers` says which scenes this module audits alone.
 
 The checks of one line are one small CasADi function of its reported numbers (these
 formulas, none of the solver's blocks), mapped over the lines and compiled into a cached
-library (:mod:`.compiled`; interpreted until it is ready) for 8, 16, 32, ... lines, the
+library (:mod:`moorsolve.compiled`; interpreted until it is ready) for 8, 16, 32, ... lines, the
 lines padded up to that: numpy spends more in calling its functions on a dozen lines than
 the checks compute. The compiled function reads the report table's rows whole and also
 gives the verdict (every check passed, every number finite), so a clean report costs one
@@ -38,11 +38,11 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from .audit_bodies import BODY_DATA, BODY_POSE, symbolic_balance
-from .audit_lines import FORCE_REL
-from .concurrency import SYMBOLIC_LOCK, LockedLRU
-from .problem import LINE_COLUMNS
-from .stretch_params import numeric_law
+from ..concurrency import SYMBOLIC_LOCK, LockedLRU
+from ..model.line_table import LINE_COLUMNS
+from ..physics.stretch import numeric_law
+from .bodies import BODY_DATA, BODY_POSE, symbolic_balance
+from .lines import FORCE_REL
 
 __all__ = ["covers", "closed_form_findings", "closed_form_check", "table_end_rows",
            "wait_compiled"]
@@ -133,8 +133,8 @@ def _data(lines) -> _Data:
 
 def table_end_rows(table: np.ndarray) -> tuple:
     """Every line end's position and the force the line exerts on it, ``(2 n, 3)`` each,
-    from the report's line table (:data:`~.problem.LINE_COLUMNS`): end A of line ``i`` in
-    row ``2 i``, end B in row ``2 i + 1``."""
+    from the report's line table (:data:`~moorsolve.model.line_table.LINE_COLUMNS`): end
+    A of line ``i`` in row ``2 i``, end B in row ``2 i + 1``."""
     return (np.take(table, _ENDS, axis=1).reshape(-1, 3),
             np.take(table, _END_FORCES, axis=1).reshape(-1, 3))
 
@@ -143,7 +143,7 @@ def table_end_rows(table: np.ndarray) -> tuple:
 #: (the checks' inputs from ``L`` to ``tol_rel``), whether its block integrates from end B
 #: (``flipped``), whether its lower end may be off the seabed (``lifted``), and 1 for a
 #: line of the scene (0 for the padding up to the mapped size); whether its ends A and B
-#: are on the body the verdict balances (:func:`.audit_bodies.symbolic_balance`).
+#: are on the body the verdict balances (:func:`.bodies.symbolic_balance`).
 _STATIC = (*_INPUTS[13:], "flipped", "lifted", "line", "on_a", "on_b")
 
 
@@ -290,7 +290,7 @@ _SAY = {
 
 class _Mapped:
     """The checks mapped over ``n`` lines: compiled when the library is ready (built in the
-    background, :class:`.compiled.Library`), else CasADi's interpreter. One call at a time
+    background, :class:`moorsolve.compiled.Library`), else CasADi's interpreter. One call at a time
     (the compiled function's buffers are shared).
 
     Its inputs are the report table's rows and the :data:`_STATIC` columns; its outputs
@@ -301,7 +301,7 @@ class _Mapped:
     """
 
     def __init__(self, n: int):
-        from .compiled import Library
+        from ..compiled import Library
 
         self.n = n
         with SYMBOLIC_LOCK:
@@ -319,7 +319,7 @@ class _Mapped:
     def __call__(self, table: np.ndarray, static: np.ndarray, pose=None, data=None) -> tuple:
         """``(ok, t_max, out, balanced)``: the verdict, the largest end tension, where not
         ok every line's outputs ``(k, len(_OUTPUTS))`` (None where ok), and whether the
-        body given by ``pose`` and ``data`` balances (:func:`.audit_bodies.one_body_inputs`;
+        body given by ``pose`` and ``data`` balances (:func:`.bodies.one_body_inputs`;
         False without them), for the ``k`` rows of ``table`` and the ``n`` rows of
         ``static``."""
         k, n = len(table), self.n
@@ -416,8 +416,8 @@ def closed_form_findings(problem, case, table, tol_rel: float):
 
 def closed_form_check(problem, case, table, tol_rel: float, body=None):
     """:func:`closed_form_findings`, and whether the scene's one free body balances by half
-    the margin :func:`.audit_bodies.body_findings` allows (False: let it answer), given
-    ``body``, the ``(name, pose, data)`` of :func:`.audit_bodies.one_body_inputs`."""
+    the margin :func:`.bodies.body_findings` allows (False: let it answer), given
+    ``body``, the ``(name, pose, data)`` of :func:`.bodies.one_body_inputs`."""
     lifted, mapped = _columns(problem)[2:]
     name, pose, data = (None, None, None) if body is None else body
     static = _static_columns(problem, case, tol_rel, name)
