@@ -24,7 +24,7 @@ _NAMES = {
     "load_case": ".io.case_file",
     "read_moordyn": ".io.moordyn", "moordyn_to_case_data": ".io.moordyn",
     "import_moordyn": ".io.moordyn", "MoorDynError": ".io.moordyn",
-    "case_to_moordyn": ".io.moordyn_write", "export_moordyn": ".io.moordyn_write",
+    "case_to_moordyn": ".io.moordyn_write", "export_moordyn": ".studies.moordyn_export",
     "import_moorpy": ".io.moorpy_yaml", "export_moorpy": ".io.moorpy_yaml",
     "Case": ".model.scene",
     "Certificate": ".solve.result", "LegResult": ".solve.result", "Result": ".solve.result",

@@ -82,7 +82,7 @@ def run_import(args) -> int:
 
 
 def run_export(args) -> int:
-    from ..io import export_moordyn
+    from ..studies.moordyn_export import export_moordyn
     export_moordyn(args.case, args.output, version=args.version, equilibrium=args.equilibrium,
                    tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     print(f"wrote {args.output}")

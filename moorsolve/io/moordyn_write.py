@@ -429,9 +429,7 @@ def case_to_moordyn(case, *, version: int | None = None, result=None,
     return "\n".join(text) + "\n"
 
 
-def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool = False,
-                   tol: float | None = None, solver: str = "ipopt",
-                   allow_overload: bool = False):
+def export_moordyn(case, out, *, version: int | None = None, solve=None):
     """Write a case as a MoorDyn input file (atomically); returns the Result when solved.
 
     Parameters
@@ -442,16 +440,15 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
         The MoorDyn file to write.
     version : 1 or 2, optional
         See :func:`case_to_moordyn`.
-    equilibrium : bool
-        Solve the case first and write the equilibrium positions.
-    tol, solver, allow_overload
-        As for :func:`moorsolve.solve`, when ``equilibrium``.
+    solve : callable, optional
+        ``solve(case) -> Result``, called once the case and ``out`` are validated: the file
+        then holds the equilibrium positions. The caller above io brings the solver
+        (:func:`moorsolve.export_moordyn`'s ``equilibrium``); io imports none.
 
     Raises
     ------
     CaseError
-        Bad input (nothing written). ``ConvergenceError`` when ``equilibrium`` and the case
-        has no equilibrium (nothing written).
+        Bad input (nothing written). Whatever ``solve`` raises (nothing written).
     """
     from ..model import Case
     if not isinstance(case, Case):
@@ -463,10 +460,7 @@ def export_moordyn(case, out, *, version: int | None = None, equilibrium: bool =
     folder = out.resolve().parent
     if not folder.is_dir():
         raise CaseError("-o", f"folder {str(folder)!r} does not exist")
-    result = None
-    if equilibrium:
-        from ..solve import solve
-        result = solve(case, tol=tol, solver=solver, allow_overload=allow_overload)
+    result = None if solve is None else solve(case)
     curves = {}
     text = case_to_moordyn(case, version=version, result=result, curves=curves,
                            curve_prefix=f"{out.stem}_")
