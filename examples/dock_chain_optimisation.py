@@ -13,7 +13,6 @@ import pathlib
 import moorsolve
 from moorsolve.report.optimise import format_optimisation
 from moorsolve.plot import plot_optimisation
-from moorsolve.studies.optimise import optimise
 
 HERE = pathlib.Path(__file__).resolve().parent
 CASE = HERE.parent / "cases" / "floating_dock.yaml"
@@ -25,7 +24,7 @@ def main(argv=None):
     parser.add_argument("--out", default=".", help="folder for the plot")
     args = parser.parse_args(argv)
     case = moorsolve.load_case(str(CASE))
-    opt = optimise(case, str(STUDY))
+    opt = moorsolve.optimise(case, str(STUDY))
     print(format_optimisation(opt))
     saving = opt.objective_start - opt.objective_optimum
     print(f"chain saved: {saving / 1e3:.2f} t of {opt.objective_start / 1e3:.1f} t "

@@ -30,7 +30,6 @@ _NAMES = {
     "Certificate": ".solve.result", "LegResult": ".solve.result", "Result": ".solve.result",
     "sweep": ".studies.sweep",
     "offset_envelope": ".studies.envelope",
-    "optimise": ".studies.optimise",
     "sensitivity": ".studies.sensitivity",
     "stiffness": ".studies.stiffness", "coupled_stiffness": ".studies.stiffness",
     "body_natural_periods": ".studies.stiffness", "restoring_curve": ".studies.stiffness",
@@ -84,6 +83,22 @@ class _Solve:
 
 
 solve = _Solve()
+
+
+def optimise(case, study, **options):
+    """Design optimisation of ``case`` over ``study``:
+    :func:`moorsolve.studies.optimise.optimise` (keyword option ``verify``).
+
+    ``study`` is a validated :class:`~moorsolve.model.study.Study`, or a study file (str or
+    path) or mapping, read and validated against ``case`` first, in one pass
+    (:func:`moorsolve.io.study_file.load_study`): the study itself reads no file.
+    """
+    from .model.study import Study
+    from .studies.optimise import optimise as run
+    if not isinstance(study, Study):
+        from .io.study_file import load_study
+        study = load_study(study, case)
+    return run(case, study, **options)
 
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",

@@ -113,3 +113,110 @@ def test_every_public_name_resolves():
     for name in moorsolve.__all__:
         assert getattr(moorsolve, name) is not None, name
     assert set(moorsolve.__all__) <= set(dir(moorsolve))
+
+
+# ---- the house's layering, read from the imports of the package's source ------------------
+
+import ast  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+PACKAGE = Path(ROOT) / "moorsolve"
+#: What io (a leaf) may import of moorsolve: itself, the model and what lies below it.
+BELOW_MODEL = {"io", "model", "catalog", "constants", "errors", "_lazy", "_version"}
+#: Functions that read a file (or a case, study or table from one): no study calls them.
+FILE_READERS = {"load_case", "load_study", "load_case_variant", "read_table", "read_moordyn",
+                "read_moorpy", "read_import", "import_moordyn", "import_moorpy",
+                "read_bathymetry", "_read_yaml", "open", "read_csv", "read_parquet",
+                "read_text", "read_bytes", "safe_load"}
+
+
+def _modules(package: str | None = None):
+    """``(dotted name, path, tree)`` of every module of moorsolve (or of one package)."""
+    root = PACKAGE if package is None else PACKAGE / package
+    for path in sorted(root.rglob("*.py")):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        yield ".".join(parts), path, ast.parse(path.read_text(encoding="utf-8"))
+
+
+def _run_time_imports(name: str, path: Path, tree) -> list:
+    """``(module imported, line)`` of every import of ``tree`` that runs (a function's too),
+    relative imports resolved; what an ``if TYPE_CHECKING:`` block imports is left out."""
+    checking = {id(node) for block in ast.walk(tree) if isinstance(block, ast.If)
+                and "TYPE_CHECKING" in ast.unparse(block.test) for node in ast.walk(block)}
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    out = []
+    for node in ast.walk(tree):
+        if id(node) in checking:
+            continue
+        if isinstance(node, ast.Import):
+            out += [(alias.name, node.lineno) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                stem = package.split(".")[:len(package.split(".")) - node.level + 1]
+                base = ".".join(stem + ([node.module] if node.module else []))
+            if node.module is None:
+                out += [(f"{base}.{alias.name}", node.lineno) for alias in node.names]
+            else:
+                out.append((base, node.lineno))
+    return out
+
+
+def _floor(module: str) -> str | None:
+    """The package (or top-level module) of moorsolve that ``module`` is in."""
+    parts = module.split(".")
+    return parts[1] if parts[0] == "moorsolve" and len(parts) > 1 else None
+
+
+def test_the_audit_imports_no_solver_code_at_run_time():
+    """The audit is independent by structure: it recomputes from model/ and physics/ and
+    imports nothing of solve/ (nor of what is built on it) except for annotations."""
+    found = [f"{name}:{line} imports {target}"
+             for name, path, tree in _modules("audit")
+             for target, line in _run_time_imports(name, path, tree)
+             if _floor(target) in {"solve", "studies", "checks", "report", "plot", "cli"}]
+    assert found == []
+
+
+def test_io_is_a_leaf():
+    """io imports nothing above model/ (the solver, the studies, the reports)."""
+    found = [f"{name}:{line} imports {target}"
+             for name, path, tree in _modules("io")
+             for target, line in _run_time_imports(name, path, tree)
+             if _floor(target) is not None and _floor(target) not in BELOW_MODEL]
+    assert found == []
+
+
+def test_studies_read_no_file():
+    """Studies edit scenes through the model (Case.with_values), never through files: no
+    study calls a file reader, and from io a study imports only its writers."""
+    calls, imports = [], []
+    for name, path, tree in _modules("studies"):
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call):
+                f = node.func
+                callee = f.id if isinstance(f, ast.Name) else getattr(f, "attr", None)
+                if callee in FILE_READERS:
+                    calls.append(f"{name}:{node.lineno} calls {callee}")
+        imports += [f"{name}:{line} imports {target}"
+                    for target, line in _run_time_imports(name, path, tree)
+                    if _floor(target) == "io"
+                    and target not in ("moorsolve.io.sweep_output", "moorsolve.io.moordyn_write")]
+    assert calls == [] and imports == []
+
+
+def test_no_module_past_550_lines():
+    lengths = {name: len(path.read_text(encoding="utf-8").splitlines())
+               for name, path, _ in _modules()}
+    assert {name: n for name, n in lengths.items() if n > 550} == {}
+
+
+def test_the_layering_check_sees_what_it_forbids():
+    """The checks above find a forbidden import where there is one (else they pass
+    vacuously): a solver import in a function, and a relative import two levels up."""
+    tree = ast.parse("def f():\n    from ..solve.result import Result\n"
+                     "from typing import TYPE_CHECKING\n"
+                     "if TYPE_CHECKING:\n    from ..solve import problem\n")
+    found = _run_time_imports("moorsolve.audit.run", PACKAGE / "audit" / "run.py", tree)
+    assert sorted((t, _floor(t)) for t, _ in found) == [("moorsolve.solve.result", "solve"),
+                                                        ("typing", None)]

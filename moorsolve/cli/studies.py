@@ -77,7 +77,7 @@ def run_sweep(args) -> int:
         check_output_path(args.output, "--output")
         grid, loads = None, None
         if args.table:
-            from ..studies.load_table import read_table
+            from ..io.table_file import read_table
             loads = read_table(args.table)
         else:
             grid = {}

@@ -47,10 +47,10 @@ from ..model.study import OBJECTIVES, VARIABLE_KINDS, DesignVariable, Limits, Lo
 from ..errors import CaseError
 from ..model import Case
 from ..model.fields import check_list, check_mapping, check_name, field_path, quantity
-from .case_file import _read_yaml, load_case
+from .case_file import _read_yaml
 from .output_files import write_case_yaml as write_case_file
 from ..model.directions import direction_edit
-from ..model.paths import with_values
+from ..model.edit import variant as load_case_variant
 from ..model.units import format_si, show_value
 
 __all__ = ["load_study", "load_case_variant", "write_case_file"]
@@ -262,19 +262,6 @@ def _limits(raw, path: str, case: Case, defaults: Limits) -> Limits:
     if values["offset_limit"] is not None and case.body is None:
         raise CaseError(field_path(path, "offset_limit"), "the case has no body to offset")
     return Limits(**values)
-
-
-def load_case_variant(case: Case, edits: Mapping, path: str = "set") -> Case:
-    """``case`` with the case-file ``edits`` (dotted path -> value) applied and validated."""
-    if not edits:
-        return case
-    if case.source is None:
-        raise CaseError(path, "edits need the case-file data; load the case with "
-                              "moorsolve.load_case (from a file or a dict)")
-    try:
-        return load_case(with_values(case.source, edits))
-    except CaseError as exc:
-        raise CaseError(f"{path}: {exc.field}" if exc.field else path, exc.detail) from None
 
 
 def _headings(raw, path: str) -> list:

@@ -58,24 +58,6 @@ def parse_header(name) -> tuple:
     return text, unit
 
 
-def read_table(path) -> "object":
-    """A load table from a ``.csv`` or ``.parquet`` file, as a pandas DataFrame."""
-    import pandas as pd
-    from pathlib import Path
-
-    p = Path(path)
-    if not p.is_file():
-        raise CaseError("table", f"{path}: no such file")
-    try:
-        if p.suffix.lower() == ".parquet":
-            return pd.read_parquet(p)
-        if p.suffix.lower() == ".csv":
-            return pd.read_csv(p)
-    except (OSError, ValueError) as err:
-        raise CaseError("table", f"{path}: {err}") from None
-    raise CaseError("table", f"{path}: a load table is a .csv or .parquet file")
-
-
 def _cell(value, unit):
     """A cell as the case file would hold it at its path."""
     if isinstance(value, (np.integer, np.floating)):
@@ -154,9 +136,6 @@ class TableAxis:
         column changes the problem's structure or two columns move the same entry (every
         row is then solved in full).
         """
-        from ..io import load_case
-        from ..model.paths import with_values
-
         base = point_vector(case)
         base_key = structure_key(case)
         matrix = np.tile(base, (self.n_rows, 1))
@@ -167,8 +146,7 @@ class TableAxis:
             header = self.headers[k]
             try:
                 cell = _cell(value, self.units[k])
-                probe = load_case(with_values(case.source, {self.paths[k]: cell}),
-                                  keep_source=False)
+                probe = case.with_values({self.paths[k]: cell}, keep_source=False)
             except CaseError as err:
                 row = self._columns[k].index(value)
                 raise CaseError(f"table[{header!r}]", f"row {row}: {value!r}: {err}") \

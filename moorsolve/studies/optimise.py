@@ -79,9 +79,9 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
     ----------
     case : Case
         The base case (from :func:`moorsolve.load_case`).
-    study : Study, str, pathlib.Path or mapping
-        A validated :class:`~moorsolve.model.study.Study` or a study file / dict
-        (:func:`moorsolve.io.study_file.load_study`).
+    study : Study
+        A validated :class:`~moorsolve.model.study.Study` (a study file or dict is read by
+        :func:`moorsolve.io.study_file.load_study`, or given to :func:`moorsolve.optimise`).
     verify : bool
         Re-solve every load case independently at the optimum and check each constraint.
 
@@ -94,13 +94,15 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
     CaseError
         A bad study (naming its field), or a design variable on a leg the optimisation
         cannot vary in some load case (a line discretised in a current).
+    TypeError
+        ``study`` is not a :class:`~moorsolve.model.study.Study`.
     ConvergenceError
         A load case has no equilibrium at the starting design, or no feasible design was
         found (the reason lists the constraints not met and the residual reached).
     """
-    from ..io.study_file import load_study
     if not isinstance(study, Study):
-        study = load_study(study, case)
+        raise TypeError(f"study: {type(study).__name__}, not a Study; read a study file with "
+                        "moorsolve.io.study_file.load_study, or give it to moorsolve.optimise")
     t_all = time.perf_counter()
     n_d = len(study.variables)
     d0 = np.array([v.start for v in study.variables], dtype=float)

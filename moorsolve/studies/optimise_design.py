@@ -7,6 +7,7 @@ import math
 
 from ..errors import CaseError
 from ..model import Case
+from ..model.edit import variant
 from ..model.study import Study
 
 
@@ -51,14 +52,12 @@ def design_edits(case: Case, study: Study, values) -> dict:
 
 def design_case(case: Case, study: Study, values) -> Case:
     """``case`` with the design ``values`` (one per study variable) applied."""
-    from ..io.study_file import load_case_variant
-    return load_case_variant(case, design_edits(case, study, values), "design")
+    return variant(case, design_edits(case, study, values), "design")
 
 
 def load_case_scene(design: Case, study: Study, k: int) -> Case:
     """Load case ``k`` of ``study`` applied to the case ``design``."""
-    from ..io.study_file import load_case_variant
-    return load_case_variant(design, study.load_cases[k].edits, f"load_cases[{k}]")
+    return variant(design, study.load_cases[k].edits, f"load_cases[{k}]")
 
 
 def objective_value(case: Case, study: Study) -> float:

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import CaseError
 from ..model import Case
+from ..model.edit import from_source, inline_source
 from ..model.units import recording
 from ..solve.cache import get_problem
 from ..solve.equilibrium import rest_point
@@ -42,9 +43,6 @@ class SweepPlan:
     def __init__(self, case: Case, grid: Mapping | None = None, *, table=None,
                  solver: str = "newton", tol: float | None = None,
                  chunk_size: int | None = None, allow_overload: bool = False):
-        from ..io import load_case
-        from ..model.paths import with_values
-
         if solver not in ("newton", "ipopt"):
             raise ValueError(f"solver {solver!r}: must be 'newton' or 'ipopt'")
         if case.source is None:
@@ -69,7 +67,6 @@ class SweepPlan:
         self.body_names = tuple(b.name for b in case.bodies) if case.form == "network" else ()
         self.contacts = ([f.name for f in case.contacts.fenders]
                          + [g.name for g in case.contacts.guides])
-        self._with_values, self._load_case = with_values, load_case
 
         base_key = structure_key(case)
         base_vec = _point_vector(case)
@@ -91,8 +88,7 @@ class SweepPlan:
                 for value in values:
                     try:
                         with recording() as converted:
-                            c = load_case(with_values(case.source, _edits(paths, value)),
-                                          keep_source=False)
+                            c = case.with_values(_edits(paths, value), keep_source=False)
                     except CaseError as err:
                         raise CaseError(f"grid[{_label(paths)!r}]",
                                         f"value {value!r}: {err}") from None
@@ -136,21 +132,20 @@ class SweepPlan:
 
     def spec(self) -> dict:
         """Plain data from which a worker rebuilds this plan."""
-        return {"source": self.case.source, "grid": self._plain_points(),
+        return {"source": inline_source(self.case), "grid": self._plain_points(),
                 "table": self.table is not None, "solver": self.solver, "tol": self.tol,
                 "chunks": self.chunks, "allow_overload": self.allow_overload}
 
     @classmethod
     def from_spec(cls, spec: dict) -> "SweepPlan":
-        from ..io import load_case
         options = dict(solver=spec["solver"], tol=spec["tol"],
                        allow_overload=spec["allow_overload"])
         if spec.get("table"):
             table = dict(zip(spec["grid"]["columns"], zip(*spec["grid"]["rows"])))
-            plan = cls(load_case(spec["source"]), table=table, **options)
+            plan = cls(from_source(spec["source"]), table=table, **options)
         else:
             grid = {(tuple(k[1]) if k[0] == "zip" else k[1]): v for k, v in spec["grid"]}
-            plan = cls(load_case(spec["source"]), grid, **options)
+            plan = cls(from_source(spec["source"]), grid, **options)
         plan.chunks = spec["chunks"]
         return plan
 
@@ -186,7 +181,7 @@ class SweepPlan:
             edits = {}
             for (paths, values), k in zip(self.axes, self.indices[i]):
                 edits.update(_edits(paths, values[k]))
-        return self._load_case(self._with_values(self.case.source, edits), keep_source=False)
+        return self.case.with_values(edits, keep_source=False)
 
     def vectors(self) -> np.ndarray:
         if self._vectors is None:

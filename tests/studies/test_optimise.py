@@ -395,3 +395,11 @@ def test_optimisation_through_a_table_law_is_verified_and_kkt():
     opt = optimise(case, study)
     assert opt.verified and opt.objective_optimum < opt.objective_start
     check_kkt(case, study, opt, step=1e-3)
+
+
+def test_a_study_file_is_read_above_the_study():
+    """The study reads no file: it takes a validated Study; moorsolve.optimise (and the
+    command) read and validate a study file first, in one pass."""
+    case = moorsolve.load_case(DOCK)
+    with pytest.raises(TypeError, match="not a Study"):
+        optimise(case, str(DOCK_STUDY))
