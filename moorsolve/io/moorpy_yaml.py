@@ -210,7 +210,7 @@ def _scene(src, data: dict, report: ImportReport) -> tuple:
                             length=length, num_segs="", outputs="", tokens=())
     if not lines:
         raise src.error("lines", "no lines")
-    for key in ("bodies", "rods", "rod_types", "anchor_types"):
+    for key in ("rods", "rod_types", "anchor_types"):
         if data.get(key):
             report.ignored.append(f"{key}: MoorPy's YAML reader does not read them either")
     extra = sorted(set(data) - _KNOWN)
@@ -223,6 +223,93 @@ def _scene(src, data: dict, report: ImportReport) -> tuple:
                     lines=lines, options=[],
                     point_names={pid: name for name, pid in ids.items()}, line_names=names)
     return scene, mbl
+
+
+def _vector(src, value, path: str, n: int) -> list:
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        raise src.error(path, f"{value!r} must be a list of {n} numbers")
+    return [_float(src, v, f"{path}[{i}]") for i, v in enumerate(value)]
+
+
+_BODY_KEYS = ("name", "type", "r6", "DOFs", "m", "rCG", "v", "rM", "AWP", "f6Ext", "stiffness")
+
+
+def _with_body(src, bodies, body_data: dict, form: str, why: str, report) -> tuple:
+    """Apply the file's ``bodies`` entry (:func:`moorpy_body`'s keys, MoorPy's
+    ``System.addBody`` arguments) to the body its vessel points ride; returns the case's
+    form, why, and its body/legs or bodies/points/lines data."""
+    from ..model import DOFS, PLANAR_DOFS
+    if not isinstance(bodies, list) or len(bodies) != 1 or not isinstance(bodies[0], dict):
+        raise src.error("bodies", "must be a list of one body (MoorPy's YAML rides its vessel "
+                                  "points on one body)")
+    b, path = bodies[0], "bodies[0]"
+    extra = sorted(set(b) - set(_BODY_KEYS))
+    if extra:
+        raise src.error(f"{path}.{extra[0]}", f"unknown key; known: {', '.join(_BODY_KEYS)}")
+    name = str(b.get("name", "body"))
+    kind = b.get("type", 1)
+    if kind not in (-1, 0, 1):
+        raise src.error(f"{path}.type", f"{kind!r} must be 0 (free), 1 (fixed) or -1 (coupled)")
+    r6 = _vector(src, b.get("r6", [0.0] * 6), f"{path}.r6", 6)
+    dofs = b.get("DOFs", list(range(6)))
+    if not isinstance(dofs, list) or any(not isinstance(d, int) or isinstance(d, bool)
+                                         or not 0 <= d <= 5 for d in dofs):
+        raise src.error(f"{path}.DOFs", f"{dofs!r} must list DOF indices 0 (surge) to 5 (yaw)")
+    free = [DOFS[i] for i in sorted(set(dofs))] if kind == 0 else []
+    body = {"name": name, "position": r6[:3],
+            "orientation_deg": [math.degrees(a) for a in r6[3:]], "free": free}
+    mass = _float(src, b.get("m", 0.0), f"{path}.m", ge=0)
+    if mass > 0:
+        body["mass"] = mass
+        body["centre_of_gravity"] = _vector(src, b.get("rCG", [0.0] * 3), f"{path}.rCG", 3)
+    volume = _float(src, b.get("v", 0.0), f"{path}.v", ge=0)
+    area = _float(src, b.get("AWP", 0.0), f"{path}.AWP", ge=0)
+    if volume > 0 or area > 0:
+        rm = b.get("rM", [0.0] * 3)
+        rm = [0.0, 0.0, rm] if isinstance(rm, (int, float)) and not isinstance(rm, bool) else rm
+        body["hydrostatics"] = {"displaced_volume": volume,
+                                "metacentre": _vector(src, rm, f"{path}.rM", 3),
+                                "waterplane_area": area}
+    if "stiffness" in b:
+        k = b["stiffness"]
+        if not isinstance(k, list) or len(k) != 6:
+            raise src.error(f"{path}.stiffness", "must be a 6x6 matrix [SI]")
+        body["stiffness"] = [_vector(src, row, f"{path}.stiffness[{i}]", 6)
+                             for i, row in enumerate(k)]
+    force = _vector(src, b.get("f6Ext", [0.0] * 6), f"{path}.f6Ext", 6)
+    report.converted.append(f"{path} ({name}): MoorPy's body (type {kind}, "
+                            f"{'free in ' + ', '.join(free) if free else 'held'}) with "
+                            + ", ".join(k for k in ("m", "rCG", "v", "rM", "AWP", "f6Ext",
+                                                    "stiffness") if k in b) + "; its vessel "
+                            "points are in its body frame")
+    planar = (set(free) <= set(PLANAR_DOFS) and not any(force[2:5]) and r6 == [0.0] * 6
+              and set(body) == {"name", "position", "orientation_deg", "free"})
+    if form == "legs" and planar:
+        data = dict(body_data, body={"free": free})
+        if any(force):
+            data["body"]["loads"] = {"force": [force[0], force[1], force[5]]}
+        return form, why, data
+    if any(force):
+        body["loads"] = {"force": force}
+    if form == "legs":
+        lines = []
+        for leg in body_data["legs"]:
+            line = {k: v for k, v in leg.items() if k not in ("anchor", "fairlead")}
+            line.update({"from": leg["anchor"], "to": {"body": name, "at": leg["fairlead"]}})
+            lines.append(line)
+        data = {k: v for k, v in body_data.items() if k not in ("body", "legs")}
+        data.update(bodies=[body], lines=lines)
+        return "network", "a body with mass, hydrostatics, springs or a pose", data
+    carriers = body_data.get("bodies", [])
+    if len(carriers) != 1:
+        raise src.error("bodies", f"the vessel points ride {len(carriers)} bodies; one expected")
+    old = carriers[0]["name"]
+    for line in body_data.get("lines", []):
+        for key in ("from", "to"):
+            end = line[key]
+            if isinstance(end, dict) and end.get("body") == old:
+                end["body"] = name
+    return form, why, dict(body_data, bodies=[body])
 
 
 @dataclass
@@ -286,6 +373,8 @@ def read_moorpy(source) -> MoorPyImport:
         types[tname]["mbl"] = value
         report.converted.append(f"line type {tname}: breaking_load {value:g} N as its MBL")
     form, why, body_data, _ = scene_case(scene, report)
+    if data.get("bodies"):
+        form, why, body_data = _with_body(src, data["bodies"], body_data, form, why, report)
     stem = os.path.splitext(path.name)[0] or "moorpy"
     name = str(data["name"]) if "name" in data else f"{stem} (imported from MoorPy YAML)"
     case = {"name": name,
@@ -376,7 +465,10 @@ def case_to_moorpy(case) -> dict:
         name = end.label if end.fixed and end.label else f"{line.name}_{tag}"
         if name not in written:
             kind = "fixed" if end.fixed else "vessel"
-            where = [float(v) for v in end_position(end, bodies)]
+            # A vessel point's location is in the body frame (MoorPy attaches it to the
+            # body at that relative position); a fixed one's in the scene.
+            where = [float(v) for v in (end.position if end.body is not None
+                                        else end_position(end, bodies))]
             written[name] = {"name": name, "type": kind, "location": where}
             points.append(written[name])
         return name
@@ -400,8 +492,40 @@ def case_to_moorpy(case) -> dict:
             lines.append({"name": f"{line.name}_{k + 1}" if len(line.segments) > 1 else line.name,
                           "endA": names[k], "endB": names[k + 1], "type": seg.line_type.name,
                           "length": seg.length})
-    return {"name": case.name, "water_depth": env.depth, "rho": rho, "gravity": g,
+    data = {"name": case.name, "water_depth": env.depth, "rho": rho, "gravity": g,
             "line_types": types, "points": points, "lines": lines}
+    if carriers:
+        data["bodies"] = [moorpy_body(bodies[carriers[0]])]
+    return data
+
+
+def moorpy_body(body) -> dict:
+    """A body as the keyword arguments of MoorPy 1.3's ``System.addBody`` (with its
+    ``name``): ``type`` (0 free, 1 held), ``r6`` (the case pose: x, y, z [m], roll, pitch,
+    yaw [rad]), ``DOFs`` (the free ones, 0 = surge .. 5 = yaw); where the case has them,
+    ``m`` [kg] and ``rCG`` [m, body frame], the linear hydrostatics ``v`` [m^3], ``rM``
+    [m, body frame] and ``AWP`` [m^2], and ``f6Ext``, the constant force [N, N m, global].
+    ``stiffness`` (6x6, SI) carries the body's extra springs, which MoorPy has no argument
+    for."""
+    from ..model import DOFS
+    entry = {"name": body.name, "type": 0 if body.free else 1,
+             "r6": [float(v) for v in body.position]
+             + [math.radians(a) for a in body.orientation_deg],
+             "DOFs": [DOFS.index(d) for d in body.free]}
+    if body.mass is not None:
+        entry.update(m=float(body.mass), rCG=[float(v) for v in body.centre_of_gravity])
+    hydro = body.hydrostatics
+    if hydro is not None:
+        entry.update(v=float(hydro.displaced_volume),
+                     rM=[float(v) for v in hydro.metacentre],
+                     AWP=float(hydro.waterplane_area))
+    force = body.loads.force
+    if force is not None:
+        entry["f6Ext"] = [float(v) for v in (force if len(force) == 6 else
+                                             (force[0], force[1], 0.0, 0.0, 0.0, force[2]))]
+    if body.stiffness is not None:
+        entry["stiffness"] = [[float(v) for v in row] for row in body.stiffness]
+    return entry
 
 
 def export_moorpy(case, out) -> dict:
@@ -417,14 +541,36 @@ def export_moorpy(case, out) -> dict:
     if case.environment.seabed.sloped:
         raise CaseError("environment.seabed.gradient", "MoorPy's YAML has a flat water_depth; "
                                                        "use a flat seabed")
+    for i, body in enumerate(case.bodies):
+        if body.hull:
+            raise CaseError(f"bodies[{i}].hull", "MoorPy has no exact hull members; give the "
+                            "body the linear hydrostatics (displaced_volume, metacentre, "
+                            "waterplane_area) to export it")
     data = case_to_moorpy(case)
     header = (f"# MoorPy mooring YAML of the moorsolve case {case.name!r}.\n"
               f"# gravity {case.environment.gravity:g} m/s^2: MoorPy does not read the "
               f"'gravity' key; create the System with g={case.environment.gravity:g}.\n")
-    for body in case.bodies:
-        header += (f"# The vessel points ride the case's body {body.name!r} (free: "
-                   f"[{', '.join(body.free)}]), at its case pose; MoorPy makes one free body "
-                   "of them, without mass: hold it (type 1) to compare at this pose.\n")
+    for body in data.get("bodies", []):
+        model = case.body_named(body["name"])
+        flows = [k for k in ("wind", "current", "wave_drift")
+                 if getattr(model.loads, k) is not None]
+        header += (
+            f"# 'bodies' holds the body {body['name']!r} as MoorPy's System.addBody arguments "
+            "(MoorPy 1.3's YAML reader skips 'bodies'); its vessel points are in its body "
+            "frame. Load the whole scene with\n"
+            "#   d = yaml.safe_load(open(FILE)); ms = moorpy.System(depth=d['water_depth'], "
+            "rho=d['rho'], g=d['gravity'])\n"
+            "#   b = d['bodies'][0]; ms.addBody(b['type'], b['r6'], m=b.get('m', 0), "
+            "v=b.get('v', 0), rCG=b.get('rCG', [0, 0, 0]), AWP=b.get('AWP', 0), "
+            "rM=b.get('rM', [0, 0, 0]), f6Ext=b.get('f6Ext', [0] * 6), DOFs=b['DOFs'])\n"
+            "#   ms.parseYAML(d); ms.initialize(); ms.solveEquilibrium()\n"
+            "# (System(file=FILE) alone makes a free body without mass at the origin.)\n")
+        if "stiffness" in body:
+            header += ("# 'stiffness' (extra 6x6 springs) has no MoorPy argument: MoorPy "
+                       "solves without it.\n")
+        if flows:
+            header += (f"# Not written (no MoorPy form): the {', '.join(flows)} load model"
+                       f"{'s' if len(flows) > 1 else ''}.\n")
     text = header + yaml.safe_dump(data, sort_keys=False, default_flow_style=None)
     write_text(out, text)
     return data
