@@ -163,6 +163,9 @@ class CheckReport:
             if not c.solved:
                 out.append(f"{c.name}: no equilibrium: {c.reason}")
             out += [f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
+                    f"{_show(i.value, i.unit)}, no limit to check against: {i.criterion}"
+                    if not math.isfinite(i.limit) else
+                    f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
                     f"{_show(i.value, i.unit)} > limit {_show(i.limit, i.unit)} ({i.criterion})"
                     if i.check not in LOWER_LIMIT_CHECKS else
                     f"{c.name}: {i.check} of {i.leg}: {_show(i.value, i.unit)} < "

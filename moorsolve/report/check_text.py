@@ -15,9 +15,8 @@ if TYPE_CHECKING:          # annotations only: the report reads what upstream ma
 __all__ = ["check_json", "format_check_table", "summary_rows", "kN", "UTIL_LEGEND"]
 
 #: What the check's ratios mean, printed with every table of them.
-UTIL_LEGEND = ("util = line tension / allowable tension of the standard (factor and "
-               "capacity applied; 1.00 = the limit); MBL/T = the safety factor, req = the "
-               "least the standard asks")
+UTIL_LEGEND = ("util = tension / the standard's allowable tension (1.00 = the limit); "
+               "MBL/T = safety factor, req = the least allowed")
 
 
 def kN(value: float) -> str:
@@ -44,6 +43,14 @@ def summary_rows(report: CheckReport) -> list:
         row["offset"] = c.offset_m
         rows.append(row)
     return rows
+
+
+def _num(value: float, width: int, digits: int) -> str:
+    """A right-aligned number, or ``-`` where there is none (no chain in a berth's
+    scene, no MBL)."""
+    if value is None or not math.isfinite(value):
+        return f"{'-':>{width}}"
+    return f"{value:{width}.{digits}f}"
 
 
 def mark(item) -> str:
@@ -75,13 +82,13 @@ def format_check_table(report: CheckReport) -> str:
             offset = "-" if row["offset"] is None else f"{row['offset']:.2f}"
             lines.append(
                 f"{row['condition']:<{wide}}{offset:>9}{row['leg']:>{legs}}"
-                f"{row['T'] / 1e3:10.1f}{row['mbl_over_T']:7.2f}{row['required']:6.2f}"
-                f"{row['tension_util']:6.2f}{mark(uplift):>8}"
+                f"{_num(row['T'] / 1e3, 10, 1)}{_num(row['mbl_over_T'], 7, 2)}"
+                f"{row['required']:6.2f}{_num(row['tension_util'], 6, 2)}{mark(uplift):>8}"
                 f"{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
                 f"  {'PASS' if row['passed'] else 'FAIL'}")
         # A body lost in this condition, under its row where the eye is.
         lines += [f"{'':<4}LOST: {d['message']}" for d in c.drifting]
-    lines += berth_check_lines(report)       # hawsers, fenders, guides (issue 15)
+    lines += berth_check_lines(report, wide)  # hawsers, fenders, guides (issue 15)
     lines.append("")
     failures = report.failures
     lines.append(f"result       {'PASS' if report.passed else 'FAIL'}: "

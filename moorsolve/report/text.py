@@ -37,9 +37,13 @@ def format_table(result) -> str:
                      f"yaw {b['yaw_deg']:+.4f} deg")
     else:
         for b in result.bodies:
+            # The pose is where the body is; the offset (from the case pose) is what an
+            # engineer compares with a limit, so both are given.
+            off = b["offset"]
             lines.append(f"body {b['name']:<8} x {b['x_m']:+.3f} m  y {b['y_m']:+.3f} m  "
                          f"z {b['z_m']:+.3f} m  roll {b['roll_deg']:+.4f}  pitch "
-                         f"{b['pitch_deg']:+.4f}  yaw {b['yaw_deg']:+.4f} deg")
+                         f"{b['pitch_deg']:+.4f}  yaw {b['yaw_deg']:+.4f} deg  (offset "
+                         f"{math.hypot(off['x_m'], off['y_m']):.3f} m)")
         for pt in result.points:
             lines.append(f"point {pt['name']:<7} x {pt['x_m']:+.3f} m  y {pt['y_m']:+.3f} m  "
                          f"z {pt['z_m']:+.3f} m" + (

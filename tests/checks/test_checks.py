@@ -297,7 +297,7 @@ def test_utilisation_has_one_meaning_and_t_over_mbl_is_named_apart():
             leg = result.leg(item.leg)
             assert item.utilisation == pytest.approx(leg.t_over_mbl * factor / capacity,
                                                      rel=1e-9)
-        assert "util = line tension / allowable tension" in \
+        assert "util = tension / the standard's allowable tension" in \
             format_check_table(report)
     with pytest.warns(DeprecationWarning, match="t_over_mbl"):
         assert result.legs[0].utilisation == result.legs[0].t_over_mbl

@@ -158,3 +158,17 @@ def test_solve_of_the_broken_scene_names_the_tanker_not_the_chains():
     assert "body tanker is held by no line: nothing restores it in surge and sway" in str(
         exc.value)
     assert "the legs could not balance" not in str(exc.value)
+
+
+def test_a_ship_turning_about_its_turret_is_not_flagged_as_a_unit_slip():
+    """The turret ship weathervanes half round: its origin swings past the water depth while
+    the turret, where the chains hold it, moves a fraction of it. The modelling warning
+    'displaced more than the water depth' is for slips of units or lengths, so it measures
+    where the lines hold the body; a body that truly runs away is still flagged."""
+    from conftest import CASES
+    from moorsolve.checks.modelling import modelling_warnings
+    case = moorsolve.load_case(CASES / "turret_ship.yaml")
+    result = moorsolve.solve(case)
+    ship = result.bodies[0]["offset"]
+    assert math.hypot(ship["x_m"], ship["y_m"]) > case.environment.depth
+    assert not [w for w in modelling_warnings(case, result) if w.code == "drift"]
