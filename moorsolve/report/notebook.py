@@ -95,9 +95,15 @@ def result_html(result) -> str:
         summary.append([f"point {point['name']}", f"x {point['x_m']:+.3f} m, "
                                                   f"y {point['y_m']:+.3f} m, "
                                                   f"z {point['z_m']:+.3f} m"])
-    for name, (fx, fy, mz) in result.loads.items():
-        summary.append([f"load: {name}", f"Fx {fx / 1e3:,.2f} kN, Fy {fy / 1e3:,.2f} kN, "
-                                         f"Mz {mz / 1e3:,.1f} kN m"])
+    for name, load in result.loads.items():
+        # A legs-form load is (Fx, Fy, Mz); a network body's is the full 6-vector.
+        fx, fy, mz = (load[0], load[1], load[2]) if len(load) == 3 else (load[0], load[1],
+                                                                          load[5])
+        text = f"Fx {fx / 1e3:,.2f} kN, Fy {fy / 1e3:,.2f} kN, Mz {mz / 1e3:,.1f} kN m"
+        if len(load) == 6:
+            text += (f" (Fz {load[2] / 1e3:,.2f} kN, Mx {load[3] / 1e3:,.1f} kN m, "
+                     f"My {load[4] / 1e3:,.1f} kN m)")
+        summary.append([f"load: {name}", text])
     summary += [["note", note] for note in result.notes]
     legs = [([r["name"], _num(r["T_fair"] / 1e3, ",.2f"), _num(r["H"] / 1e3, ",.2f"),
               _num(r["V"] / 1e3, ",.2f"), _num(r["T_anchor"] / 1e3, ",.2f"),
@@ -121,7 +127,9 @@ def check_html_table(report) -> str:
     caption = (f"Mooring check of {report.case_name} under {report.standard}: {verdict}, "
                f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
                "conditions pass")
-    return html_table(header, rows, caption)
+    lost = [f"{c.name}: {d['message']}" for c in report.conditions for d in c.drifting]
+    return html_table(header, rows, caption) + "".join(
+        f'<p style="background:#f8d0d0">LOST: {html.escape(text)}</p>' for text in lost)
 
 
 def envelope_html(envelope) -> str:

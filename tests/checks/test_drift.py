@@ -172,3 +172,13 @@ def test_a_ship_turning_about_its_turret_is_not_flagged_as_a_unit_slip():
     ship = result.bodies[0]["offset"]
     assert math.hypot(ship["x_m"], ship["y_m"]) > case.environment.depth
     assert not [w for w in modelling_warnings(case, result) if w.code == "drift"]
+
+
+def test_notebook_views_of_the_calm_scene(calm_report):
+    """The notebook views: a network result's 6-long loads (once a crash) and the lost
+    tanker under the check's table."""
+    result = calm_report.conditions[0].result
+    page = result._repr_html_()
+    assert "load: tanker.wind" in page and "Fx 196.00 kN" in page
+    assert "LOST: damaged: hawser removed: body tanker is held by no line" in \
+        calm_report._repr_html_()
