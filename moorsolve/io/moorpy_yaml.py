@@ -25,8 +25,13 @@ Meaning, as MoorPy gives it: the submerged weight is ``g (mass_density - rho pi 
 with MoorPy's default ``g = 9.81`` (the YAML has no gravity; this package writes and reads a
 ``gravity:`` key that MoorPy ignores); vessel points ride one body, *held* where the file
 puts them (MoorPy makes it a free body without mass; moorsolve holds it, as a static solve
-of a coupled body does). Lines take the legs form when the file is one body on
-anchor-to-fairlead chains, else the network form, named as in the file.
+of a coupled body does), unless a ``bodies:`` entry gives that body in the keyword
+arguments of MoorPy's ``System.addBody`` (``type, r6, DOFs, m, rCG, v, rM, AWP, f6Ext``,
+and ``stiffness``, the extra 6x6 springs MoorPy has no argument for): then the vessel
+points are in its body frame and it is free in its DOFs with its mass and hydrostatics.
+MoorPy 1.3's own YAML reader skips ``bodies`` (the export's header says how to load it).
+Lines take the legs form when the file is one body on anchor-to-fairlead chains, else the
+network form, named as in the file.
 """
 
 from __future__ import annotations
@@ -46,10 +51,11 @@ from .moordyn import line_type_data, read_import, scene_case
 from .moordyn_scene import MDLine, MDPoint, MDScene
 from .moordyn_types import MDLineType
 from .moordyn_write_types import export_diameter
+from .moorpy_bodies import moorpy_body, number as _float, with_body
 from .output_files import write_text
 
 __all__ = ["MoorPyImport", "read_moorpy", "import_moorpy", "case_to_moorpy", "export_moorpy",
-           "MOORPY_GRAVITY"]
+           "moorpy_body", "MOORPY_GRAVITY"]
 
 #: MoorPy's ``System`` default gravity [m/s^2]; its YAML cannot set another.
 MOORPY_GRAVITY = 9.81
@@ -77,22 +83,6 @@ def _get(src, entry: dict, path: str, *keys, required=True, default=None):
     if required:
         raise src.error(path, f"missing {keys[0]!r}")
     return default
-
-
-def _float(src, value, path: str, *, ge=None, gt=None) -> float:
-    if isinstance(value, bool):
-        raise src.error(path, f"{value!r} is not a number")
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise src.error(path, f"{value!r} is not a number") from None
-    if not math.isfinite(x):
-        raise src.error(path, f"{value!r} is not a finite number")
-    if ge is not None and x < ge:
-        raise src.error(path, f"{value!r} must be >= {ge:g}")
-    if gt is not None and not x > gt:
-        raise src.error(path, f"{value!r} must be > {gt:g}")
-    return x
 
 
 def _list(src, data: dict, key: str) -> list:
@@ -225,93 +215,6 @@ def _scene(src, data: dict, report: ImportReport) -> tuple:
     return scene, mbl
 
 
-def _vector(src, value, path: str, n: int) -> list:
-    if not isinstance(value, (list, tuple)) or len(value) != n:
-        raise src.error(path, f"{value!r} must be a list of {n} numbers")
-    return [_float(src, v, f"{path}[{i}]") for i, v in enumerate(value)]
-
-
-_BODY_KEYS = ("name", "type", "r6", "DOFs", "m", "rCG", "v", "rM", "AWP", "f6Ext", "stiffness")
-
-
-def _with_body(src, bodies, body_data: dict, form: str, why: str, report) -> tuple:
-    """Apply the file's ``bodies`` entry (:func:`moorpy_body`'s keys, MoorPy's
-    ``System.addBody`` arguments) to the body its vessel points ride; returns the case's
-    form, why, and its body/legs or bodies/points/lines data."""
-    from ..model import DOFS, PLANAR_DOFS
-    if not isinstance(bodies, list) or len(bodies) != 1 or not isinstance(bodies[0], dict):
-        raise src.error("bodies", "must be a list of one body (MoorPy's YAML rides its vessel "
-                                  "points on one body)")
-    b, path = bodies[0], "bodies[0]"
-    extra = sorted(set(b) - set(_BODY_KEYS))
-    if extra:
-        raise src.error(f"{path}.{extra[0]}", f"unknown key; known: {', '.join(_BODY_KEYS)}")
-    name = str(b.get("name", "body"))
-    kind = b.get("type", 1)
-    if kind not in (-1, 0, 1):
-        raise src.error(f"{path}.type", f"{kind!r} must be 0 (free), 1 (fixed) or -1 (coupled)")
-    r6 = _vector(src, b.get("r6", [0.0] * 6), f"{path}.r6", 6)
-    dofs = b.get("DOFs", list(range(6)))
-    if not isinstance(dofs, list) or any(not isinstance(d, int) or isinstance(d, bool)
-                                         or not 0 <= d <= 5 for d in dofs):
-        raise src.error(f"{path}.DOFs", f"{dofs!r} must list DOF indices 0 (surge) to 5 (yaw)")
-    free = [DOFS[i] for i in sorted(set(dofs))] if kind == 0 else []
-    body = {"name": name, "position": r6[:3],
-            "orientation_deg": [math.degrees(a) for a in r6[3:]], "free": free}
-    mass = _float(src, b.get("m", 0.0), f"{path}.m", ge=0)
-    if mass > 0:
-        body["mass"] = mass
-        body["centre_of_gravity"] = _vector(src, b.get("rCG", [0.0] * 3), f"{path}.rCG", 3)
-    volume = _float(src, b.get("v", 0.0), f"{path}.v", ge=0)
-    area = _float(src, b.get("AWP", 0.0), f"{path}.AWP", ge=0)
-    if volume > 0 or area > 0:
-        rm = b.get("rM", [0.0] * 3)
-        rm = [0.0, 0.0, rm] if isinstance(rm, (int, float)) and not isinstance(rm, bool) else rm
-        body["hydrostatics"] = {"displaced_volume": volume,
-                                "metacentre": _vector(src, rm, f"{path}.rM", 3),
-                                "waterplane_area": area}
-    if "stiffness" in b:
-        k = b["stiffness"]
-        if not isinstance(k, list) or len(k) != 6:
-            raise src.error(f"{path}.stiffness", "must be a 6x6 matrix [SI]")
-        body["stiffness"] = [_vector(src, row, f"{path}.stiffness[{i}]", 6)
-                             for i, row in enumerate(k)]
-    force = _vector(src, b.get("f6Ext", [0.0] * 6), f"{path}.f6Ext", 6)
-    report.converted.append(f"{path} ({name}): MoorPy's body (type {kind}, "
-                            f"{'free in ' + ', '.join(free) if free else 'held'}) with "
-                            + ", ".join(k for k in ("m", "rCG", "v", "rM", "AWP", "f6Ext",
-                                                    "stiffness") if k in b) + "; its vessel "
-                            "points are in its body frame")
-    planar = (set(free) <= set(PLANAR_DOFS) and not any(force[2:5]) and r6 == [0.0] * 6
-              and set(body) == {"name", "position", "orientation_deg", "free"})
-    if form == "legs" and planar:
-        data = dict(body_data, body={"free": free})
-        if any(force):
-            data["body"]["loads"] = {"force": [force[0], force[1], force[5]]}
-        return form, why, data
-    if any(force):
-        body["loads"] = {"force": force}
-    if form == "legs":
-        lines = []
-        for leg in body_data["legs"]:
-            line = {k: v for k, v in leg.items() if k not in ("anchor", "fairlead")}
-            line.update({"from": leg["anchor"], "to": {"body": name, "at": leg["fairlead"]}})
-            lines.append(line)
-        data = {k: v for k, v in body_data.items() if k not in ("body", "legs")}
-        data.update(bodies=[body], lines=lines)
-        return "network", "a body with mass, hydrostatics, springs or a pose", data
-    carriers = body_data.get("bodies", [])
-    if len(carriers) != 1:
-        raise src.error("bodies", f"the vessel points ride {len(carriers)} bodies; one expected")
-    old = carriers[0]["name"]
-    for line in body_data.get("lines", []):
-        for key in ("from", "to"):
-            end = line[key]
-            if isinstance(end, dict) and end.get("body") == old:
-                end["body"] = name
-    return form, why, dict(body_data, bodies=[body])
-
-
 @dataclass
 class MoorPyImport:
     """A MoorPy YAML mapped onto a case: ``data``, the ``report`` and the ``form``."""
@@ -374,7 +277,7 @@ def read_moorpy(source) -> MoorPyImport:
         report.converted.append(f"line type {tname}: breaking_load {value:g} N as its MBL")
     form, why, body_data, _ = scene_case(scene, report)
     if data.get("bodies"):
-        form, why, body_data = _with_body(src, data["bodies"], body_data, form, why, report)
+        form, why, body_data = with_body(src, data["bodies"], body_data, form, why, report)
     stem = os.path.splitext(path.name)[0] or "moorpy"
     name = str(data["name"]) if "name" in data else f"{stem} (imported from MoorPy YAML)"
     case = {"name": name,
@@ -412,8 +315,8 @@ def case_to_moorpy(case) -> dict:
     (with its clump's mass and volume; ``<line>_joint<k>``). Its ends: a case point keeps
     its name and type (``fixed``, or ``free`` with mass and volume); a fixed end given as
     coordinates becomes a ``fixed`` point, a body end a ``vessel`` point at its place in the
-    scene at the case pose (``<line>_A``, ``<line>_B``; MoorPy's YAML holds one vessel, so
-    at most one body may carry lines). Line types get MoorPy's volume-equivalent diameter
+    body frame (``<line>_A``, ``<line>_B``; MoorPy's YAML holds one vessel, so at most one
+    body may carry lines), and that body a ``bodies`` entry (:func:`moorpy_body`). Line types get MoorPy's volume-equivalent diameter
     and the mass per metre that gives the case's weight in water with the case's gravity
     (written as ``gravity:``, which MoorPy does not read: create its System with that
     ``g``).
@@ -497,35 +400,6 @@ def case_to_moorpy(case) -> dict:
     if carriers:
         data["bodies"] = [moorpy_body(bodies[carriers[0]])]
     return data
-
-
-def moorpy_body(body) -> dict:
-    """A body as the keyword arguments of MoorPy 1.3's ``System.addBody`` (with its
-    ``name``): ``type`` (0 free, 1 held), ``r6`` (the case pose: x, y, z [m], roll, pitch,
-    yaw [rad]), ``DOFs`` (the free ones, 0 = surge .. 5 = yaw); where the case has them,
-    ``m`` [kg] and ``rCG`` [m, body frame], the linear hydrostatics ``v`` [m^3], ``rM``
-    [m, body frame] and ``AWP`` [m^2], and ``f6Ext``, the constant force [N, N m, global].
-    ``stiffness`` (6x6, SI) carries the body's extra springs, which MoorPy has no argument
-    for."""
-    from ..model import DOFS
-    entry = {"name": body.name, "type": 0 if body.free else 1,
-             "r6": [float(v) for v in body.position]
-             + [math.radians(a) for a in body.orientation_deg],
-             "DOFs": [DOFS.index(d) for d in body.free]}
-    if body.mass is not None:
-        entry.update(m=float(body.mass), rCG=[float(v) for v in body.centre_of_gravity])
-    hydro = body.hydrostatics
-    if hydro is not None:
-        entry.update(v=float(hydro.displaced_volume),
-                     rM=[float(v) for v in hydro.metacentre],
-                     AWP=float(hydro.waterplane_area))
-    force = body.loads.force
-    if force is not None:
-        entry["f6Ext"] = [float(v) for v in (force if len(force) == 6 else
-                                             (force[0], force[1], 0.0, 0.0, 0.0, force[2]))]
-    if body.stiffness is not None:
-        entry["stiffness"] = [[float(v) for v in row] for row in body.stiffness]
-    return entry
 
 
 def export_moorpy(case, out) -> dict:

@@ -3,6 +3,7 @@ windIO/RAFT spelling, MoorPy's ``file:`` key, bridles in the network form, and a
 through export-moorpy."""
 
 import math
+import re
 
 import pytest
 import yaml
@@ -244,3 +245,20 @@ def test_moorpy_solves_the_exported_spar_to_our_equilibrium(tmp_path):
     for line, leg in zip(ms.lineList, ours.legs):
         assert line.TB == pytest.approx(leg.fairlead_tension_N, rel=1e-6)
         assert line.TA == pytest.approx(leg.anchor_tension_N, rel=1e-6)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda b: b.update(type=2), "bodies[0].type: 2 must be 0 (free), 1 (fixed) or -1"),
+    (lambda b: b.update(r6=[0, 0, 0]), "bodies[0].r6: [0, 0, 0] must be a list of 6 numbers"),
+    (lambda b: b.update(DOFs=[0, 7]), "bodies[0].DOFs: [0, 7] must list DOF indices"),
+    (lambda b: b.update(m=-1), "bodies[0].m: -1 must be >= 0"),
+    (lambda b: b.update(mass=1), "bodies[0].mass: unknown key"),
+    (lambda b: b.update(stiffness=[[0] * 6] * 5), "bodies[0].stiffness: must be a 6x6"),
+])
+def test_bad_body_entry_is_named(edit, message, tmp_path):
+    data = moorsolve.io.case_to_moorpy(_spar_with_force())
+    edit(data["bodies"][0])
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(data))
+    with pytest.raises(moorsolve.CaseError, match=re.escape(message)):
+        read_moorpy(path)
