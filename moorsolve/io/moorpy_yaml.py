@@ -316,8 +316,8 @@ def case_to_moorpy(case) -> dict:
     its name and type (``fixed``, or ``free`` with mass and volume); a fixed end given as
     coordinates becomes a ``fixed`` point, a body end a ``vessel`` point at its place in the
     body frame (``<line>_A``, ``<line>_B``; MoorPy's YAML holds one vessel, so at most one
-    body may carry lines), and that body a ``bodies`` entry (:func:`moorpy_body`). Line types get MoorPy's volume-equivalent diameter
-    and the mass per metre that gives the case's weight in water with the case's gravity
+    body may carry lines), and that body a ``bodies`` entry (:func:`moorpy_body`). Line
+    types get MoorPy's volume-equivalent diameter and the mass per metre that gives the case's weight in water with the case's gravity
     (written as ``gravity:``, which MoorPy does not read: create its System with that
     ``g``).
 
