@@ -32,7 +32,8 @@ class Drift:
     ----------
     body : str
     dofs : tuple of str
-        Its free horizontal degrees of freedom (surge, sway) nothing restores.
+        Its free horizontal degrees of freedom (surge, sway) nothing restores (a DOF with
+        an extra spring of its own is held by it).
     group : tuple of str
         The bodies and free points that drift with it (joined to it by lines; itself
         included), as ``body NAME`` or ``point NAME``.
@@ -65,18 +66,17 @@ def _words(names, noun: str) -> str:
     return f"{noun} {names[0]}" if len(names) == 1 else f"{noun}s {', '.join(names)}"
 
 
-def _holds_itself(body, case: Case) -> bool:
-    """Held horizontally without lines: not free in surge or sway, an extra spring on a free
-    horizontal DOF, or a fender or pile guide (contacts are judged by the contact model)."""
-    free = [d for d in HORIZONTAL_DOFS if d in body.free]
-    if not free:
-        return True
-    if body.stiffness is not None and any(body.stiffness[i][i] > 0 for i in range(2)
-                                          if HORIZONTAL_DOFS[i] in body.free):
-        return True
+def _unheld_dofs(body, case: Case) -> tuple:
+    """The free horizontal DOFs nothing but lines could hold: none when the body has a
+    fender or pile guide (contacts are judged by the contact model); else those without an
+    extra spring of their own."""
     contacts = case.contacts
-    return any(f.body == body.name for f in contacts.fenders) or \
-        any(g.body == body.name for g in contacts.guides)
+    if any(f.body == body.name for f in contacts.fenders) or \
+            any(g.body == body.name for g in contacts.guides):
+        return ()
+    k = body.stiffness
+    return tuple(d for i, d in enumerate(HORIZONTAL_DOFS)
+                 if d in body.free and not (k is not None and k[i][i] > 0))
 
 
 def drifting_bodies(case: Case) -> list[Drift]:
@@ -106,10 +106,11 @@ def drifting_bodies(case: Case) -> list[Drift]:
             parent[ra] = rb
 
     free_points = {p.name for p in case.points if p.free}
+    unheld = {body.name: _unheld_dofs(body, case) for body in case.bodies}
     for body in case.bodies:
         node = ("body", body.name)
         find(node)
-        if _holds_itself(body, case):
+        if not unheld[body.name]:
             union(node, _GROUND)
 
     def node_of(end):
@@ -132,7 +133,5 @@ def drifting_bodies(case: Case) -> list[Drift]:
             members, key=lambda n: (n[0] != "body" or n[1] != body.name, n)))
         lines = tuple(line.name for line in case.lines
                       if find(node_of(line.a)) == root)
-        out.append(Drift(body=body.name,
-                         dofs=tuple(d for d in HORIZONTAL_DOFS if d in body.free),
-                         group=group, lines=lines))
+        out.append(Drift(body=body.name, dofs=unheld[body.name], group=group, lines=lines))
     return out

@@ -101,6 +101,10 @@ def test_a_spring_or_a_held_dof_holds_a_body():
     k = [[0.0] * 6 for _ in range(6)]
     k[0][0] = k[1][1] = 1e5
     assert drifting_bodies(tanker(stiffness=tuple(map(tuple, k)))) == []
+    k[1][1] = 0.0                                               # a spring in surge only
+    (sway,) = drifting_bodies(tanker(stiffness=tuple(map(tuple, k))))
+    assert sway.dofs == ("sway",)
+    assert sway.restores == "nothing restores it in sway"
 
 
 def test_check_names_the_tanker_that_drifts_off_with_its_load(calm_report):
