@@ -122,11 +122,31 @@ def _drift(case, result, depth: float) -> list:
         offset = math.hypot(pose.get("x_m", 0.0), pose.get("y_m", 0.0))
         if offset <= limit:
             continue
+        held = _held_where(case, result, name)
+        if held is not None and held <= limit:
+            continue        # it turned about where its lines hold it (a turret), no slip
         out.append(ModellingWarning(
             "drift", name, offset, limit,
             f"{name}: displaced {offset:.6g} m horizontally, more than the water depth "
             f"{depth:.6g} m: check the loads, their units and the line lengths"))
     return out
+
+
+def _held_where(case, result, name: str):
+    """The least horizontal displacement [m] of the body's line ends from their case-pose
+    places (None without lines on it): a ship weathervaning about its turret swings its
+    origin far while the turret, where the mooring holds it, barely moves."""
+    from ..model.build_network import end_position
+    bodies = {b.name: b for b in getattr(case, "bodies", ())}
+    if len(bodies) == 1 and name == "body":
+        name = next(iter(bodies))
+    moved = []
+    for line, leg in zip(getattr(case, "lines", ()), result.legs):
+        for end, now in ((line.a, leg.anchor), (line.b, leg.fairlead)):
+            if end.body == name and end.body in bodies:
+                before = end_position(end, bodies)
+                moved.append(math.hypot(now[0] - before[0], now[1] - before[1]))
+    return min(moved) if moved else None
 
 
 def modelling_warnings(case, result) -> list:

@@ -33,8 +33,10 @@ from ..errors import ConvergenceError
 from ..model import AnchorType, Case, Checks
 from ..model.edit import without_line
 from ..solve import Result, solve
+from ..model.restraint import drifting_bodies
 from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
+from .drift import drift_findings, hold_drifting
 from .fibre import LOWER_LIMIT_CHECKS, fibre_items
 from .items import CheckItem
 
@@ -63,6 +65,11 @@ class ConditionResult:
         The equilibrium (for overloaded lines too: solved with ``allow_overload``).
     items : list of CheckItem
     criterion : Criterion
+    drifting : tuple of dict
+        Bodies nothing holds horizontally in this condition (a tanker whose one hawser
+        broke): each ``body``, ``dofs``, ``group``, ``lines``, ``load_N``, ``toward_deg``
+        and ``message`` (:mod:`.drift`). Such a condition fails; ``result`` is then the
+        rest of the mooring solved with those bodies held.
     """
 
     name: str
@@ -73,12 +80,16 @@ class ConditionResult:
     result: Result | None
     items: list
     criterion: Criterion
+    drifting: tuple = ()
 
     @property
     def passed(self) -> bool:
-        return self.solved and all(item.passed for item in self.items)
+        return self.solved and not self.drifting and all(item.passed for item in self.items)
 
     def __repr__(self) -> str:
+        if self.drifting:
+            return (f"<ConditionResult {self.name!r}: FAIL, "
+                    f"{'; '.join(d['message'] for d in self.drifting)}>")
         if not self.solved:
             return f"<ConditionResult {self.name!r}: FAIL, no equilibrium: {self.reason}>"
         worst = self.worst()
@@ -89,9 +100,13 @@ class ConditionResult:
 
     @property
     def offset_m(self) -> float | None:
-        if self.result is None or self.result.body is None:
+        """The body's horizontal offset [m]; with several bodies the largest one's."""
+        if self.result is None:
             return None
-        return math.hypot(self.result.body["x_m"], self.result.body["y_m"])
+        if self.result.body is not None:
+            return math.hypot(self.result.body["x_m"], self.result.body["y_m"])
+        return max((math.hypot(b["offset"]["x_m"], b["offset"]["y_m"])
+                    for b in self.result.bodies), default=None)
 
     def worst(self, check: str = "tension") -> CheckItem | None:
         items = [i for i in self.items if i.check == check]
@@ -107,6 +122,7 @@ class ConditionResult:
             else dict(self.result.body),
             "max_tension_utilisation": None if worst is None else worst.utilisation,
             "criterion": self.criterion.describe(),
+            "drifting": [dict(d) for d in self.drifting],
             "checks": [item.to_dict() for item in self.items],
         }
 
@@ -143,9 +159,13 @@ class CheckReport:
     def failures(self) -> list:
         out = []
         for c in self.conditions:
+            out += [f"{c.name}: {d['message']}" for d in c.drifting]
             if not c.solved:
                 out.append(f"{c.name}: no equilibrium: {c.reason}")
             out += [f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
+                    f"{_show(i.value, i.unit)}, no limit to check against: {i.criterion}"
+                    if not math.isfinite(i.limit) else
+                    f"{c.name}: {i.check}{' of ' + i.leg if i.leg else ''}: "
                     f"{_show(i.value, i.unit)} > limit {_show(i.limit, i.unit)} ({i.criterion})"
                     if i.check not in LOWER_LIMIT_CHECKS else
                     f"{c.name}: {i.check} of {i.leg}: {_show(i.value, i.unit)} < "
@@ -231,13 +251,22 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     name = "intact" if removed is None else f"damaged: {removed} removed"
     crit = criterion(checks.standard, kind, checks.consequence_class)
     scene = case if removed is None else without_line(case, removed)
+    drifts = drifting_bodies(scene)
+    if drifts:
+        # What nothing holds is lost: say so, and check the rest with it held (no line
+        # joins it to the rest, so holding it changes nothing there).
+        scene = hold_drifting(scene, drifts)
+    lost = {line for d in drifts for line in d.lines}
     try:
         result = solve(scene, tol=tol, allow_overload=True)
     except ConvergenceError as exc:
         return ConditionResult(name=name, kind=kind, removed=removed, solved=False,
-                               reason=exc.reason, result=None, items=[], criterion=crit)
+                               reason=exc.reason, result=None, items=[], criterion=crit,
+                               drifting=drift_findings(drifts, None))
     items = []
     for leg, lr in zip(scene.legs, result.legs):
+        if leg.name in lost:
+            continue        # it drifts off with its bodies: no tension to check
         if is_hawser(leg):
             items.append(_hawser(name, lr, leg))
             continue
@@ -265,7 +294,7 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     if limit is not None:
         for body, entry in zip(scene.bodies, result.bodies):
             if not body.free:
-                continue
+                continue        # held, or lost (held here, reported as drifting)
             off = entry["offset"]
             offset = math.hypot(off["x_m"], off["y_m"])
             label = "offset" if len(scene.bodies) == 1 else f"offset of {body.name}"
@@ -276,7 +305,8 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     items += [_fender(name, f) for f in result.fenders if f["rated_deflection_m"]]
     items += [_guide(name, g) for g in result.guides if g["pile_top_m"] is not None]
     return ConditionResult(name=name, kind=kind, removed=removed, solved=True, reason="",
-                           result=result, items=items, criterion=crit)
+                           result=result, items=items, criterion=crit,
+                           drifting=drift_findings(drifts, result.loads))
 
 
 def _hawser(condition: str, lr, line) -> CheckItem:

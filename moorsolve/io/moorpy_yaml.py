@@ -25,8 +25,13 @@ Meaning, as MoorPy gives it: the submerged weight is ``g (mass_density - rho pi 
 with MoorPy's default ``g = 9.81`` (the YAML has no gravity; this package writes and reads a
 ``gravity:`` key that MoorPy ignores); vessel points ride one body, *held* where the file
 puts them (MoorPy makes it a free body without mass; moorsolve holds it, as a static solve
-of a coupled body does). Lines take the legs form when the file is one body on
-anchor-to-fairlead chains, else the network form, named as in the file.
+of a coupled body does), unless a ``bodies:`` entry gives that body in the keyword
+arguments of MoorPy's ``System.addBody`` (``type, r6, DOFs, m, rCG, v, rM, AWP, f6Ext``,
+and ``stiffness``, the extra 6x6 springs MoorPy has no argument for): then the vessel
+points are in its body frame and it is free in its DOFs with its mass and hydrostatics.
+MoorPy 1.3's own YAML reader skips ``bodies`` (the export's header says how to load it).
+Lines take the legs form when the file is one body on anchor-to-fairlead chains, else the
+network form, named as in the file.
 """
 
 from __future__ import annotations
@@ -46,10 +51,11 @@ from .moordyn import line_type_data, read_import, scene_case
 from .moordyn_scene import MDLine, MDPoint, MDScene
 from .moordyn_types import MDLineType
 from .moordyn_write_types import export_diameter
+from .moorpy_bodies import moorpy_body, number as _float, with_body
 from .output_files import write_text
 
 __all__ = ["MoorPyImport", "read_moorpy", "import_moorpy", "case_to_moorpy", "export_moorpy",
-           "MOORPY_GRAVITY"]
+           "moorpy_body", "MOORPY_GRAVITY"]
 
 #: MoorPy's ``System`` default gravity [m/s^2]; its YAML cannot set another.
 MOORPY_GRAVITY = 9.81
@@ -77,22 +83,6 @@ def _get(src, entry: dict, path: str, *keys, required=True, default=None):
     if required:
         raise src.error(path, f"missing {keys[0]!r}")
     return default
-
-
-def _float(src, value, path: str, *, ge=None, gt=None) -> float:
-    if isinstance(value, bool):
-        raise src.error(path, f"{value!r} is not a number")
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise src.error(path, f"{value!r} is not a number") from None
-    if not math.isfinite(x):
-        raise src.error(path, f"{value!r} is not a finite number")
-    if ge is not None and x < ge:
-        raise src.error(path, f"{value!r} must be >= {ge:g}")
-    if gt is not None and not x > gt:
-        raise src.error(path, f"{value!r} must be > {gt:g}")
-    return x
 
 
 def _list(src, data: dict, key: str) -> list:
@@ -210,7 +200,7 @@ def _scene(src, data: dict, report: ImportReport) -> tuple:
                             length=length, num_segs="", outputs="", tokens=())
     if not lines:
         raise src.error("lines", "no lines")
-    for key in ("bodies", "rods", "rod_types", "anchor_types"):
+    for key in ("rods", "rod_types", "anchor_types"):
         if data.get(key):
             report.ignored.append(f"{key}: MoorPy's YAML reader does not read them either")
     extra = sorted(set(data) - _KNOWN)
@@ -286,6 +276,8 @@ def read_moorpy(source) -> MoorPyImport:
         types[tname]["mbl"] = value
         report.converted.append(f"line type {tname}: breaking_load {value:g} N as its MBL")
     form, why, body_data, _ = scene_case(scene, report)
+    if data.get("bodies"):
+        form, why, body_data = with_body(src, data["bodies"], body_data, form, why, report)
     stem = os.path.splitext(path.name)[0] or "moorpy"
     name = str(data["name"]) if "name" in data else f"{stem} (imported from MoorPy YAML)"
     case = {"name": name,
@@ -323,9 +315,9 @@ def case_to_moorpy(case) -> dict:
     (with its clump's mass and volume; ``<line>_joint<k>``). Its ends: a case point keeps
     its name and type (``fixed``, or ``free`` with mass and volume); a fixed end given as
     coordinates becomes a ``fixed`` point, a body end a ``vessel`` point at its place in the
-    scene at the case pose (``<line>_A``, ``<line>_B``; MoorPy's YAML holds one vessel, so
-    at most one body may carry lines). Line types get MoorPy's volume-equivalent diameter
-    and the mass per metre that gives the case's weight in water with the case's gravity
+    body frame (``<line>_A``, ``<line>_B``; MoorPy's YAML holds one vessel, so at most one
+    body may carry lines), and that body a ``bodies`` entry (:func:`moorpy_body`). Line
+    types get MoorPy's volume-equivalent diameter and the mass per metre that gives the case's weight in water with the case's gravity
     (written as ``gravity:``, which MoorPy does not read: create its System with that
     ``g``).
 
@@ -376,7 +368,10 @@ def case_to_moorpy(case) -> dict:
         name = end.label if end.fixed and end.label else f"{line.name}_{tag}"
         if name not in written:
             kind = "fixed" if end.fixed else "vessel"
-            where = [float(v) for v in end_position(end, bodies)]
+            # A vessel point's location is in the body frame (MoorPy attaches it to the
+            # body at that relative position); a fixed one's in the scene.
+            where = [float(v) for v in (end.position if end.body is not None
+                                        else end_position(end, bodies))]
             written[name] = {"name": name, "type": kind, "location": where}
             points.append(written[name])
         return name
@@ -400,8 +395,11 @@ def case_to_moorpy(case) -> dict:
             lines.append({"name": f"{line.name}_{k + 1}" if len(line.segments) > 1 else line.name,
                           "endA": names[k], "endB": names[k + 1], "type": seg.line_type.name,
                           "length": seg.length})
-    return {"name": case.name, "water_depth": env.depth, "rho": rho, "gravity": g,
+    data = {"name": case.name, "water_depth": env.depth, "rho": rho, "gravity": g,
             "line_types": types, "points": points, "lines": lines}
+    if carriers:
+        data["bodies"] = [moorpy_body(bodies[carriers[0]])]
+    return data
 
 
 def export_moorpy(case, out) -> dict:
@@ -417,14 +415,36 @@ def export_moorpy(case, out) -> dict:
     if case.environment.seabed.sloped:
         raise CaseError("environment.seabed.gradient", "MoorPy's YAML has a flat water_depth; "
                                                        "use a flat seabed")
+    for i, body in enumerate(case.bodies):
+        if body.hull:
+            raise CaseError(f"bodies[{i}].hull", "MoorPy has no exact hull members; give the "
+                            "body the linear hydrostatics (displaced_volume, metacentre, "
+                            "waterplane_area) to export it")
     data = case_to_moorpy(case)
     header = (f"# MoorPy mooring YAML of the moorsolve case {case.name!r}.\n"
               f"# gravity {case.environment.gravity:g} m/s^2: MoorPy does not read the "
               f"'gravity' key; create the System with g={case.environment.gravity:g}.\n")
-    for body in case.bodies:
-        header += (f"# The vessel points ride the case's body {body.name!r} (free: "
-                   f"[{', '.join(body.free)}]), at its case pose; MoorPy makes one free body "
-                   "of them, without mass: hold it (type 1) to compare at this pose.\n")
+    for body in data.get("bodies", []):
+        model = case.body_named(body["name"])
+        flows = [k for k in ("wind", "current", "wave_drift")
+                 if getattr(model.loads, k) is not None]
+        header += (
+            f"# 'bodies' holds the body {body['name']!r} as MoorPy's System.addBody arguments "
+            "(MoorPy 1.3's YAML reader skips 'bodies'); its vessel points are in its body "
+            "frame. Load the whole scene with\n"
+            "#   d = yaml.safe_load(open(FILE)); ms = moorpy.System(depth=d['water_depth'], "
+            "rho=d['rho'], g=d['gravity'])\n"
+            "#   b = d['bodies'][0]; ms.addBody(b['type'], b['r6'], m=b.get('m', 0), "
+            "v=b.get('v', 0), rCG=b.get('rCG', [0, 0, 0]), AWP=b.get('AWP', 0), "
+            "rM=b.get('rM', [0, 0, 0]), f6Ext=b.get('f6Ext', [0] * 6), DOFs=b['DOFs'])\n"
+            "#   ms.parseYAML(d); ms.initialize(); ms.solveEquilibrium()\n"
+            "# (System(file=FILE) alone makes a free body without mass at the origin.)\n")
+        if "stiffness" in body:
+            header += ("# 'stiffness' (extra 6x6 springs) has no MoorPy argument: MoorPy "
+                       "solves without it.\n")
+        if flows:
+            header += (f"# Not written (no MoorPy form): the {', '.join(flows)} load model"
+                       f"{'s' if len(flows) > 1 else ''}.\n")
     text = header + yaml.safe_dump(data, sort_keys=False, default_flow_style=None)
     write_text(out, text)
     return data

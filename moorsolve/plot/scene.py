@@ -27,7 +27,7 @@ class LineView:
     name: str
     xyz: np.ndarray
     tension_N: float                   # largest tension along it
-    utilisation: Optional[float]       # largest tension over MBL; None without an MBL
+    t_over_mbl: Optional[float]        # largest tension over MBL; None without an MBL
     slack: bool
     anchor: np.ndarray
     fairlead: np.ndarray
@@ -95,9 +95,9 @@ class Scene:
 
     @property
     def colour_by(self) -> str:
-        """``utilisation`` when every line has an MBL, else ``tension``."""
-        if self.lines and all(line.utilisation is not None for line in self.lines):
-            return "utilisation"
+        """``t_over_mbl`` when every line has an MBL, else ``tension``."""
+        if self.lines and all(line.t_over_mbl is not None for line in self.lines):
+            return "t_over_mbl"
         return "tension"
 
     def extent(self, min_ratio: float = 0.4) -> np.ndarray:
@@ -181,7 +181,7 @@ def _line(leg, seabed_z, depth, a_kind="anchor", b_kind="body") -> LineView:
     tension = float(np.max(p["tension_N"])) if len(p["tension_N"]) else 0.0
     tension = max(tension, leg.fairlead_tension_N, leg.anchor_tension_N)
     grounded = xyz[:, 2] <= seabed_z(xyz[:, 0], xyz[:, 1]) + _ON_SEABED * max(depth, 1.0)
-    return LineView(name=leg.name, xyz=xyz, tension_N=tension, utilisation=leg.utilisation,
+    return LineView(name=leg.name, xyz=xyz, tension_N=tension, t_over_mbl=leg.t_over_mbl,
                     slack=bool(leg.slack), anchor=np.asarray(leg.anchor, float),
                     fairlead=np.asarray(leg.fairlead, float),
                     touchdown=(None if leg.touchdown_point is None

@@ -1,4 +1,4 @@
-"""What every view of an equilibrium shares: the line colouring (utilisation or tension),
+"""What every view of an equilibrium shares: the line colouring (T/MBL or tension),
 its colour bar, marker styles and number formats."""
 
 from __future__ import annotations
@@ -29,13 +29,13 @@ def as_scene(obj) -> Scene:
 def line_colours(scene: Scene):
     """``(colour_of(line), ScalarMappable, label)``: the colouring every view shares.
 
-    Utilisation runs from 0 to the larger of 1 and the worst line, so an overloaded line
+    T/MBL runs from 0 to the larger of 1 and the worst line, so an overloaded line
     is on the bar (never clipped to its end) and 1 (the MBL) is marked on it: green to red
     up to the MBL, red to dark purple beyond.
     """
     import matplotlib as mpl
-    if scene.colour_by == "utilisation":
-        top = max([1.0] + [line.utilisation for line in scene.lines])
+    if scene.colour_by == "t_over_mbl":
+        top = max([1.0] + [line.t_over_mbl for line in scene.lines])
         safe = mpl.colormaps["RdYlGn_r"]
         if top > 1.0:
             # Green to red up to the MBL, then red to dark purple beyond it: a line near
@@ -44,14 +44,14 @@ def line_colours(scene: Scene):
                 "over", [safe(1.0), "#3b0030"])
             cmap = mpl.colors.ListedColormap(
                 np.vstack([safe(np.linspace(0, 1, 128)), over(np.linspace(0, 1, 128))]),
-                name="utilisation")
+                name="t_over_mbl")
             norm = mpl.colors.TwoSlopeNorm(vmin=0.0, vcenter=1.0, vmax=top)
         else:
             norm, cmap = mpl.colors.Normalize(0.0, 1.0), safe
-        label = "utilisation: largest tension / MBL"
+        label = "T/MBL: largest tension / MBL"
 
         def value(line):
-            return line.utilisation
+            return line.t_over_mbl
     else:
         top = max([1.0] + [line.tension_N / 1e3 for line in scene.lines])
         norm, cmap = mpl.colors.Normalize(0.0, top), mpl.colormaps["viridis"]
@@ -64,10 +64,10 @@ def line_colours(scene: Scene):
 
 
 def colour_bar(ax, scene: Scene, **kwargs):
-    """The shared colour bar beside ``ax``; utilisation marks the MBL at 1."""
+    """The shared colour bar beside ``ax``; T/MBL marks the MBL at 1."""
     _, mappable, label = line_colours(scene)
     bar = ax.figure.colorbar(mappable, ax=ax, label=label, **kwargs)
-    if scene.colour_by == "utilisation":
+    if scene.colour_by == "t_over_mbl":
         bar.ax.axhline(1.0, color="k", lw=1.5)
         bar.ax.text(0.5, 1.0, "MBL", transform=bar.ax.get_yaxis_transform(), ha="center",
                     va="bottom", fontsize=7)
@@ -105,8 +105,8 @@ def kn(value_N: float) -> str:
 
 
 def line_label(line, scene: Scene) -> str:
-    if scene.colour_by == "utilisation":
-        return f"{line.name}\n{line.utilisation:.2f}"
+    if scene.colour_by == "t_over_mbl":
+        return f"{line.name}\n{line.t_over_mbl:.2f}"
     return f"{line.name}\n{line.tension_N / 1e3:.0f} kN"
 
 

@@ -2,7 +2,7 @@
 
 Each function takes a :class:`~moorsolve.Result` (or a :class:`.scene.Scene` made from
 one) and an optional Axes, draws on it and returns it; nothing calls ``plt.show()``.
-Lines are coloured by their utilisation (largest tension over MBL) when every line has an
+Lines are coloured by their T/MBL (largest tension over MBL) when every line has an
 MBL, else by their largest tension, on one scale shared by every view of a figure
 (:mod:`.style`).
 """

@@ -46,10 +46,10 @@ def berth_lines(result) -> list:
 
 
 
-def berth_check_lines(report) -> list:
+def berth_check_lines(report, width: int = 22) -> list:
     """Per condition of a check report, the worst hawser (against MEG4's working load
     limit), fender (against its rated deflection) and pile guide (against its pile's top);
-    none without them."""
+    none without them. ``width`` is the condition column's, as in the table above."""
     lines = []
     for c in report.conditions:
         worst = [(c.worst(check), what) for check, what in (
@@ -58,7 +58,7 @@ def berth_check_lines(report) -> list:
         parts = [f"{what} {item.leg} {_show(item)} (util {item.utilisation:.2f}"
                  f"{'' if item.passed else ', FAIL'})" for item, what in worst if item]
         if parts:
-            lines.append(f"{c.name:<22}  " + "; ".join(parts))
+            lines.append(f"{c.name:<{width}}  " + "; ".join(parts))
     return ["", "berth (worst per condition)"] + lines if lines else []
 
 

@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..io.output_files import write_text
-from .check_text import check_json, format_check_table, kN, summary_rows
+from .check_text import UTIL_LEGEND, check_json, format_check_table, kN, summary_rows
 
 if TYPE_CHECKING:          # annotations only: the report reads what upstream made
     from ..checks import CheckReport
@@ -182,7 +182,8 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
     if "intact" in images:
         parts.append(_figure(images["intact"], "Intact condition: plan (loads in the inset, "
                                                "offset arrow), elevation and 3-D view; lines "
-                                               "coloured by utilisation or tension."))
+                                               "coloured by T/MBL (tension over breaking load) "
+                                               "or tension."))
     if "governing" in images:
         parts.append(_figure(images["governing"], "Governing damaged condition: "
                                                   f"{images.get('governing_name', '')}."))
@@ -194,6 +195,7 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
     parts.append("<h2>4. Checks</h2>")
     header, rows = summary_table(report)
     parts.append(_table(header, rows))
+    parts.append(f'<p class="note">{_e(UTIL_LEGEND)}.</p>')
     if report.failures:
         parts.append("<p><b>Failures</b></p><ul>" + "".join(
             f"<li>{_e(f)}</li>" for f in report.failures) + "</ul>")
@@ -298,6 +300,9 @@ def _criteria_section(report: CheckReport) -> list:
 def _detail_section(report: CheckReport) -> list:
     detail = []
     for c in report.conditions:
+        # A body lost in the condition (nothing holds it) heads the condition's rows.
+        detail += [([c.name, f"body {d['body']}", "held by the mooring", "-", "-", "-",
+                     d["message"], "FAIL"], "fail") for d in c.drifting]
         for item in c.items:
             if item.leg is None:
                 continue

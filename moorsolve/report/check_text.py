@@ -12,7 +12,11 @@ from .text import _finite
 if TYPE_CHECKING:          # annotations only: the report reads what upstream made
     from ..checks import CheckReport
 
-__all__ = ["check_json", "format_check_table", "summary_rows", "kN"]
+__all__ = ["check_json", "format_check_table", "summary_rows", "kN", "UTIL_LEGEND"]
+
+#: What the check's ratios mean, printed with every table of them.
+UTIL_LEGEND = ("util = tension / the standard's allowable tension (1.00 = the limit); "
+               "MBL/T = safety factor, req = the least allowed")
 
 
 def kN(value: float) -> str:
@@ -41,6 +45,14 @@ def summary_rows(report: CheckReport) -> list:
     return rows
 
 
+def _num(value: float, width: int, digits: int) -> str:
+    """A right-aligned number, or ``-`` where there is none (no chain in a berth's
+    scene, no MBL)."""
+    if value is None or not math.isfinite(value):
+        return f"{'-':>{width}}"
+    return f"{value:{width}.{digits}f}"
+
+
 def mark(item) -> str:
     if item is None:
         return "-"
@@ -53,22 +65,30 @@ def format_check_table(report: CheckReport) -> str:
             and c.consequence_class in (None, report.consequence_class)}
     lines = [f"Mooring check: {report.case_name}",
              f"standard     {report.standard} (quasi-static): "
-             + "; ".join(f"{k} {v.describe().split(': ', 1)[1]}" for k, v in crit.items())]
-    header = (f"{'condition':<22}{'offset m':>9}{'leg':>6}{'T max kN':>10}{'MBL/T':>7}"
-              f"{'req':>6}{'util':>6}{'uplift':>8}{'grounded':>9}{'offset':>7}  result")
+             + "; ".join(f"{k} {v.describe().split(': ', 1)[1]}" for k, v in crit.items()),
+             f"columns      {UTIL_LEGEND}"]
+    rows = summary_rows(report)
+    wide = max([22] + [len(row["condition"]) + 1 for row in rows])
+    legs = max([6] + [len(str(row["leg"])) + 1 for row in rows])
+    header = (f"{'condition':<{wide}}{'offset m':>9}{'leg':>{legs}}{'T max kN':>10}"
+              f"{'MBL/T':>7}{'req':>6}{'util':>6}{'uplift':>8}{'grounded':>9}{'offset':>7}"
+              "  result")
     lines += ["", header, "-" * len(header)]
-    for row in summary_rows(report):
+    for row, c in zip(rows, report.conditions):
         if not row["solved"]:
-            lines.append(f"{row['condition']:<22}  no equilibrium: {row['reason']}  FAIL")
-            continue
-        uplift = row["anchor uplift"] or row["anchor uplift angle"]
-        offset = "-" if row["offset"] is None else f"{row['offset']:.2f}"
-        lines.append(
-            f"{row['condition']:<22}{offset:>9}{row['leg']:>6}{row['T'] / 1e3:10.1f}"
-            f"{row['mbl_over_T']:7.2f}{row['required']:6.2f}{row['tension_util']:6.2f}"
-            f"{mark(uplift):>8}{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
-            f"  {'PASS' if row['passed'] else 'FAIL'}")
-    lines += berth_check_lines(report)       # hawsers, fenders, guides (issue 15)
+            lines.append(f"{row['condition']:<{wide}}  no equilibrium: {row['reason']}  FAIL")
+        else:
+            uplift = row["anchor uplift"] or row["anchor uplift angle"]
+            offset = "-" if row["offset"] is None else f"{row['offset']:.2f}"
+            lines.append(
+                f"{row['condition']:<{wide}}{offset:>9}{row['leg']:>{legs}}"
+                f"{_num(row['T'] / 1e3, 10, 1)}{_num(row['mbl_over_T'], 7, 2)}"
+                f"{row['required']:6.2f}{_num(row['tension_util'], 6, 2)}{mark(uplift):>8}"
+                f"{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
+                f"  {'PASS' if row['passed'] else 'FAIL'}")
+        # A body lost in this condition, under its row where the eye is.
+        lines += [f"{'':<4}LOST: {d['message']}" for d in c.drifting]
+    lines += berth_check_lines(report, wide)  # hawsers, fenders, guides (issue 15)
     lines.append("")
     failures = report.failures
     lines.append(f"result       {'PASS' if report.passed else 'FAIL'}: "

@@ -42,7 +42,7 @@ def result_repr(result) -> str:
     if result.legs:
         worst = max(result.legs, key=lambda leg: max(leg.fairlead_tension_N,
                                                      leg.anchor_tension_N))
-        util = "" if worst.utilisation is None else f", utilisation {worst.utilisation:.2f}"
+        util = "" if worst.t_over_mbl is None else f", T/MBL {worst.t_over_mbl:.2f}"
         word = "legs" if getattr(result, "form", "legs") == "legs" else "lines"
         parts.append(f"{len(result.legs)} {word}, worst {worst.name} "
                      f"{max(worst.fairlead_tension_N, worst.anchor_tension_N) / 1e3:,.1f} kN"
@@ -51,9 +51,9 @@ def result_repr(result) -> str:
 
 
 def leg_repr(leg) -> str:
-    """One line per leg: tensions, state and utilisation."""
+    """One line per leg: tensions, state and T/MBL."""
     row = leg_rows([leg])[0]
-    util = "" if leg.utilisation is None else f", utilisation {leg.utilisation:.2f}"
+    util = "" if leg.t_over_mbl is None else f", T/MBL {leg.t_over_mbl:.2f}"
     return (f"<LegResult {leg.name}: fairlead {leg.fairlead_tension_N / 1e3:,.1f} kN, "
             f"anchor {leg.anchor_tension_N / 1e3:,.1f} kN, {row['state']}{util}>")
 
@@ -95,21 +95,27 @@ def result_html(result) -> str:
         summary.append([f"point {point['name']}", f"x {point['x_m']:+.3f} m, "
                                                   f"y {point['y_m']:+.3f} m, "
                                                   f"z {point['z_m']:+.3f} m"])
-    for name, (fx, fy, mz) in result.loads.items():
-        summary.append([f"load: {name}", f"Fx {fx / 1e3:,.2f} kN, Fy {fy / 1e3:,.2f} kN, "
-                                         f"Mz {mz / 1e3:,.1f} kN m"])
+    for name, load in result.loads.items():
+        # A legs-form load is (Fx, Fy, Mz); a network body's is the full 6-vector.
+        fx, fy, mz = (load[0], load[1], load[2]) if len(load) == 3 else (load[0], load[1],
+                                                                          load[5])
+        text = f"Fx {fx / 1e3:,.2f} kN, Fy {fy / 1e3:,.2f} kN, Mz {mz / 1e3:,.1f} kN m"
+        if len(load) == 6:
+            text += (f" (Fz {load[2] / 1e3:,.2f} kN, Mx {load[3] / 1e3:,.1f} kN m, "
+                     f"My {load[4] / 1e3:,.1f} kN m)")
+        summary.append([f"load: {name}", text])
     summary += [["note", note] for note in result.notes]
     legs = [([r["name"], _num(r["T_fair"] / 1e3, ",.2f"), _num(r["H"] / 1e3, ",.2f"),
               _num(r["V"] / 1e3, ",.2f"), _num(r["T_anchor"] / 1e3, ",.2f"),
               _num(r["V_anchor"] / 1e3, ",.2f"), _num(r["grounded"], ".2f"),
-              _num(r["utilisation"], ".3f"), r["state"]],
-             "fail" if (r["utilisation"] or 0) > 1 else "")
+              _num(r["t_over_mbl"], ".3f"), r["state"]],
+             "fail" if (r["t_over_mbl"] or 0) > 1 else "")
             for r in leg_rows(result.legs)]
     title = result.case_name or "equilibrium"
     return (f"<div><b>{html.escape(title)}</b>"
             + html_table(["", ""], summary)
             + html_table(["leg", "T fairlead [kN]", "H [kN]", "V [kN]", "T anchor [kN]",
-                          "V anchor [kN]", "grounded [m]", "utilisation", "state"], legs)
+                          "V anchor [kN]", "grounded [m]", "T/MBL", "state"], legs)
             + "</div>")
 
 
@@ -121,7 +127,9 @@ def check_html_table(report) -> str:
     caption = (f"Mooring check of {report.case_name} under {report.standard}: {verdict}, "
                f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
                "conditions pass")
-    return html_table(header, rows, caption)
+    lost = [f"{c.name}: {d['message']}" for c in report.conditions for d in c.drifting]
+    return html_table(header, rows, caption) + "".join(
+        f'<p style="background:#f8d0d0">LOST: {html.escape(text)}</p>' for text in lost)
 
 
 def envelope_html(envelope) -> str:

@@ -37,9 +37,13 @@ def format_table(result) -> str:
                      f"yaw {b['yaw_deg']:+.4f} deg")
     else:
         for b in result.bodies:
+            # The pose is where the body is; the offset (from the case pose) is what an
+            # engineer compares with a limit, so both are given.
+            off = b["offset"]
             lines.append(f"body {b['name']:<8} x {b['x_m']:+.3f} m  y {b['y_m']:+.3f} m  "
                          f"z {b['z_m']:+.3f} m  roll {b['roll_deg']:+.4f}  pitch "
-                         f"{b['pitch_deg']:+.4f}  yaw {b['yaw_deg']:+.4f} deg")
+                         f"{b['pitch_deg']:+.4f}  yaw {b['yaw_deg']:+.4f} deg  (offset "
+                         f"{math.hypot(off['x_m'], off['y_m']):.3f} m)")
         for pt in result.points:
             lines.append(f"point {pt['name']:<7} x {pt['x_m']:+.3f} m  y {pt['y_m']:+.3f} m  "
                          f"z {pt['z_m']:+.3f} m" + (
@@ -68,10 +72,10 @@ def format_table(result) -> str:
                      f"Mz {mz / 1e3:12.1f} kN m")
     word = "leg" if result.form == "legs" else "line"
     header = (f"{word:<8}{'T_fair kN':>11}{'H kN':>10}{'V kN':>10}{'T_anch kN':>11}"
-              f"{'V_anch kN':>11}{'grounded m':>12}{'util':>7}  state")
+              f"{'V_anch kN':>11}{'grounded m':>12}{'T/MBL':>7}  state")
     lines += ["", header, "-" * len(header)]
     for r in leg_rows(result.legs):
-        util = f"{r['utilisation']:.2f}" if r["utilisation"] is not None else "-"
+        util = f"{r['t_over_mbl']:.2f}" if r["t_over_mbl"] is not None else "-"
         lines.append(
             f"{r['name']:<8}{r['T_fair'] / 1e3:11.2f}{r['H'] / 1e3:10.2f}{r['V'] / 1e3:10.2f}"
             f"{r['T_anchor'] / 1e3:11.2f}{r['V_anchor'] / 1e3:11.2f}"
@@ -79,7 +83,7 @@ def format_table(result) -> str:
     lines += berth_lines(result)
     for note in result.notes:
         lines.append(f"note: {note}")
-    over = [r["name"] for r in leg_rows(result.legs) if (r["utilisation"] or 0) > 1]
+    over = [r["name"] for r in leg_rows(result.legs) if (r["t_over_mbl"] or 0) > 1]
     if over:
         lines.append(f"OVERLOAD: {', '.join(over)} above the minimum breaking load "
                      "(accepted with --allow-overload)")
@@ -89,9 +93,10 @@ def format_table(result) -> str:
 
 
 def leg_rows(legs) -> list[dict]:
-    """Per leg what the tables show: tensions [N], grounded length [m], utilisation and
-    state (``slack``, ``uplift``, ``touchdown`` or ``suspended``; ``OVER MBL`` added
-    when the utilisation exceeds 1)."""
+    """Per leg what the tables show: tensions [N], grounded length [m], ``t_over_mbl``
+    (largest tension over MBL: not a standard's utilisation, which ``moorsolve check``
+    reports) and state (``slack``, ``uplift``, ``touchdown`` or ``suspended``; ``OVER MBL``
+    added when T/MBL exceeds 1)."""
     rows = []
     for leg in legs:
         state = "slack" if leg.slack else ("uplift" if leg.uplift else
@@ -99,12 +104,12 @@ def leg_rows(legs) -> list[dict]:
                                             else "suspended"))
         if leg.floating_length_m > 0:
             state += ", floating"
-        if leg.utilisation is not None and leg.utilisation > 1:
+        if leg.t_over_mbl is not None and leg.t_over_mbl > 1:
             state += ", OVER MBL"
         rows.append({"name": leg.name, "T_fair": leg.fairlead_tension_N,
                      "H": leg.horizontal_tension_N, "V": leg.fairlead_vertical_N,
                      "T_anchor": leg.anchor_tension_N, "V_anchor": leg.anchor_vertical_N,
-                     "grounded": leg.grounded_length_m, "utilisation": leg.utilisation,
+                     "grounded": leg.grounded_length_m, "t_over_mbl": leg.t_over_mbl,
                      "state": state})
     return rows
 

@@ -105,7 +105,7 @@ def contact_results(problem, case: Case, x, p, poses: np.ndarray) -> tuple:
 
 
 def hawser_results(case: Case, legs) -> tuple:
-    """One dict per weightless one-segment line (a hawser): tension, slack, utilisation."""
+    """One dict per weightless one-segment line (a hawser): tension, slack, T/MBL."""
     out = []
     for line, leg in zip(case.lines, legs):
         lt = line.line_type
@@ -117,7 +117,7 @@ def hawser_results(case: Case, legs) -> tuple:
             "name": line.name, "tension_N": tension, "slack": leg.slack,
             "length_m": line.length, "chord_m": chord,
             "pretension_N": line.segments[0].pretension,
-            "mbl_N": lt.mbl, "utilisation": None if not lt.mbl else tension / lt.mbl,
+            "mbl_N": lt.mbl, "t_over_mbl": None if not lt.mbl else tension / lt.mbl,
         })
     return tuple(out)
 

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..model import Case
 from ..audit import audit_findings
+from ..model.restraint import drifting_bodies
 from .newton import CONVERGED, STATUS_TEXT
 from .prepared import line_facts
 from .problem import LINE_COLUMNS
@@ -73,7 +74,7 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
         over = [(lines[i].name, tension[i], mbl[i]) for i in np.flatnonzero(over_mask)]
     else:
         over = [(leg.name, max(leg.fairlead_tension_N, leg.anchor_tension_N), leg.mbl_N)
-                for leg in result.legs if leg.utilisation is not None and leg.utilisation > 1]
+                for leg in result.legs if leg.t_over_mbl is not None and leg.t_over_mbl > 1]
     out = []
     rest = _rest_chords(result.case) if (over and result.case is not None) else {}
     for name, tension_N, mbl_N in over:
@@ -180,12 +181,17 @@ def diagnose(problem, case, result) -> str:
             "solver ran away, most likely pulled toward a straight inextensible line, whose "
             "tension double precision cannot resolve; give the line types an ea")
     reasons += over_mbl(result)
-    if result.bodies and problem.load_names:
+    drifts = drifting_bodies(case)
+    # A body no line path holds has no equilibrium under a horizontal load: name it
+    # rather than blame the lines that hold the others.
+    reasons += [f"{d.describe()}: {d.restores}, so no equilibrium exists under a "
+                "horizontal load on it" for d in drifts]
+    if result.bodies and problem.load_names and not drifts:
         total = np.sum([v[:2] for v in result.loads.values()], axis=0)
         if np.hypot(*total) > 0:
-            heading = math.degrees(math.atan2(total[1], total[0])) % 360.0
+            heading = round(math.degrees(math.atan2(total[1], total[0]))) % 360
             reasons.append(f"the legs could not balance the body load of "
-                           f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:.0f} deg "
+                           f"{np.hypot(*total) / 1e3:.1f} kN toward {heading:d} deg "
                            f"(the lines may be too weak, too short or all on one side)")
     if not reasons:
         found = audit_findings(result, case, boundaries_only=True)

@@ -406,7 +406,7 @@ def _multi_result(case, line, kind, row, rows, u) -> LegResult:
                          "bottom_vertical_N": r["VA"], "grounded_length_m": r["grounded"],
                          "floating_length_m": r["floating"],
                          "max_tension_N": float(np.max(prof["tension"])),
-                         "utilisation": (float(np.max(prof["tension"])) / lt.mbl
+                         "t_over_mbl": (float(np.max(prof["tension"])) / lt.mbl
                                          if lt.mbl else None)})
         if k > 0:
             clump = clumps_lf[k - 1]
@@ -498,7 +498,7 @@ def _discrete_result(case, line, kind, row, nodes) -> LegResult:
                          "top_tension_N": float(part[-1, 5]),
                          "bottom_tension_N": float(part[0, 5]),
                          "max_tension_N": float(np.max(part[:, 5])),
-                         "utilisation": float(np.max(part[:, 5])) / lt.mbl if lt.mbl else None})
+                         "t_over_mbl": float(np.max(part[:, 5])) / lt.mbl if lt.mbl else None})
         start += m
         if k < len(line.segments) - 1:
             clump = line.joint_clumps[k]

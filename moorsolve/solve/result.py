@@ -125,10 +125,12 @@ class LegResult:
     """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md.
 
     A multi-segment leg adds ``segments`` (per segment, from the anchor: type, length, top
-    and bottom tension, horizontal tension, grounded length, largest tension, utilisation)
+    and bottom tension, horizontal tension, grounded length, largest tension, T/MBL)
     and ``joints`` (per joint: position, height above the seabed, seabed reaction, clump
-    weight); ``mbl_N`` is then the weakest segment's and ``utilisation`` the largest
-    segment utilisation. ``fairlead_force`` and ``anchor_force`` are the forces [N] the
+    weight); ``mbl_N`` is then the weakest segment's and ``t_over_mbl`` the largest
+    segment's. ``t_over_mbl`` is the largest tension over the MBL, a property of the line
+    alone; the utilisation against a standard's allowable tension is the check's
+    (:func:`moorsolve.checks.run_checks`). ``fairlead_force`` and ``anchor_force`` are the forces [N] the
     line exerts on its ends B and A, global ``(Fx, Fy, Fz)``: in the line's vertical plane
     for an analytic line, with a sideways part for a line in a current.
     ``floating_length_m`` is the unstretched length floating on the free surface (a buoyant
@@ -174,14 +176,25 @@ class LegResult:
         return leg_repr(self)
 
     @property
-    def utilisation(self) -> Optional[float]:
-        """Largest tension over the minimum breaking load, when the MBL is known."""
+    def t_over_mbl(self) -> Optional[float]:
+        """Largest tension over the minimum breaking load (None without an MBL); 1 is the
+        breaking load, not a standard's limit (that is the check's ``utilisation``)."""
         if self.segments:
-            values = [s["utilisation"] for s in self.segments if s["utilisation"] is not None]
+            values = [s["t_over_mbl"] for s in self.segments if s["t_over_mbl"] is not None]
             return max(values) if values else None
         if not self.mbl_N:
             return None
         return max(self.fairlead_tension_N, self.anchor_tension_N) / self.mbl_N
+
+    @property
+    def utilisation(self) -> Optional[float]:
+        """Deprecated name of :attr:`t_over_mbl` (``utilisation`` is the check's design
+        tension over the standard's allowable tension)."""
+        import warnings
+        warnings.warn("LegResult.utilisation is renamed t_over_mbl (largest tension over "
+                      "MBL); the utilisation against a standard is moorsolve check's",
+                      DeprecationWarning, stacklevel=2)
+        return self.t_over_mbl
 
     def to_dict(self, profile: bool = True) -> dict:
         d = {
@@ -205,7 +218,7 @@ class LegResult:
             "touchdown_point_m": None if self.touchdown_point is None
             else list(self.touchdown_point),
             "mbl_N": self.mbl_N,
-            "utilisation": self.utilisation,
+            "t_over_mbl": self.t_over_mbl,
         }
         if self.fairlead_force is not None:
             d["fairlead_force_N"] = [float(v) for v in self.fairlead_force]
@@ -341,7 +354,7 @@ class Result:
     #: Per pile guide: in_contact, reaction_N, force_N, offset_m, height_m, on_pile,
     #: pile_moment_Nm and its pads.
     guides: tuple = ()
-    #: Per hawser (weightless one-segment line): tension_N, slack, utilisation, length_m.
+    #: Per hawser (weightless one-segment line): tension_N, slack, t_over_mbl, length_m.
     hawsers: tuple = ()
 
     def fender(self, name: str) -> dict:
@@ -392,7 +405,7 @@ class Result:
         """The lines as a pandas DataFrame: one row per line, indexed by name, SI columns.
 
         The columns are the scalar fields of ``to_dict()["legs"]`` (forces [N], lengths [m],
-        angles [deg], ``utilisation``); a vector field ``<name>_m`` or ``<name>_N`` becomes
+        angles [deg], ``t_over_mbl``); a vector field ``<name>_m`` or ``<name>_N`` becomes
         one column per component (``anchor_x_m``, ``fairlead_force_z_N``). Profiles,
         segments and joints stay in :meth:`to_dict`.
         """

@@ -13,6 +13,8 @@ import moorsolve
 from moorsolve.checks import criteria_table, criterion, run_checks
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
+from moorsolve.report.check_text import format_check_table
+from moorsolve.report.text import format_table, to_json
 from conftest import ROOT
 
 DOCK = ROOT / "cases" / "floating_dock.yaml"
@@ -278,3 +280,24 @@ def test_cli_check_bad_input_is_status_2_and_writes_nothing(tmp_path, capsys):
     assert exc.value.code == 2
     assert not out.exists()
     capsys.readouterr()
+
+
+def test_utilisation_has_one_meaning_and_t_over_mbl_is_named_apart():
+    """``utilisation`` is the design tension over the standard's allowable tension (the
+    check's); solve reports the tension over MBL as ``t_over_mbl`` (T/MBL), never as a
+    utilisation. For one leg: utilisation = T/MBL x factor / capacity_factor."""
+    case = moorsolve.load_case(small())
+    result = moorsolve.solve(case)
+    legs = json.loads(to_json(result, profiles=False))["legs"]
+    assert all("utilisation" not in leg and "t_over_mbl" in leg for leg in legs)
+    assert "T/MBL" in format_table(result)
+    for standard, factor, capacity in (("api-rp-2sk", 2.00, 1.0), ("dnv-os-e301", 1.10, 0.95)):
+        report = run_checks(case, standard=standard, damaged=False)
+        for item in items(report, "tension"):
+            leg = result.leg(item.leg)
+            assert item.utilisation == pytest.approx(leg.t_over_mbl * factor / capacity,
+                                                     rel=1e-9)
+        assert "util = tension / the standard's allowable tension" in \
+            format_check_table(report)
+    with pytest.warns(DeprecationWarning, match="t_over_mbl"):
+        assert result.legs[0].utilisation == result.legs[0].t_over_mbl

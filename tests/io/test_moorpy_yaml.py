@@ -3,6 +3,7 @@ windIO/RAFT spelling, MoorPy's ``file:`` key, bridles in the network form, and a
 through export-moorpy."""
 
 import math
+import re
 
 import pytest
 import yaml
@@ -144,3 +145,120 @@ def test_network_case_out_to_moorpy_yaml_and_back(tmp_path):
     two = moorsolve.load_case(read_import(MOORDYN / "shared_line_two_bodies_v2.dat").data)
     with pytest.raises(moorsolve.CaseError, match="2 bodies .*one vessel"):
         moorsolve.export_moorpy(two, tmp_path / "two.yaml")
+
+
+# ---- bodies: mass, hydrostatics, springs, constant force -----------------------------------
+
+SPAR = TESTS.parent / "cases" / "oc3_spar.yaml"
+SURGE_FORCE = 8.0e5          # N, a constant force along x (of the order of rated thrust)
+
+
+def _spar_with_force():
+    import dataclasses
+    case = moorsolve.load_case(SPAR)
+    (spar,) = case.bodies
+    loads = dataclasses.replace(spar.loads, force=(SURGE_FORCE, 0.0, 0.0, 0.0, 0.0, 0.0))
+    return dataclasses.replace(case, bodies=(dataclasses.replace(spar, loads=loads),))
+
+
+def test_export_writes_the_body_and_import_reads_it_back(tmp_path):
+    case = _spar_with_force()
+    out = tmp_path / "spar.yaml"
+    data = moorsolve.export_moorpy(case, out)
+    (body,) = data["bodies"]
+    spar = case.bodies[0]
+    assert body["type"] == 0 and body["DOFs"] == [0, 1, 2, 3, 4, 5]
+    assert body["m"] == spar.mass and body["rCG"] == list(spar.centre_of_gravity)
+    assert body["v"] == spar.hydrostatics.displaced_volume
+    assert body["rM"] == list(spar.hydrostatics.metacentre)
+    assert body["AWP"] == spar.hydrostatics.waterplane_area
+    assert body["f6Ext"] == [SURGE_FORCE, 0, 0, 0, 0, 0]
+    assert body["stiffness"][5][5] == 98.34e6
+    text = out.read_text()
+    assert "MoorPy solves without it" in text and "ms.parseYAML(d)" in text
+    back = moorsolve.load_case(read_moorpy(out).data)
+    (again,) = back.bodies
+    for key in ("free", "position", "orientation_deg", "mass", "centre_of_gravity",
+                "hydrostatics", "stiffness"):
+        assert getattr(again, key) == getattr(spar, key), key
+    assert again.loads.force == (SURGE_FORCE, 0, 0, 0, 0, 0)
+    a, b = moorsolve.solve(case), moorsolve.solve(back)
+    for la, lb in zip(a.legs, b.legs):
+        assert lb.fairlead_tension_N == pytest.approx(la.fairlead_tension_N, rel=1e-9)
+
+
+def test_a_posed_body_keeps_its_frame(tmp_path):
+    """A body away from the origin and turned: its vessel points stay in its frame and the
+    pose goes in r6, so the scene read back is the same scene."""
+    import dataclasses
+    case = moorsolve.load_case(TESTS.parent / "cases" / "oc4_semi.yaml")
+    data = moorsolve.io.case_to_moorpy(case)
+    assert data["bodies"][0]["DOFs"] == [0, 1, 5]
+    assert data["bodies"][0]["f6Ext"] == [8.0e5, 0.0, 0.0, 0.0, 0.0, 0.0]
+    (body,) = case.bodies
+    moved = dataclasses.replace(case, bodies=(dataclasses.replace(
+        body, position=(30.0, -20.0, 0.0), orientation_deg=(0.0, 0.0, 25.0)),), form="network")
+    moorsolve.export_moorpy(moved, tmp_path / "moved.yaml")
+    back = moorsolve.load_case(read_moorpy(tmp_path / "moved.yaml").data)
+    assert back.bodies[0].position == (30.0, -20.0, 0.0)
+    assert back.bodies[0].orientation_deg == pytest.approx((0.0, 0.0, 25.0), abs=1e-12)
+    a, b = moorsolve.solve(moved), moorsolve.solve(back)
+    assert b.bodies[0]["x_m"] == pytest.approx(a.bodies[0]["x_m"], rel=1e-9)
+    for la, lb in zip(a.legs, b.legs):
+        assert lb.fairlead_tension_N == pytest.approx(la.fairlead_tension_N, rel=1e-9)
+
+
+def test_moorpy_solves_the_exported_spar_to_our_equilibrium(tmp_path):
+    """MoorPy 1.3.0 loads the exported file (the body from 'bodies' by addBody, the rest by
+    parseYAML, as the file's header says) and finds the same 6-DOF equilibrium: offsets and
+    tensions to 1e-6 (seen: 3e-13 in tension, surge 24.463566 m, heave -0.266093 m, pitch
+    2.435899 deg in both). The spar's yaw spring, which MoorPy cannot take, is inert here: the
+    force along the symmetry plane of the lines leaves yaw at zero."""
+    mp = pytest.importorskip("moorpy")
+    import contextlib
+    import io
+    import warnings
+    import numpy as np
+    case = _spar_with_force()
+    out = tmp_path / "spar.yaml"
+    moorsolve.export_moorpy(case, out)
+    d = yaml.safe_load(out.read_text())
+    ms = mp.System(depth=d["water_depth"], rho=d["rho"], g=d["gravity"])
+    b = d["bodies"][0]
+    ms.addBody(b["type"], np.array(b["r6"]), m=b.get("m", 0), v=b.get("v", 0),
+               rCG=np.array(b.get("rCG", [0, 0, 0])), AWP=b.get("AWP", 0),
+               rM=np.array(b.get("rM", [0, 0, 0])), f6Ext=np.array(b.get("f6Ext", [0] * 6)),
+               DOFs=b["DOFs"])
+    with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ms.parseYAML(d)
+        ms.initialize()
+        ms.solveEquilibrium(tol=1e-6, maxIter=500)
+    ours = moorsolve.solve(case)
+    spar = ours.bodies[0]
+    assert abs(spar["yaw_deg"]) < 1e-9               # the spring carries nothing
+    r6 = ms.bodyList[0].r6
+    assert r6[0] == pytest.approx(spar["x_m"], rel=1e-6)
+    assert r6[2] == pytest.approx(spar["z_m"], rel=1e-6)
+    assert math.degrees(r6[4]) == pytest.approx(spar["pitch_deg"], rel=1e-6)
+    assert abs(r6[1]) < 1e-6 * abs(r6[0]) and abs(r6[5]) < 1e-6
+    for line, leg in zip(ms.lineList, ours.legs):
+        assert line.TB == pytest.approx(leg.fairlead_tension_N, rel=1e-6)
+        assert line.TA == pytest.approx(leg.anchor_tension_N, rel=1e-6)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda b: b.update(type=2), "bodies[0].type: 2 must be 0 (free), 1 (fixed) or -1"),
+    (lambda b: b.update(r6=[0, 0, 0]), "bodies[0].r6: [0, 0, 0] must be a list of 6 numbers"),
+    (lambda b: b.update(DOFs=[0, 7]), "bodies[0].DOFs: [0, 7] must list DOF indices"),
+    (lambda b: b.update(m=-1), "bodies[0].m: -1 must be >= 0"),
+    (lambda b: b.update(mass=1), "bodies[0].mass: unknown key"),
+    (lambda b: b.update(stiffness=[[0] * 6] * 5), "bodies[0].stiffness: must be a 6x6"),
+])
+def test_bad_body_entry_is_named(edit, message, tmp_path):
+    data = moorsolve.io.case_to_moorpy(_spar_with_force())
+    edit(data["bodies"][0])
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(data))
+    with pytest.raises(moorsolve.CaseError, match=re.escape(message)):
+        read_moorpy(path)

@@ -138,11 +138,11 @@ def test_overloaded_line_is_on_the_colour_bar_not_clipped():
     result = moorsolve.solve(moorsolve.load_case(data), allow_overload=True)
     scene = scene_of(result)
     colour, mappable, label = line_colours(scene)
-    worst = max(line.utilisation for line in scene.lines)
+    worst = max(line.t_over_mbl for line in scene.lines)
     assert worst > 1 and mappable.norm.vmax == pytest.approx(worst)
-    assert "utilisation" in label
+    assert "T/MBL" in label
     top = mappable.cmap(1.0)
-    assert colour(max(scene.lines, key=lambda line: line.utilisation)) == pytest.approx(top)
+    assert colour(max(scene.lines, key=lambda line: line.t_over_mbl)) == pytest.approx(top)
     fig = plot_equilibrium(result)
     _inside_figure(fig)
 
