@@ -46,7 +46,7 @@ from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
 from .start import initial_point
-from .weathervane import stable_heading, yaw_unknowns
+from .weathervane import WALKED, stable_heading, yaw_unknowns
 
 log = logging.getLogger(__name__)
 
@@ -569,7 +569,7 @@ def _weathervane(problem, case, p, tol, stats):
     turns = ", ".join(
         f"{problem.case.bodies[problem.nodes[j][1]].name} turned {turn:+.1f} deg to "
         f"{math.degrees(x[j] * problem.x_scale[j]):.1f} deg" for j, turn in zip(yaws, walked))
-    stats["status"] = "yaw walk from the case heading, then Newton"
+    stats["status"] = WALKED
     return x, stable, (
         f"the stable heading reached by turning from the case heading the way the load "
         f"turns the body is reported ({turns}; other stable headings may exist: this is "

@@ -50,6 +50,9 @@ _REFINE_STEPS = 30
 _REFINE_WIDTH = 1e-7
 #: Rounds of walking body by body when several bodies weathervane.
 _ROUNDS = 4
+#: The solver status of a point reached by the walk (a success: the walk's Newton steps
+#: settled it and the certificate holds).
+WALKED = "yaw walk from the case heading, then Newton"
 
 
 def yaw_unknowns(problem) -> list[int]:
@@ -162,7 +165,7 @@ def _walk_one(problem, held: _Held, x, k: int, j: int, release):
             continue
         m_next = float(moments[k])
         psi_next = psi + direction * step
-        if direction * m_next < 0.0:
+        if direction * m >= 0.0 > direction * m_next:
             # The moment changed sign: a zero where it falls through, between psi and psi_next.
             x_zero = _refine(problem, held, j, k, (psi, m, x), (psi_next, m_next, x_next))
             if x_zero is not None:
@@ -174,7 +177,8 @@ def _walk_one(problem, held: _Held, x, k: int, j: int, release):
         x, m, psi = x_next, m_next, psi_next
         turned += step
         step = min(2.0 * step, _STEP)
-        # Past a zero that did not release, keep walking the same way.
+        # Past a zero that did not release, keep walking the same way: the next bracket
+        # is where the moment falls through zero again.
     return None
 
 

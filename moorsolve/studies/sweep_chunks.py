@@ -13,9 +13,8 @@ from ..physics.kinematics import wrap_degrees
 from ..solve.cache import get_problem
 from ..solve.diagnosis import over_mbl
 from ..solve.equilibrium import solve, turn_jumps
-from ..solve.prepared import line_facts
-from ..solve.problem import LINE_COLUMNS
 from ..solve.stability import _layout, assess
+from .sweep_warnings import NONE, POSE, POST, screen
 
 # ---- solving a chunk ------------------------------------------------------------------------
 
@@ -137,8 +136,10 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
     n_p = problem.n_p
     # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
     check_stability = _has_body_nodes(problem)
-    warning_free = _warning_free(problem)
     x_prev = x_rest.copy()
+    stiffness = None
+    states = np.full((len(points), x_rest.size), np.nan) if screen(problem).mode == POST \
+        else None
     for row, i in enumerate(points):
         p = vectors[i, :n_p]
         x, _, iterations, cert, body, tf, ta, reactions, stable, K = kernel.raw(x_prev, p,
@@ -152,17 +153,48 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
             if not stability.stable:
                 continue        # the full solve looks for the stable equilibrium
             minimum = stability.min_eigenvalue
-        if not warning_free and _may_warn_at(problem, kernel, x, p):
-            continue            # the full solve words its warnings
         x_prev[:] = x
+        if states is not None:
+            states[row] = x
         table.done[row] = True
         table.stable[row] = True
-        table.min_eigenvalue[row] = (minimum if not math.isnan(minimum)
-                                     else _stiffness_minima(problem, K[None, :])[0])
+        if math.isnan(minimum):
+            if stiffness is None:
+                stiffness = np.full((len(points), K.size), np.nan)
+            stiffness[row] = K      # its eigenvalues below, all rows in one call
+        else:
+            table.min_eigenvalue[row] = minimum
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
         _record(table, [row], body[None, :], tf[None, :], ta[None, :], reactions[None, :],
                 vectors[i:i + 1, n_p:], has_body, allow_overload)
+    if stiffness is not None:
+        rows = np.flatnonzero(np.isfinite(stiffness).all(axis=1))
+        table.min_eigenvalue[rows] = _stiffness_minima(problem, stiffness[rows])
+    _leave_warnings(problem, kernel, table, states, vectors[np.asarray(points), :n_p])
+
+
+def _poses(table, rows) -> np.ndarray:
+    """The kernel's ``body`` output of ``rows`` rebuilt from the table (first-body
+    offsets, then every body's pose, m and rad), for :class:`.sweep_warnings.WarningScreen`."""
+    poses = table.poses[rows].reshape(len(rows), -1, 6).copy()
+    poses[:, :, 3:] = np.radians(poses[:, :, 3:])
+    return np.column_stack([np.zeros((len(rows), 3)), poses.reshape(len(rows), -1)])
+
+
+def _leave_warnings(problem, kernel, table, X, P) -> None:
+    """Hand the rows the kernel solved (points ``X`` where kept, parameters ``P``, a row
+    each) that might carry a warning to the full solve, which words them
+    (:mod:`.sweep_warnings`)."""
+    check = screen(problem)
+    rows = np.flatnonzero(table.done[:len(P)])
+    if check.mode == NONE or len(rows) == 0:
+        return
+    flagged = rows[check.rows(kernel, None if X is None else X[rows], P[rows],
+                              _poses(table, rows) if check.mode == POSE else None)]
+    table.done[flagged] = False
+    table.stable[flagged] = False
+    table.min_eigenvalue[flagged] = np.nan
 
 
 def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
@@ -183,9 +215,10 @@ def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
         for row in doubtful:
             stability = _stable(problem, x[row], vectors[points[row], :n_p])
             ok[row], minima[row] = stability.stable, stability.min_eigenvalue
-    if not _warning_free(problem):
-        for row in np.flatnonzero(ok):
-            ok[row] = not _may_warn_at(problem, kernel, x[row], vectors[points[row], :n_p])
+    check = screen(problem)
+    if check.mode != NONE:
+        kept = np.flatnonzero(ok)
+        ok[kept] = ~check.rows(kernel, x[kept], vectors[points[kept], :n_p], out["body"][kept])
     rows = np.flatnonzero(ok)
     table.done[rows] = True
     table.stable[rows] = True
@@ -241,51 +274,6 @@ def _stable(problem, x, p):
     (:func:`~moorsolve.solve.stability.assess`)."""
     with problem.lock:
         return assess(problem, x, p)
-
-
-def _warning_free(problem) -> bool:
-    """Whether no point of the scene can carry a Result warning (:func:`result_warnings`),
-    from the case alone: one-segment lines of unsealed types that sink, every end at or
-    below the water at the case pose, and no body or point that could lift one (free in
-    heave, roll or pitch, or a free point). Else each kernel point is screened
-    (:func:`_may_warn_at`)."""
-    found = problem.derived.get("sweep_warning_free")
-    if found is None:
-        case = problem.case
-        level = case.environment.water_level
-        sinking = all(seg.line_type.weight_in_water > 0 for line in case.lines
-                      for seg in line.segments)
-        lifting = any(dof in ("heave", "roll", "pitch") for owner, _, dof in problem.nodes
-                      if owner == "body") or any(owner != "body" for owner, _, _ in
-                                                  problem.nodes)
-        found = (problem.all_single and not line_facts(case).sealed and sinking
-                 and not lifting and _ends_below(problem, level))
-        problem.derived["sweep_warning_free"] = found
-    return found
-
-
-def _ends_below(problem, level: float) -> bool:
-    """Whether every line end is at or below the water at the case pose (from a post at
-    the closed-form start: end heights do not depend on the load when nothing lifts)."""
-    from ..solve.start import initial_point
-    post = problem.post(initial_point(problem, problem.case),
-                        problem.parameters(problem.case, 0.0))
-    table = np.asarray(post["lines"])
-    cols = [LINE_COLUMNS.index(c) for c in ("az", "bz")]
-    return bool(np.all(table.reshape(-1, table.shape[-1])[:, cols] <= min(0.0, level)))
-
-
-def _may_warn_at(problem, kernel, x, p) -> bool:
-    """Whether the kernel's point might carry a warning (a sealed line, line afloat, an
-    end above the water): such a point is left for the full solve, which words them."""
-    if line_facts(problem.case).sealed:
-        return True
-    post = kernel.post(x, p) if kernel.compiled else problem.post(x, p)
-    table = np.asarray(post["lines"])
-    cols = [LINE_COLUMNS.index(c) for c in ("floating", "az", "bz")]
-    level = min(0.0, problem.case.environment.water_level)
-    rows = table.reshape(-1, table.shape[-1])
-    return bool((rows[:, cols[0]] > 0).any() or (rows[:, cols[1:]] > level).any())
 
 
 def _solve_each(rows, points, table, point_case, tol, allow_overload=False,

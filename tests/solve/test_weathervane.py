@@ -13,8 +13,6 @@ from __future__ import annotations
 
 import copy
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pandas as pd
@@ -241,77 +239,46 @@ def test_turret_ship_with_crossed_current_is_stable(current, speed):
         assert min(angle_between(yaw, r) for r in roots) < 1e-4
 
 
-# ---- sweeps and load tables -------------------------------------------------------------------
+def _two_turret_ships(current_deg: float, speed: float) -> dict:
+    """Two turret ships of :func:`turret_case` 3 km apart in one scene."""
+    data = turret_case(current_deg, speed)
+    one = copy.deepcopy(data)
+    ship2 = copy.deepcopy(one["bodies"][0])
+    ship2.update(name="ship2", position=[3000.0, 0.0, 0.0])
+    data["bodies"].append(ship2)
+    for point in copy.deepcopy(one["points"]):
+        point["name"] += "b"
+        point["position"][0] += 3000.0
+        data["points"].append(point)
+    for line in copy.deepcopy(one["lines"]):
+        line.update(name=line["name"] + "b", **{"from": line["from"] + "b"})
+        line["to"]["body"] = "ship2"
+        data["lines"].append(line)
+    return data
 
 
-def test_table_rows_carry_stability_and_equal_single_solves():
-    data = calm_case(30.0, 150.0)
-    case = load_case(data)
-    pairs = [(30.0, 150.0), (200.0, 300.0), (120.0, 270.0)]
-    table = pd.DataFrame({"environment.wind.toward_deg": [w for w, _ in pairs],
-                          "environment.current.toward_deg": [c for _, c in pairs]})
-    rows = moorsolve.sweep(case, table=table)
-    for k, (w, c) in enumerate(pairs):
-        single = solve(load_case(calm_case(w, c)), solver="newton")
-        row = rows.iloc[k]
-        assert row["converged"] and row["stable"] and row["reason"] == ""
-        assert angle_between(row["tanker.yaw_deg"], single.bodies[1]["yaw_deg"]) < 1e-6
-        assert row["min_eigenvalue"] == pytest.approx(single.stability.min_eigenvalue,
-                                                      rel=1e-6)
-        assert row["warnings"] == ""
+@pytest.mark.parametrize("solver", ["ipopt", "newton"])
+def test_several_weathervaning_bodies_are_walked_in_turn(solver):
+    """Two ships that do not touch each other: each takes the heading it takes alone
+    (formerly "no equilibrium" for both)."""
+    alone = solve(load_case(turret_case(150.0, 1.0)), solver=solver).bodies[0]["yaw_deg"]
+    result = solve(load_case(_two_turret_ships(150.0, 1.0)), solver=solver)
+    assert result.converged and result.stability.stable and walked(result)
+    for body in result.bodies:
+        assert angle_between(body["yaw_deg"], alone) < 1e-6
 
 
-def test_kernel_rows_carry_the_smallest_eigenvalue():
-    """Rows the compiled kernel certifies: the smallest eigenvalue from its stiffness
-    output equals the single solve's, grid and table alike."""
-    case = load_case("cases/floating_dock.yaml")
-    headings = [0.0, 70.0, 150.0, 260.0]
-    grid = moorsolve.sweep(case, {"environment.wind.toward_deg": headings}, solver="newton")
-    table = moorsolve.sweep(case, table=pd.DataFrame(
-        {"environment.wind.toward_deg": headings}))
-    for k, heading in enumerate(headings):
-        data = copy.deepcopy(case.source)
-        data["environment"]["wind"]["toward_deg"] = heading
-        single = solve(load_case(data), solver="newton")
-        for rows in (grid, table):
-            assert rows.iloc[k]["stable"] and rows.iloc[k]["solver"] == "newton"
-            assert rows.iloc[k]["min_eigenvalue"] == pytest.approx(
-                single.stability.min_eigenvalue, rel=1e-7)
+@pytest.mark.parametrize("path", ["cases/floating_dock.yaml", "cases/oc3_spar.yaml",
+                                  "cases/oc4_semi.yaml"])
+@pytest.mark.parametrize("solver", ["ipopt", "newton"])
+def test_a_scene_stable_at_once_never_walks(path, solver, monkeypatch):
+    """The common case pays nothing: a solve whose first point is stable does not enter the
+    walk (nor its rest-state look-up)."""
+    from moorsolve.solve import equilibrium
 
+    def refuse(*args, **kwargs):
+        raise AssertionError("the heading walk was entered")
 
-def _raft(moment: float) -> dict:
-    """A raft free in yaw on a negative yaw spring, its lines through its centre: yaw 0 is
-    its only equilibrium, unstable, whatever the force."""
-    spring = [[0.0] * 6 for _ in range(6)]
-    spring[5][5] = -2.0e6
-    return {
-        "environment": {"depth": 40.0},
-        "line_types": {"chain": {"weight_in_water": 600.0, "ea": 3e8}},
-        "bodies": [{"name": "raft", "free": ["surge", "sway", "yaw"], "stiffness": spring,
-                    "loads": {"force": [moment, 0.0, 0.0]}}],
-        "lines": [{"name": f"L{k}", "from": [110 * math.cos(a), 110 * math.sin(a)],
-                   "to": {"body": "raft", "at": [0, 0, 0]},
-                   "segments": [{"type": "chain", "length": 120}]}
-                  for k, a in enumerate((0.0, 2.1, 4.2))]}
-
-
-def test_unstable_rows_are_never_clean(tmp_path):
-    case = load_case(_raft(1e3))
-    rows = moorsolve.sweep(case, {"bodies[raft].loads.force": [[1e3, 0, 0], [2e3, 0, 0]]})
-    assert rows["converged"].all() and not rows["stable"].any()
-    assert (rows["min_eigenvalue"] < 0).all()
-    assert rows["reason"].str.startswith("unstable equilibrium (unstable in raft.yaw)").all()
-    # The file carries the same columns; the command says so and exits 1.
-    path = tmp_path / "raft.yaml"
-    import yaml
-    path.write_text(yaml.safe_dump(_raft(1e3)))
-    out = tmp_path / "raft.csv"
-    run = subprocess.run([sys.executable, "-m", "moorsolve", "sweep", str(path), "--set",
-                          "bodies[raft].loads.force=[1e3,0,0],[2e3,0,0]", "-o", str(out), "--quiet"],
-                         capture_output=True, text=True)
-    assert run.returncode == 1
-    assert "2 of 2 points are unstable equilibria" in run.stderr
-    written = pd.read_csv(out, index_col="point")
-    assert list(written["stable"]) == [False, False]
-    assert written["reason"].str.contains("unstable").all()
-    assert {"min_eigenvalue", "warnings"} <= set(written.columns)
+    monkeypatch.setattr(equilibrium, "_weathervane", refuse)
+    result = solve(load_case(path), solver=solver)
+    assert result.stability.stable
