@@ -181,8 +181,9 @@ def walked(result) -> bool:
 
 # ---- the CALM buoy and tanker --------------------------------------------------------------
 
-#: Crossed wind and current (toward, deg). The first two: before the heading walk the solve
-#: returned the tanker at 80.84 deg and -116.33 deg, unstable in yaw, with exit status 0.
+#: Crossed wind and current (toward, deg). Before the heading walk the solve returned the
+#: tanker at 80.84, -116.33 and 110.81 deg for the first, second and last, unstable in yaw,
+#: with exit status 0.
 CROSSED = [(30.0, 150.0), (200.0, 300.0), (120.0, 270.0), (90.0, 180.0), (0.0, 100.0),
            (330.0, 200.0), (250.0, 20.0), (160.0, 45.0)]
 
@@ -209,7 +210,8 @@ def test_calm_tanker_takes_a_stable_heading_under_crossed_flows(wind, current):
 
 
 @pytest.mark.parametrize("wind, current, before", [(30.0, 150.0, 80.842),
-                                                     (200.0, 300.0, -116.33)])
+                                                     (200.0, 300.0, -116.33),
+                                                     (160.0, 45.0, 110.812)])
 def test_calm_tanker_formerly_unstable_now_on_the_stable_branch(wind, current, before):
     """Before the walk: returned at ``before`` deg, unstable. Now: the stable heading the
     body swings to, with a note saying so."""
