@@ -89,6 +89,13 @@ def test_unstable_rows_are_never_clean(tmp_path):
     assert list(written["stable"]) == [False, False]
     assert written["reason"].str.contains("unstable").all()
     assert {"min_eigenvalue", "warnings"} <= set(written.columns)
+    parquet = tmp_path / "raft.parquet"
+    frame = moorsolve.sweep(case, {"bodies[raft].loads.force": [[1e3, 0, 0], [2e3, 0, 0]]},
+                            output=str(parquet))
+    stored = pd.read_parquet(parquet)
+    assert list(stored["stable"]) == list(frame["stable"]) == [False, False]
+    assert list(stored["min_eigenvalue"]) == pytest.approx(list(frame["min_eigenvalue"]))
+    assert list(stored["warnings"]) == ["", ""]
 
 
 def _buoy() -> dict:
