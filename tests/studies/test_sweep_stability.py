@@ -135,3 +135,17 @@ def test_rows_carry_the_warnings_of_a_single_solve():
             assert rows.iloc[k]["stable"]
             assert rows.iloc[k]["min_eigenvalue"] == pytest.approx(
                 single.stability.min_eigenvalue, rel=1e-6)
+
+
+def test_envelope_rows_say_unstable():
+    """The offset envelope (a zipped sweep) says on each row that its equilibrium is
+    unstable."""
+    from moorsolve.studies.envelope import format_envelope
+
+    data = _raft(1e3)
+    data["environment"]["wind"] = {"speed": 20.0, "toward_deg": 0.0}
+    data["bodies"][0]["loads"]["wind"] = {"model": "drag", "area_x": 10, "area_y": 10}
+    envelope = moorsolve.offset_envelope(load_case(data), step_deg=90)
+    rows = format_envelope(envelope).splitlines()[3:7]
+    assert len(rows) == 4 and all("(unstable equilibrium (unstable in raft.yaw)" in r
+                                  for r in rows)
