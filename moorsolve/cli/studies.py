@@ -158,6 +158,12 @@ def run_envelope(args) -> int:
         print(f"moorsolve: no equilibrium at {int(missing.sum())} of "
               f"{len(missing)} headings", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM
+    table = envelope.table
+    unstable = int((table["converged"].astype(bool) & ~table["stable"].astype(bool)).sum())
+    if unstable:
+        print(f"moorsolve: only an unstable equilibrium at {unstable} of {len(missing)} "
+              "headings", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
     return EXIT_OK
 
 

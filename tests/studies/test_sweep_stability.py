@@ -137,7 +137,7 @@ def test_rows_carry_the_warnings_of_a_single_solve():
                 single.stability.min_eigenvalue, rel=1e-6)
 
 
-def test_envelope_rows_say_unstable():
+def test_envelope_rows_say_unstable(tmp_path):
     """The offset envelope (a zipped sweep) says on each row that its equilibrium is
     unstable."""
     from moorsolve.studies.envelope import format_envelope
@@ -149,3 +149,9 @@ def test_envelope_rows_say_unstable():
     rows = format_envelope(envelope).splitlines()[3:7]
     assert len(rows) == 4 and all("(unstable equilibrium (unstable in raft.yaw)" in r
                                   for r in rows)
+    path = tmp_path / "raft.yaml"
+    path.write_text(yaml.safe_dump(data))
+    run = subprocess.run([sys.executable, "-m", "moorsolve", "envelope", str(path), "--step",
+                          "90"], capture_output=True, text=True)
+    assert run.returncode == 1
+    assert "only an unstable equilibrium at 4 of 4 headings" in run.stderr
