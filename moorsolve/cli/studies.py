@@ -106,6 +106,12 @@ def run_sweep(args) -> int:
         print(f"moorsolve: {failed} of {len(table)} points have no certified equilibrium; "
               f"see the reason column", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM
+    unstable = int((table["converged"].astype(bool) & ~table["stable"].astype(bool)).sum())
+    if unstable:
+        # Certified, but a small disturbance moves the body away: not a clean sweep either.
+        print(f"moorsolve: {unstable} of {len(table)} points are unstable equilibria (no "
+              f"stable one was found); see the stable and reason columns", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
     return EXIT_OK
 
 
@@ -151,6 +157,12 @@ def run_envelope(args) -> int:
     if missing.any():
         print(f"moorsolve: no equilibrium at {int(missing.sum())} of "
               f"{len(missing)} headings", file=sys.stderr)
+        return EXIT_NO_EQUILIBRIUM
+    table = envelope.table
+    unstable = int((table["converged"].astype(bool) & ~table["stable"].astype(bool)).sum())
+    if unstable:
+        print(f"moorsolve: only an unstable equilibrium at {unstable} of {len(missing)} "
+              "headings", file=sys.stderr)
         return EXIT_NO_EQUILIBRIUM
     return EXIT_OK
 

@@ -154,8 +154,9 @@ class _CsvSink(_Sink):
         if len(lines) == self.plan.n_points:
             write_text(self.path, header + "".join(lines[i] for i in sorted(lines)),
                        sync=True)
-        frame = pd.read_csv(self.path, index_col="point", dtype={"reason": str, "solver": str})
-        for column in ("reason", "solver"):
+        text = [c for c in ("reason", "warnings", "solver") if c in self.columns]
+        frame = pd.read_csv(self.path, index_col="point", dtype=dict.fromkeys(text, str))
+        for column in text:
             frame[column] = frame[column].fillna("")
         return frame.sort_index()
 

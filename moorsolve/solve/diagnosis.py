@@ -22,6 +22,7 @@ from .prepared import line_facts
 from .problem import LINE_COLUMNS
 from .result import Result
 from .start import end_positions
+from .weathervane import WALKED
 
 __all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCESS_STATUSES"]
 
@@ -30,7 +31,7 @@ __all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCE
 START_CERTIFIED = ("nothing free: the lines' remembered state certifies as it stands; no "
                    "solver called")
 SUCCESS_STATUSES = ("Solve_Succeeded", "Solved_To_Acceptable_Level", "Feasible_Point_Found",
-                    STATUS_TEXT[CONVERGED], START_CERTIFIED)
+                    STATUS_TEXT[CONVERGED], START_CERTIFIED, WALKED)
 
 
 def unbalanced_force(problem, x, p) -> float:

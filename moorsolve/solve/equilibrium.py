@@ -46,6 +46,7 @@ from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable, pseudo_transient
 from .start import initial_point
+from .weathervane import WALKED, stable_heading, yaw_unknowns
 
 log = logging.getLogger(__name__)
 
@@ -255,7 +256,16 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             notes.append(f"IPOPT ended with {stats['status']} but the point certifies: the "
                          "certificate, recomputed from the solution, is what is reported")
         assessment = None
-        if certified and stability:
+        if not certified and stability and _planes is None:
+            # Crossed wind and current can fold the branch the load stepping follows
+            # (no equilibrium near it) while the body has a stable heading elsewhere.
+            turned = _weathervane(problem, case, p_full, tol, stats)
+            if turned is not None:
+                x, assessment, note = turned
+                notes.append("no equilibrium on the branch followed from rest; " + note)
+                post = problem.post(_finite(x), p_full)
+                certified, force_res, moment_res, relative = _judge(problem, x, post, tol)
+        if certified and stability and assessment is None:
             x_found = x
             x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats, post)
             notes += extra
@@ -522,6 +532,12 @@ def _stable_point(problem, case, x, p, tol, stats, post=None):
     if assessment.stable:
         return x, assessment, []
     lb, ub = problem.bounds()
+    turned = _weathervane(problem, case, p, tol, stats)
+    if turned is not None:
+        x_new, stable, note = turned
+        return x_new, stable, [
+            "the equilibrium first found was unstable (in "
+            f"{', '.join(assessment.unstable_dofs) or 'a coupled mode'}); " + note]
     found = find_stable(problem, x, p, tol, assessment,
                         lambda z: polish(problem, z, p, lb, ub, stats, tol))
     if found is not None:
@@ -534,6 +550,30 @@ def _stable_point(problem, case, x, p, tol, stats, post=None):
         "only an unstable equilibrium was found (unstable in "
         f"{', '.join(assessment.unstable_dofs) or 'a coupled mode'}): a small disturbance "
         "moves the body away from it"]
+
+
+def _weathervane(problem, case, p, tol, stats):
+    """The stable heading the weathervaning bodies reach from their case-file heading
+    under the full load (:mod:`.weathervane`): ``(x, Stability, note)``, or None (no body
+    free in yaw, or none found)."""
+    if not yaw_unknowns(problem):
+        return None
+    lb, ub = problem.bounds()
+    x_rest = rest_point(problem, case, tol)
+    found = stable_heading(problem, x_rest, p, tol,
+                           lambda z: polish(problem, z, p, lb, ub, stats, tol))
+    if found is None:
+        return None
+    x, stable, walked = found
+    yaws = yaw_unknowns(problem)
+    turns = ", ".join(
+        f"{problem.case.bodies[problem.nodes[j][1]].name} turned {turn:+.1f} deg to "
+        f"{math.degrees(x[j] * problem.x_scale[j]):.1f} deg" for j, turn in zip(yaws, walked))
+    stats["status"] = WALKED
+    return x, stable, (
+        f"the stable heading reached by turning from the case heading the way the load "
+        f"turns the body is reported ({turns}; other stable headings may exist: this is "
+        "the one the body swings to from its case heading)")
 
 
 # ---- polish and certificate -----------------------------------------------------------

@@ -248,11 +248,16 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     body, t_fair, t_anchor, reactions = problem.summary(xk, p)
     # The stability test of the point reached (1: clearly stable; see .stability), so a
     # sweep judges each point without another call.
+    # The condensed stiffness goes out too: a sweep row carries its smallest eigenvalue.
     from .stability import clearly_stable_graph, stiffness_graph
-    stable = (clearly_stable_graph(problem, stiffness_graph(problem, problem.jacobian(xk, p)))
-              if not problem.smoothed else ca.MX(0))
+    if problem.smoothed:
+        n_keep = sum(owner == "body" for owner, _, _ in problem.nodes)
+        stable, K = ca.MX(0), ca.MX(ca.DM.nan(n_keep * n_keep, 1))
+    else:
+        K = stiffness_graph(problem, problem.jacobian(xk, p))
+        stable, K = clearly_stable_graph(problem, K), ca.vec(K)
     return ca.Function("moorsolve_newton", [x, p, tol],
-                       [xk, status, count, cert, body, t_fair, t_anchor, reactions, stable],
+                       [xk, status, count, cert, body, t_fair, t_anchor, reactions, stable, K],
                        ["x0", "p", "tol"], list(_OUTPUTS))
 
 
@@ -278,7 +283,7 @@ def kernel_key(problem) -> str:
 
 #: Outputs of the kernel (:func:`newton_function`).
 _OUTPUTS = ("x", "status", "iterations", "certificate", "body", "fairlead_tension",
-            "anchor_tension", "reactions", "clearly_stable")
+            "anchor_tension", "reactions", "clearly_stable", "stiffness")
 
 
 class NewtonKernel:
@@ -342,7 +347,8 @@ class NewtonKernel:
         out = [np.full(fn.numel_out(k), math.inf if name == "certificate" else math.nan)
                for k, name in enumerate(_OUTPUTS)]
         out[0] = np.array(x0, dtype=float).ravel()
-        out[1][:], out[2][:], out[-1][:] = STALLED, 0, 0
+        out[1][:], out[2][:] = STALLED, 0
+        out[_OUTPUTS.index("clearly_stable")][:] = 0
         return out
 
     def post(self, x: np.ndarray, p: np.ndarray) -> dict:

@@ -244,7 +244,8 @@ def format_envelope(envelope: Envelope) -> str:
         if not math.isfinite(e.worst_tension_N[i]):
             lines.append(f"{h:7.1f}  no equilibrium: {e.reason[i]}")
             continue
-        note = "" if e.converged[i] else f"  ({e.reason[i]})"
+        # An overload, or a certified but unstable equilibrium: said on its row.
+        note = f"  ({e.reason[i]})" if e.reason[i] else ""
         lines.append(f"{h:7.1f} {e.offset_m[i]:9.3f} {e.file_direction(i):8.1f} "
                      f"{e.yaw_deg[i]:8.3f} {e.worst_leg[i]:>8} "
                      f"{e.worst_tension_N[i] / 1e3:10.1f}{note}")

@@ -33,7 +33,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..model import Case
-from .sweep_chunks import _Table
+from .sweep_chunks import TEXT_COLUMNS, _Table
 from .sweep_plan import SweepPlan
 from .sweep_run import _client, _progress_bar, _run_dask, _run_local
 
@@ -147,9 +147,9 @@ def sweep(case: Case, grid: Mapping | None = None, *, table=None, solver: str = 
     order = np.argsort(points, kind="stable")
     columns = {}
     for name in frames[0][1]:
-        joined = np.concatenate([np.asarray(c[name], dtype=object if name in ("reason", "solver")
+        joined = np.concatenate([np.asarray(c[name], dtype=object if name in TEXT_COLUMNS
                                             else None) for _, c in frames])
-        columns[name] = joined[order] if name not in ("reason", "solver") \
+        columns[name] = joined[order] if name not in TEXT_COLUMNS \
             else [str(v) for v in joined[order]]
     return plan.frame(points[order], columns)
 

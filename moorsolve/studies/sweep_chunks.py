@@ -4,6 +4,8 @@ full solves for the rest, and the columns they fill."""
 from __future__ import annotations
 
 
+import math
+
 import numpy as np
 
 from ..errors import ConvergenceError
@@ -11,7 +13,8 @@ from ..physics.kinematics import wrap_degrees
 from ..solve.cache import get_problem
 from ..solve.diagnosis import over_mbl
 from ..solve.equilibrium import solve, turn_jumps
-from ..solve.stability import assess
+from ..solve.stability import _layout, assess
+from .sweep_warnings import NONE, POSE, POST, screen
 
 # ---- solving a chunk ------------------------------------------------------------------------
 
@@ -39,6 +42,11 @@ class _Table:
         self.body = np.full((n, 3), np.nan)
         self.t_fair = np.full((n, len(names)), np.nan)
         self.t_anchor = np.full((n, len(names)), np.nan)
+        #: Stability of each point: stable, the smallest eigenvalue's real part of the
+        #: homogenised stiffness [N/m], and the Result's warnings as one text.
+        self.stable = np.zeros(n, bool)
+        self.min_eigenvalue = np.full(n, np.nan)
+        self.warnings = [""] * n
 
     def from_result(self, i: int, result, reason: str = "", converged=None) -> None:
         c = result.certificate
@@ -47,6 +55,14 @@ class _Table:
         self.reason[i], self.solver[i] = reason, result.solver
         self.iterations[i] = c.iterations
         self.residual[i] = (c.force_N, c.moment_Nm, c.relative)
+        stability = result.stability
+        if stability is not None:
+            self.stable[i] = stability.stable
+            self.min_eigenvalue[i] = stability.min_eigenvalue
+            if not stability.stable:
+                # Certified but unstable: never a clean row.
+                self.reason[i] = "; ".join(filter(None, (unstable_reason(stability), reason)))
+        self.warnings[i] = "; ".join(w["message"] for w in result.warnings)
         if result.body is not None:
             self.body[i] = (result.body["x_m"], result.body["y_m"], result.body["yaw_deg"])
         for k, b in enumerate(result.bodies[:len(self.bodies)]):
@@ -57,8 +73,9 @@ class _Table:
                              + [g["reaction_N"] for g in result.guides])
 
     def columns(self) -> dict:
-        out = {"converged": self.converged, "reason": self.reason, "solver": self.solver,
-               "iterations": self.iterations, "residual_N": self.residual[:, 0],
+        out = {"converged": self.converged, "reason": self.reason, "stable": self.stable,
+               "min_eigenvalue": self.min_eigenvalue, "warnings": self.warnings,
+               "solver": self.solver, "iterations": self.iterations, "residual_N": self.residual[:, 0],
                "residual_Nm": self.residual[:, 1], "residual_relative": self.residual[:, 2],
                "x_m": self.body[:, 0], "y_m": self.body[:, 1], "yaw_deg": self.body[:, 2]}
         for k, name in enumerate(self.bodies):
@@ -70,6 +87,35 @@ class _Table:
         for k, name in enumerate(self.contacts):
             out[f"{name}.reaction_N"] = self.reactions[:, k]
         return out
+
+
+#: Text columns of a sweep's table.
+TEXT_COLUMNS = ("reason", "warnings", "solver")
+
+
+def unstable_reason(stability) -> str:
+    """The reason column of a certified but unstable equilibrium."""
+    where = ", ".join(stability.unstable_dofs) or "a coupled mode"
+    return (f"unstable equilibrium (unstable in {where}): no stable equilibrium was found; "
+            "a small disturbance moves the body away from it")
+
+
+def _stiffness_minima(problem, K: np.ndarray) -> np.ndarray:
+    """The smallest real part of the eigenvalues of each row's homogenised condensed
+    stiffness (the kernel's ``stiffness`` output, one flattened matrix a row) [N/m], as
+    :func:`~moorsolve.solve.stability.assess` reports it; NaN where it is not finite."""
+    hh = _layout(problem)[4]
+    n = hh.shape[0]
+    out = np.full(len(K), np.nan)
+    if n == 0:
+        out[:] = np.inf
+        return out
+    # CasADi's vec is column-major: the transpose of numpy's row-major reshape.
+    mats = np.asarray(K, dtype=float).reshape(len(K), n, n).transpose(0, 2, 1) * hh
+    finite = np.isfinite(mats).all(axis=(1, 2))
+    if finite.any():
+        out[finite] = np.linalg.eigvals(mats[finite]).real.min(axis=1)
+    return out
 
 
 def _kernel_pool(problem):
@@ -91,20 +137,64 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
     # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
     check_stability = _has_body_nodes(problem)
     x_prev = x_rest.copy()
+    stiffness = None
+    states = np.full((len(points), x_rest.size), np.nan) if screen(problem).mode == POST \
+        else None
     for row, i in enumerate(points):
         p = vectors[i, :n_p]
-        x, _, iterations, cert, body, tf, ta, reactions, stable = kernel.raw(x_prev, p, tol)
+        x, _, iterations, cert, body, tf, ta, reactions, stable, K = kernel.raw(x_prev, p,
+                                                                                tol)
         ok, force, moment, relative = problem.judge(*cert, tol=tol)
         if not ok:
             continue            # left for the full solve
-        if check_stability and not (stable[0] > 0.5 or _stable(problem, x, p)):
-            continue            # the full solve looks for the stable equilibrium
+        minimum = math.nan
+        if check_stability and not stable[0] > 0.5:
+            stability = _stable(problem, x, p)
+            if not stability.stable:
+                continue        # the full solve looks for the stable equilibrium
+            minimum = stability.min_eigenvalue
         x_prev[:] = x
+        if states is not None:
+            states[row] = x
         table.done[row] = True
+        table.stable[row] = True
+        if math.isnan(minimum):
+            if stiffness is None:
+                stiffness = np.full((len(points), K.size), np.nan)
+            stiffness[row] = K      # its eigenvalues below, all rows in one call
+        else:
+            table.min_eigenvalue[row] = minimum
         table.iterations[row] = iterations[0]
         table.residual[row] = (force, moment, relative)
         _record(table, [row], body[None, :], tf[None, :], ta[None, :], reactions[None, :],
                 vectors[i:i + 1, n_p:], has_body, allow_overload)
+    if stiffness is not None:
+        rows = np.flatnonzero(np.isfinite(stiffness).all(axis=1))
+        table.min_eigenvalue[rows] = _stiffness_minima(problem, stiffness[rows])
+    _leave_warnings(problem, kernel, table, states, vectors[np.asarray(points), :n_p])
+
+
+def _poses(table, rows) -> np.ndarray:
+    """The kernel's ``body`` output of ``rows`` rebuilt from the table (first-body
+    offsets, then every body's pose, m and rad), for :class:`.sweep_warnings.WarningScreen`."""
+    poses = table.poses[rows].reshape(len(rows), -1, 6).copy()
+    poses[:, :, 3:] = np.radians(poses[:, :, 3:])
+    return np.column_stack([np.zeros((len(rows), 3)), poses.reshape(len(rows), -1)])
+
+
+def _leave_warnings(problem, kernel, table, X, P) -> None:
+    """Hand the rows the kernel solved (points ``X`` where kept, parameters ``P``, a row
+    each) that might carry a warning to the full solve, which words them
+    (:mod:`.sweep_warnings`)."""
+    check = screen(problem)
+    rows = np.flatnonzero(table.done[:len(P)])
+    if check.mode == NONE or len(rows) == 0:
+        return
+    flagged = rows[check.rows(kernel, None if X is None else X[rows], P[rows],
+                              _poses(table, rows) if check.mode == POSE else None)]
+    table.done[flagged] = False
+    table.stable[flagged] = False
+    table.min_eigenvalue[flagged] = np.nan
 
 
 def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
@@ -119,12 +209,20 @@ def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
     x = out["x"]
     ok, force, moment, relative = problem.judge_rows(out["certificate"], tol)
     ok &= np.isfinite(x).all(axis=1) & ~turn_jumps(problem, x_rest, x)
+    minima = _stiffness_minima(problem, out["stiffness"])
     if _has_body_nodes(problem):
         doubtful = np.flatnonzero(ok & ~(out["clearly_stable"][:, 0] > 0.5))
         for row in doubtful:
-            ok[row] = _stable(problem, x[row], vectors[points[row], :n_p])
+            stability = _stable(problem, x[row], vectors[points[row], :n_p])
+            ok[row], minima[row] = stability.stable, stability.min_eigenvalue
+    check = screen(problem)
+    if check.mode != NONE:
+        kept = np.flatnonzero(ok)
+        ok[kept] = ~check.rows(kernel, x[kept], vectors[points[kept], :n_p], out["body"][kept])
     rows = np.flatnonzero(ok)
     table.done[rows] = True
+    table.stable[rows] = True
+    table.min_eigenvalue[rows] = minima[rows]
     table.iterations[rows] = out["iterations"][rows, 0]
     table.residual[rows] = np.column_stack([force, moment, relative])[rows]
     _record(table, rows, out["body"][rows], out["fairlead_tension"][rows],
@@ -170,12 +268,12 @@ def _overload(result) -> str:
     return "overload: " + "; ".join(over) if over else ""
 
 
-def _stable(problem, x, p) -> bool:
-    """Whether the kernel's point, which its own stability test did not call clearly
-    stable, is a stable equilibrium: the full check
+def _stable(problem, x, p):
+    """The :class:`~moorsolve.solve.result.Stability` of the kernel's point, which its own
+    stability test did not call clearly stable: the full check
     (:func:`~moorsolve.solve.stability.assess`)."""
     with problem.lock:
-        return assess(problem, x, p).stable
+        return assess(problem, x, p)
 
 
 def _solve_each(rows, points, table, point_case, tol, allow_overload=False,

@@ -246,7 +246,8 @@ class SweepPlan:
                 data[col.name] = col.file_cells(cells) if for_file else cells
         data.update(columns)
         if for_file:
-            data["reason"] = [r.replace("\n", " ").replace("\r", " ") for r in data["reason"]]
+            for name in ("reason", "warnings"):
+                data[name] = [r.replace("\n", " ").replace("\r", " ") for r in data[name]]
         index = pd.Index(np.asarray(points, dtype=int), name="point")
         return pd.DataFrame(data, index=index)
 
