@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import math
 
+import time
+
 import numpy as np
 
 from .result import DeferredStability, Stability
@@ -323,10 +325,11 @@ def assess(problem, x, p, stiffness=None, clearly_stable=False) -> Stability:
                      eigenvalues=tuple(complex(v) for v in values), dofs=tuple(names))
 
 
-def pseudo_transient(problem, x, p, steps: int = 400):
+def pseudo_transient(problem, x, p, steps: int = 400, deadline: float | None = None):
     """Pseudo-transient continuation from ``x``: implicit Euler steps of the overdamped
     motion of the free nodes with the lines in equilibrium; returns the end point (None if
-    the motion blew up).
+    the motion blew up). At ``deadline`` (a :func:`time.perf_counter` time) it stops where
+    it is.
 
     It converges to stable equilibria only, and it moves through states where the bodies
     have no stiffness at all (every line slack at rest: Newton's Jacobian is singular
@@ -345,7 +348,7 @@ def pseudo_transient(problem, x, p, steps: int = 400):
     for _ in range(steps):
         if not np.isfinite(norm):
             return None
-        if norm < 1e-14:
+        if norm < 1e-14 or (deadline is not None and time.perf_counter() >= deadline):
             break
         M = np.diag(mass / dt) - J
         try:
@@ -371,12 +374,13 @@ def pseudo_transient(problem, x, p, steps: int = 400):
     return x
 
 
-def find_stable(problem, x, p, tol, assessment: Stability, polish):
+def find_stable(problem, x, p, tol, assessment: Stability, polish, deadline=None):
     """A stable certified equilibrium reached from the unstable point ``x``, or None.
 
     Tries the overdamped motion from small and large perturbations along every unstable
     mode, then from the bodies turned by a quarter and a half turn about the vertical.
-    Returns ``(x, Stability)``.
+    Returns ``(x, Stability)``; None also when ``deadline`` (a :func:`time.perf_counter`
+    time, the solve's budget) passes.
     """
     keep, _ = _split(problem)
     if keep.size == 0:
@@ -404,7 +408,9 @@ def find_stable(problem, x, p, tol, assessment: Stability, polish):
                 trial[j] = x[j] + turn / problem.x_scale[j]
             starts.append(trial)
     for start in starts:
-        end = pseudo_transient(problem, start, p)
+        if deadline is not None and time.perf_counter() >= deadline:
+            return None
+        end = pseudo_transient(problem, start, p, deadline=deadline)
         if end is None:
             continue
         end = polish(end)

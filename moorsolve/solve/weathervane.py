@@ -33,6 +33,7 @@ not end stable.
 from __future__ import annotations
 
 import math
+import time
 
 import casadi as ca
 import numpy as np
@@ -144,11 +145,12 @@ def _heading(problem, x, j) -> float:
     return float(x[j] * problem.x_scale[j])
 
 
-def _walk_one(problem, held: _Held, x, k: int, j: int, release):
+def _walk_one(problem, held: _Held, x, k: int, j: int, release, deadline=None):
     """Walk the ``k``-th held yaw from the settled point ``x`` (its moments known) the way
     its moment turns it, once round at most. ``release(x)`` turns a bracketed zero into a
     result or None (keep walking); with ``release`` None the first zero is returned.
-    ``j`` is the held yaw's unknown. Returns ``(x, result)`` or None."""
+    ``j`` is the held yaw's unknown. Returns ``(x, result)`` or None, also when the
+    ``deadline`` (a :func:`time.perf_counter` time) passes."""
     x, moments = held.settle(x)
     if moments is None:
         return None
@@ -157,6 +159,8 @@ def _walk_one(problem, held: _Held, x, k: int, j: int, release):
     psi, turned = _heading(problem, x, j), 0.0
     step = _STEP
     while turned < 2.0 * math.pi + _STEP:
+        if deadline is not None and time.perf_counter() >= deadline:
+            return None
         x_next, moments = held.settle(_turned(problem, x, j, psi + direction * step))
         if moments is None:
             if step <= _SMALLEST_STEP:
@@ -208,13 +212,14 @@ def _refine(problem, held: _Held, j, k, a, b):
     return x_best
 
 
-def stable_heading(problem, x_start, p, tol, polish):
+def stable_heading(problem, x_start, p, tol, polish, deadline=None):
     """A stable certified equilibrium reached by walking the weathervaning bodies' yaw
     from ``x_start`` (the case-file heading under the full load), or None.
 
     ``polish(x)`` takes a point to the certificate (Newton on the full system). Returns
     ``(x, Stability, walked_deg)`` with ``walked_deg`` the turn of each weathervaning
-    body from ``x_start`` [deg].
+    body from ``x_start`` [deg]. The walk gives up (None) at ``deadline``, a
+    :func:`time.perf_counter` time.
     """
     yaws = yaw_unknowns(problem)
     if not yaws:
@@ -229,7 +234,7 @@ def stable_heading(problem, x_start, p, tol, polish):
         return (end, stability) if stability.stable else None
 
     if len(yaws) == 1:
-        found = _walk_one(problem, held, x_start, 0, yaws[0], release)
+        found = _walk_one(problem, held, x_start, 0, yaws[0], release, deadline)
         if found is None:
             return None
         x_end, stability = found[1]
@@ -237,7 +242,7 @@ def stable_heading(problem, x_start, p, tol, polish):
         x, found = np.array(x_start, dtype=float), None
         for _ in range(_ROUNDS):
             for k in range(len(yaws)):
-                walked = _walk_one(problem, held, x, k, yaws[k], None)
+                walked = _walk_one(problem, held, x, k, yaws[k], None, deadline)
                 if walked is None:
                     return None
                 x = walked[0]
