@@ -47,6 +47,8 @@ Schema (SI units, ``[...]`` lists)::
     BOUND: ea [N] | STRETCH | {model: dynamic, alpha, beta}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
+      fixed_to: water | seabed                 default water: it floats, its fairleads rise
+                                               with water_level; seabed: on the datum
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
               current: {model: drag | hu_tang, ...},
               wave_drift: {model: hu_tang | coefficient, ...}}

@@ -14,7 +14,11 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
                        waterplane_area >= 0 [m^2]}
         hull: [{shape: cylinder, radius, bottom, top, centre: [x, y]}
                | {shape: box, length, width, bottom, top, centre}]   exact buoyancy instead
-        stiffness: 6x6                        extra linear springs about the case pose [SI]
+        stiffness: 6x6                        extra linear springs about the rest pose [SI]
+        fixed_to: water | seabed              default water: a floating body, held (and at
+                                              rest) relative to the still water, rising
+                                              with environment.water_level; seabed: a
+                                              structure on the datum (not free in heave)
         added_mass: 6x6, inertia: [Ixx, Iyy, Izz]   for natural periods only
         loads: {force: [Fx, Fy, Mz] or [Fx, Fy, Fz, Mx, My, Mz], wind, current, wave_drift}
     points:                                   optional list
@@ -47,8 +51,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..errors import CaseError
-from .bodies import DOFS, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, Hydrostatics, \
-    HullMember, Point
+from .bodies import DOFS, FIXED_TO, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, \
+    Hydrostatics, HullMember, Point
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
 from .environment import Environment
@@ -61,7 +65,8 @@ from .loads import BodyLoads
 from .units import format_si, show_value
 
 _BODY_KEYS = ("position", "orientation_deg", "free", "mass", "centre_of_gravity",
-              "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads")
+              "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads",
+              "fixed_to")
 
 
 def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -179,9 +184,25 @@ def _body(raw, path: str) -> Body:
                                 "weight against buoyancy; give them or hold that DOF")
     loads = (BodyLoads() if m.get("loads") is None
              else _loads(m["loads"], field_path(path, "loads"), (3, 6)))
+    fixed_to = fixed_to_field(m, path, free)
     return Body(name=name, free=free, position=position, orientation_deg=orientation,
                 mass=mass, centre_of_gravity=cg, hydrostatics=hydro, hull=hull,
-                stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia)
+                stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia,
+                fixed_to=fixed_to)
+
+
+def fixed_to_field(m: Mapping, path: str, free: tuple) -> str:
+    """A body's ``fixed_to`` (default ``water``): what its held pose is relative to."""
+    fixed_to = m.get("fixed_to", "water")
+    fpath = field_path(path, "fixed_to")
+    if not isinstance(fixed_to, str) or fixed_to not in FIXED_TO:
+        raise CaseError(fpath, f"{show_value(fixed_to)} is not one of {', '.join(FIXED_TO)} "
+                               "(water: a floating body, held relative to the still water, "
+                               "rising with the tide; seabed: a structure fixed on the datum)")
+    if fixed_to == "seabed" and "heave" in free:
+        raise CaseError(fpath, "a body fixed to the seabed is held in heave; free in heave it "
+                               "floats (fixed_to: water) or remove heave from free")
+    return fixed_to
 
 
 def _point(raw, path: str, environment: Environment) -> Point:

@@ -74,8 +74,9 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
             scale = max(scale, math.hypot(f[0], f[1], f[2]))
         generalized = [*force, *_about_angle_axes(R, q[5], moment)]
         if body.stiffness is not None:
-            q0 = np.array(list(body.position) + [math.radians(a) for a in
-                                                 body.orientation_deg])
+            # Springs act about the rest pose (a floating body's risen with the tide).
+            q0 = np.array(list(body.rest_position(env.water_level))
+                          + [math.radians(a) for a in body.orientation_deg])
             generalized = np.array(generalized) - np.asarray(body.stiffness, float) @ (
                 np.array(q) - q0)
         tol = certified_tol * scale
@@ -149,7 +150,7 @@ def one_body_inputs(problem, result, case):
               *loads, largest]
     env = case.environment
     key = (body.mass, body.centre_of_gravity, body.hydrostatics, body.free, body.stiffness,
-           body.position, body.orientation_deg, env.gravity, env.water_density,
+           body.position, body.fixed_to, body.orientation_deg, env.gravity, env.water_density,
            env.water_level, result.certificate.tolerance)
     hit = problem.derived.get("audit_body_data")
     if hit is None or hit[0] != key:
@@ -165,7 +166,8 @@ def one_body_inputs(problem, result, case):
                          *(1.0 if dof in body.free else 0.0 for dof in _DOFS),
                          *(np.ravel(np.asarray(body.stiffness, float))
                            if body.stiffness is not None else np.zeros(36)),
-                         *body.position, *(math.radians(a) for a in body.orientation_deg)],
+                         *body.rest_position(env.water_level),
+                         *(math.radians(a) for a in body.orientation_deg)],
                         float)
         data.flags.writeable = False
         hit = problem.derived["audit_body_data"] = (key, data)

@@ -123,10 +123,14 @@ def segment_parameters(case: Case, kinds) -> np.ndarray:
 
 
 def body_parameters(case: Case) -> np.ndarray:
-    """Block 5: every body's pose, force, mass and hydrostatics, springs and hull members."""
+    """Block 5: every body's rest pose (:meth:`~moorsolve.model.Body.rest_position`), force,
+    mass and hydrostatics, springs and hull members."""
     values = []
+    level = case.environment.water_level
     for body in case.bodies:
-        x, y, z = body.position
+        # Held, sprung and in contact relative to its rest: a floating body's rises with
+        # the tide (its draft kept), a structure's stays on the datum.
+        x, y, z = body.rest_position(level)
         roll, pitch, yaw = (math.radians(a) for a in body.orientation_deg)
         force = (0.0,) * 6
         if case.form == "network" and body.loads.force is not None:

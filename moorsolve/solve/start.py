@@ -295,11 +295,10 @@ def initial_point(problem, case: Case) -> np.ndarray:
     for j, (owner, index, dof) in enumerate(problem.nodes):
         if owner == "body":
             body = case.bodies[index]
-            value = dict(zip(("surge", "sway", "heave"), body.position))
-            if body.buoyant:
-                # A floating body free in heave starts at the still-water level's height
-                # above the datum (a tide), where it floats as placed.
-                value["heave"] += case.environment.water_level
+            # A floating body starts at its rest: risen with the tide, where it floats as
+            # placed.
+            value = dict(zip(("surge", "sway", "heave"),
+                             body.rest_position(case.environment.water_level)))
             value.update(zip(("roll", "pitch", "yaw"),
                              (math.radians(a) for a in body.orientation_deg)))
             x[j] = value[dof]
