@@ -24,7 +24,8 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
     points:                                   optional list
       - {name, position: [x, y, z] or [x, y] (on the seabed), free: bool, mass >= 0 [kg],
          volume >= 0 [m^3]}
-    lines:                                    required, non-empty
+    lines:                                    a list; may be absent or empty where fenders
+                                              or pile guides hold every free body
       - name: str
         from: END                             end A
         to: END                               end B
@@ -37,7 +38,7 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
     END: a point name | [x, y] (on the seabed) | [x, y, z] fixed | {body: NAME, at: [x, y, z]}
 
 Beyond the schema: names are unique; every end names a known body or point; a free point or
-a free body that no line (nor spring nor hydrostatics) holds is refused; a body free in heave,
+a free body that no line, contact (fender, pile guide) or spring holds is refused; a body free in heave,
 roll or pitch needs a mass and hydrostatics; fixed ends lie on or above the seabed; an
 inextensible line between fixed ends is long enough to reach.
 """
@@ -364,9 +365,8 @@ def build_network(m: Mapping, environment: Environment, line_types: dict) -> tup
         m["points"], "points", "a list of points {name, position, ...}")
     points = _unique([_point(raw, field_path("points", i), environment)
                       for i, raw in enumerate(point_items)], "points", "point")
-    line_items = check_list(m["lines"], "lines", "a list of lines {name, from, to, segments}")
-    if not line_items:
-        raise CaseError("lines", "no lines; at least one line is required")
+    line_items = [] if m.get("lines") is None else check_list(
+        m["lines"], "lines", "a list of lines {name, from, to, segments}")
     lines = _unique([_line(raw, field_path("lines", i), environment, line_types, bodies, points)
                      for i, raw in enumerate(line_items)], "lines", "line")
     attached = {}
@@ -380,12 +380,23 @@ def build_network(m: Mapping, environment: Environment, line_types: dict) -> tup
             raise CaseError(field_path(field_path("points", i), "free"),
                             f"free point {point.name!r} is not attached to any line: nothing "
                             "holds it; attach a line or make it fixed")
-    for i, body in enumerate(bodies.values()):
+    return tuple(bodies.values()), tuple(points.values()), tuple(lines.values())
+
+
+def check_held(bodies: tuple, lines: tuple, contacts) -> None:
+    """Every body free in a horizontal degree of freedom is held by something that can
+    hold it: a line, a spring, or a contact (a fender or a pile guide); a scene has at
+    least one line or contact. Raises :class:`CaseError` naming the field."""
+    if not lines and not contacts:
+        raise CaseError("lines", "no lines; a scene needs at least one line, or fenders or "
+                                 "pile guides that hold its bodies")
+    attached = {end.body for line in lines for end in (line.a, line.b)}
+    attached |= {c.body for c in contacts.fenders + contacts.guides}
+    for i, body in enumerate(bodies):
         held_by_springs = body.stiffness is not None
         horizontal = [d for d in body.free if d not in VERTICAL_DOFS]
         if horizontal and body.name not in attached and not held_by_springs:
             raise CaseError(field_path(field_path("bodies", i), "free"),
-                            f"body {body.name!r} is free in {', '.join(horizontal)} but no line "
-                            "or spring holds it; attach a line, give a stiffness, or hold "
-                            "those degrees of freedom")
-    return tuple(bodies.values()), tuple(points.values()), tuple(lines.values())
+                            f"body {body.name!r} is free in {', '.join(horizontal)} but no line, "
+                            "fender, pile guide or spring holds it; attach a line, give a "
+                            "stiffness, or hold those degrees of freedom")

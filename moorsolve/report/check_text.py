@@ -47,6 +47,12 @@ def mark(item) -> str:
     return "ok" if item.passed else "FAIL"
 
 
+def _figure(value: float, width: int, digits: int) -> str:
+    """``value`` right-aligned in ``width`` with ``digits`` decimals, or "-" where there is
+    none (no line tension to check: a berth held by its pile guides alone)."""
+    return f"{value:{width}.{digits}f}" if math.isfinite(value) else f"{'-':>{width}}"
+
+
 def format_check_table(report: CheckReport) -> str:
     """The check as plain text: one line per condition, then every failure."""
     crit = {c.condition: c for c in report.criteria if c.analysis == "quasi-static"
@@ -64,8 +70,9 @@ def format_check_table(report: CheckReport) -> str:
         uplift = row["anchor uplift"] or row["anchor uplift angle"]
         offset = "-" if row["offset"] is None else f"{row['offset']:.2f}"
         lines.append(
-            f"{row['condition']:<22}{offset:>9}{row['leg']:>6}{row['T'] / 1e3:10.1f}"
-            f"{row['mbl_over_T']:7.2f}{row['required']:6.2f}{row['tension_util']:6.2f}"
+            f"{row['condition']:<22}{offset:>9}{row['leg']:>6}{_figure(row['T'] / 1e3, 10, 1)}"
+            f"{_figure(row['mbl_over_T'], 7, 2)}{row['required']:6.2f}"
+            f"{_figure(row['tension_util'], 6, 2)}"
             f"{mark(uplift):>8}{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
             f"  {'PASS' if row['passed'] else 'FAIL'}")
     lines += berth_check_lines(report)       # hawsers, fenders, guides (issue 15)
