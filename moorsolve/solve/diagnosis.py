@@ -22,7 +22,8 @@ from .problem import LINE_COLUMNS
 from .result import Result
 from .start import end_positions
 
-__all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCESS_STATUSES"]
+__all__ = ["diagnose", "over_mbl", "over_rated", "pulled_straight", "unbalanced_force",
+           "SUCCESS_STATUSES"]
 
 #: The status of a scene with nothing free whose lines' remembered state certifies as it
 #: stands (:func:`~.equilibrium.rest_point`): there is nothing for a solver to do.
@@ -86,6 +87,24 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
                        f"it would break: tension {tension}")
         else:
             out.append(f"leg {name} would break: tension {tension}")
+    return out
+
+
+def over_rated(result: Result) -> list:
+    """``"fender NAME is compressed ..."`` for every fender past its rated deflection, the
+    fender's overload as a line's is its MBL; where it is fully compressed, that the hull
+    bears on the wall (or pile) behind it."""
+    out = []
+    for f in result.fenders:
+        if not f.get("overloaded"):
+            continue
+        text = (f"fender {f['name']} is compressed {f['compression_m']:.3f} m, past its rated "
+                f"deflection {f['rated_deflection_m']:.3f} m (reaction "
+                f"{f['reaction_N'] / 1e3:.1f} kN)")
+        if f["hull_bears"]:
+            text += (f", and fully compressed: the hull of {f['body']} bears on "
+                     f"{f['bears_on']} behind it with {f['hull_reaction_N'] / 1e3:.1f} kN")
+        out.append(text)
     return out
 
 
@@ -179,7 +198,7 @@ def diagnose(problem, case, result) -> str:
             f"{', '.join(lengths)}), though each spans its ends at the case's pose: the "
             "solver ran away, most likely pulled toward a straight inextensible line, whose "
             "tension double precision cannot resolve; give the line types an ea")
-    reasons += over_mbl(result)
+    reasons += over_mbl(result) + over_rated(result)
     if result.bodies and problem.load_names:
         total = np.sum([v[:2] for v in result.loads.values()], axis=0)
         if np.hypot(*total) > 0:
