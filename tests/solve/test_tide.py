@@ -138,3 +138,20 @@ def test_a_body_fixed_to_the_seabed_may_not_be_free_in_heave():
         load_case(data)
     assert err.value.field == "bodies[0].fixed_to"
     assert "heave" in str(err.value)
+
+
+def test_stiffness_and_restoring_force_at_a_tide_are_those_over_deeper_water():
+    """The studies that hold a body at a pose (``moorsolve.stiffness``, ``mooring_force``)
+    hold it relative to its rest at the tide: at +3 m they equal the dock over water 3 m
+    deeper (central differences of re-solved lines, and a held offset)."""
+    from moorsolve.studies.stiffness import mooring_force
+    base = load_case(DOCK)
+    tide = _at(base, **{"environment.water_level": 3.0})
+    deeper = _at(base, **{"environment.depth": 23.85})
+    K_tide = moorsolve.stiffness(solve(tide))
+    K_deep = moorsolve.stiffness(solve(deeper))
+    assert np.allclose(K_tide, K_deep, rtol=1e-6, atol=1e-6 * np.abs(K_deep).max())
+    f_tide, held = mooring_force(tide, (1.0, 0.5, 0.2))
+    f_deep, _ = mooring_force(deeper, (1.0, 0.5, 0.2))
+    assert np.allclose(f_tide, f_deep, rtol=1e-7)
+    assert held.bodies[0]["z_m"] == pytest.approx(3.0, abs=1e-12)
