@@ -105,3 +105,23 @@ def test_lines_still_need_their_types():
     with pytest.raises(CaseError) as err:
         load_case(copy.deepcopy(data))
     assert err.value.field == "line_types"
+
+
+@pytest.mark.parametrize("command", ["envelope", "accuracy"])
+def test_line_studies_refuse_a_scene_without_lines(command, capsys):
+    """The studies about line tensions say why they cannot run, exit status 2."""
+    from moorsolve.cli import main
+    assert main([command, str(CASES / "pontoon_piles.yaml")]) == 2
+    err = capsys.readouterr().err
+    assert "lines:" in err and "no lines" in err and "Traceback" not in err
+
+
+def test_plot_and_check_take_a_scene_without_lines(tmp_path, capsys):
+    import matplotlib
+    matplotlib.use("Agg")
+    from moorsolve.cli import main
+    assert main(["plot", str(CASES / "pontoon_piles.yaml"), "-o", str(tmp_path / "p.png")]) == 0
+    assert (tmp_path / "p.png").stat().st_size > 10_000
+    assert main(["check", str(CASES / "pontoon_piles.yaml")]) == 0
+    out = capsys.readouterr().out
+    assert "nan" not in out and "PASS" in out
