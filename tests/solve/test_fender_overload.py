@@ -191,3 +191,29 @@ def test_bad_heights():
     for f in data["fenders"]:
         del f["height"]
     assert [f.height for f in load_case(data).contacts.fenders] == [1.0, 1.0]
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_a_dolphin_fender_bottoms_out(solver):
+    """A fender mounted on a breasting dolphin (a pile of radius 1 m at (-1, 0)), its face
+    0.5 m out from the pile (its height), bearing on the body's flat side; the body, free
+    in surge, pushed onto it by F far past what the fender takes at full compression: the
+    hull bears on the pile, d = (F - k h) / (k + K)."""
+    F, h = 3.0e6, 0.5
+    data = berth(F)
+    del data["walls"]
+    data["piles"] = [{"name": "D1", "position": [-1.0, 0.0], "radius": 1.0}]
+    data["bodies"][0]["position"] = [0.5, 0.0, 0.0]
+    data["fenders"] = [{"name": "F1", "body": "b", "mounted": "structure", "pile": "D1",
+                        "at": [0.5, 0.0, 0.0], "reaction": {"stiffness": k},
+                        "rated_deflection": RATED}]
+    case = load_case(data)
+    assert case.contacts.fenders[0].height == pytest.approx(h)
+    give = (F - k * h) / (k + HULL_STIFFNESS)
+    r = moorsolve.solve(case, solver=solver, tol=1e-12, allow_overload=True)
+    f = r.fender("F1")
+    assert f["hull_bears"] and f["overloaded"]
+    assert r.bodies[0]["x_m"] == pytest.approx(0.5 - h - give, rel=1e-9)
+    assert f["hull_reaction_N"] == pytest.approx(HULL_STIFFNESS * give, rel=1e-6)
+    assert f["reaction_N"] + f["hull_reaction_N"] == pytest.approx(F, rel=1e-9)
+    assert wall_findings(r, case) == []
