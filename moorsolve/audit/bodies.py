@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from ..constants import HULL_STIFFNESS
 from ..model.build_network import rotation
 from ..concurrency import LockedLRU
 from .lines import FORCE_REL
@@ -50,6 +51,9 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
         pulls = forces[on_body] if on_body is not None else np.zeros((0, 3))
         # Fenders' and pile guides' pads (reaction and friction) at their contact points.
         contacts = [c for c in result.fenders if c["body"] == body.name]
+        # A fully compressed fender's hull, bearing on the wall at the fender's point.
+        contacts += [dict(contact_point_m=c["contact_point_m"], force_N=c["hull_force_N"])
+                     for c in contacts if c.get("hull_bears")]
         contacts += [pad for g in result.guides if g["body"] == body.name for pad in g["pads"]]
         if contacts:
             at = np.vstack([at, [c["contact_point_m"] for c in contacts]])
@@ -74,8 +78,9 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
             scale = max(scale, math.hypot(f[0], f[1], f[2]))
         generalized = [*force, *_about_angle_axes(R, q[5], moment)]
         if body.stiffness is not None:
-            q0 = np.array(list(body.position) + [math.radians(a) for a in
-                                                 body.orientation_deg])
+            # Springs act about the rest pose (a floating body's risen with the tide).
+            q0 = np.array(list(body.rest_position(env.water_level))
+                          + [math.radians(a) for a in body.orientation_deg])
             generalized = np.array(generalized) - np.asarray(body.stiffness, float) @ (
                 np.array(q) - q0)
         tol = certified_tol * scale
@@ -149,7 +154,7 @@ def one_body_inputs(problem, result, case):
               *loads, largest]
     env = case.environment
     key = (body.mass, body.centre_of_gravity, body.hydrostatics, body.free, body.stiffness,
-           body.position, body.orientation_deg, env.gravity, env.water_density,
+           body.position, body.fixed_to, body.orientation_deg, env.gravity, env.water_density,
            env.water_level, result.certificate.tolerance)
     hit = problem.derived.get("audit_body_data")
     if hit is None or hit[0] != key:
@@ -165,7 +170,8 @@ def one_body_inputs(problem, result, case):
                          *(1.0 if dof in body.free else 0.0 for dof in _DOFS),
                          *(np.ravel(np.asarray(body.stiffness, float))
                            if body.stiffness is not None else np.zeros(36)),
-                         *body.position, *(math.radians(a) for a in body.orientation_deg)],
+                         *body.rest_position(env.water_level),
+                         *(math.radians(a) for a in body.orientation_deg)],
                         float)
         data.flags.writeable = False
         hit = problem.derived["audit_body_data"] = (key, data)
@@ -304,3 +310,57 @@ def _member_volume(member, origin, R) -> tuple:
     centroid = np.array([np.sum(ww * h * xs), np.sum(ww * h * ys),
                          np.sum(ww * h * (member.bottom + h / 2))]) / volume
     return volume, centroid
+
+
+def wall_findings(result, case) -> list[str]:
+    """No body is inside a quay wall or a pile: per fender, the hull behind it (its height
+    back from the face, in the body) is not inside what the fender bears on by more than
+    the compliance the hull bears with (:data:`~moorsolve.constants.HULL_STIFFNESS`); a
+    rigid fender's face not at all. Recomputed from the reported pose and the case's
+    geometry. One sentence per defect (empty: none)."""
+    out = []
+    c = case.contacts
+    poses = {b["name"]: b for b in result.bodies}
+    reported = {f["name"]: f for f in result.fenders}
+    length = max(case.environment.depth, 1.0)
+    tol = max(1e-6, 100.0 * result.certificate.tolerance) * length
+    for fender in c.fenders:
+        rigid = fender.law.kind == "rigid"
+        if not rigid and fender.height is None:
+            continue
+        body = case.body_named(fender.body)
+        pose = poses.get(body.name)
+        if pose is None:
+            continue
+        r = np.array([pose["x_m"], pose["y_m"], pose["z_m"]])
+        R = rotation(*(math.radians(pose[k]) for k in ("roll_deg", "pitch_deg", "yaw_deg")))
+        r0 = np.array(body.rest_position(case.environment.water_level))
+        R0 = rotation(*(math.radians(a) for a in body.orientation_deg))
+        at = np.asarray(fender.at, float)
+        wall = c.wall_named(fender.wall) if fender.wall else None
+        pile = c.pile_named(fender.pile) if fender.pile else None
+        if fender.mounted == "structure":
+            # The hull's side where it meets the fender's face at rest.
+            hull_b = R0.T @ (at - r0)
+        else:
+            face0 = r0 + R0 @ at
+            if wall is not None:
+                away = np.asarray(wall.normal, float)
+            else:
+                d = face0[:2] - np.asarray(pile.position, float)
+                away = np.array([d[0], d[1], 0.0]) / max(np.hypot(d[0], d[1]), 1e-300)
+            hull_b = at + (0.0 if rigid else fender.height) * (R0.T @ away)
+        point = r + R @ hull_b
+        if wall is not None:
+            gap = float(np.dot(wall.normal, point - np.asarray(wall.point, float)))
+        else:
+            gap = float(np.hypot(*(point[:2] - np.asarray(pile.position, float)))
+                        - pile.radius)
+        f = reported.get(fender.name, {})
+        give = 0.0 if rigid else f.get("hull_reaction_N", 0.0) / HULL_STIFFNESS
+        if -gap > give + tol:
+            what = "its face" if rigid else "the hull behind it"
+            out.append(f"fender {fender.name}: {what} is {-gap:.4g} m inside "
+                       f"{fender.wall or fender.pile} (at most {give + tol:.2g} m allowed): "
+                       f"body {body.name} is inside the structure it bears on")
+    return out

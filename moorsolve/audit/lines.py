@@ -175,7 +175,7 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
         on_bed = P.z - bed <= tight_pt
         on_top = np.abs(P.z) <= tight_pt       # afloat: on the surface, not above
         directions = _end_directions(data, P, on_bed | on_top, tol, anchor, fairlead,
-                                     (FT, AT, H, FV, AH, AV))
+                                     (FT, AT, H, FV, AH, AV), env.water_level)
         vertical, horizontal = _vertical_balance(
             data, P, env, legs, on_bed, on_top, t_max, size, gseg,
             (FT, AT, H, FV, AH, AV, grounded))
@@ -297,9 +297,11 @@ def _element_load(leg_case, s, env) -> float:
     return q * step + clumps
 
 
-def _end_directions(data, P, on_boundary, tol, anchor, fairlead, ends) -> list[list[str]]:
+def _end_directions(data, P, on_boundary, tol, anchor, fairlead, ends,
+                    level=0.0) -> list[list[str]]:
     """The end forces point along the profile where the line leaves an end through water:
-    per line, the sentences of the ends that do not."""
+    per line, the sentences of the ends that do not (``level``: the still water's height
+    above the datum [m])."""
     FT, AT, H, FV, AH, AV = ends
     n = len(P.m)
     out = [[] for _ in range(n)]
@@ -337,7 +339,7 @@ def _end_directions(data, P, on_boundary, tol, anchor, fairlead, ends) -> list[l
     # A negative index is the line's last segment, as indexing a per-line array gives.
     seg = np.where(seg < 0, seg + data.nseg[lines], seg)
     gseg = data.seg_off[lines] + seg
-    above = (P.z[i] + P.z[j]) / 2 > 0
+    above = (P.z[i] + P.z[j]) / 2 > level
     w = np.abs(np.where(above, data.in_air[gseg], data.weight[gseg]))
     ds = np.abs(P.s[j] - P.s[i])
     skip |= T <= w * ds
@@ -365,8 +367,9 @@ def _vertical_balance(data, P, env, legs, on_bed, on_top, t_max, size, gseg_cont
     # The segment of each step from its middle, found as this check always has.
     gseg = (gseg_cont if not np.any(data.multi[:n])
             else _step_segments(data, P, lambda s0, s1: (s1 + s0) / 2))
-    # Above the water a line weighs its weight in air, where the case gives it.
-    w = np.where((P.z[nx] + P.z) / 2 > 0, data.in_air[gseg], data.weight[gseg])
+    # Above the still water (water_level above the datum) a line weighs its weight in
+    # air, where the case gives it.
+    w = np.where((P.z[nx] + P.z) / 2 > env.water_level, data.in_air[gseg], data.weight[gseg])
     ds = P.s[nx] - P.s
     supported = (on_bed[nx] & on_bed) | (on_top[nx] & on_top)
     hanging = np.add.reduceat(np.where(valid & ~supported, w * ds, 0.0), P.o)

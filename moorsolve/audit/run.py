@@ -25,6 +25,9 @@ Per line:
   seabed has the same horizontal tension at both ends;
 - a joint the seabed or the surface pushes is on it.
 
+No body is inside a quay wall or pile: the hull behind each fender, where its height is
+known, and a rigid fender's face (:func:`.audit_bodies.wall_findings`).
+
 Per free body, in every free degree of freedom of six: the reported end forces at their
 reported positions, the reported forces of its fenders and pile guides at their contact
 points, the reported loads, the weight, the hydrostatics (recomputed here: the linear model,
@@ -43,7 +46,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
-from .bodies import body_findings, one_body_inputs
+from .bodies import body_findings, one_body_inputs, wall_findings
 from .closed_form import closed_form_check, covers, table_end_rows
 from .lines import is_lumped, line_findings
 
@@ -70,6 +73,8 @@ def audit(result, case, problem=None, post=None, full: bool = False) -> list[str
                 else closed_form_audit(result, case, problem, post))
     if problems is None or full:
         problems = (problems or []) + audit_findings(result, case)
+    if case.contacts.fenders:
+        problems = problems + wall_findings(result, case)
     if problems:
         c = result.certificate
         raise AuditFailure(

@@ -329,10 +329,13 @@ def _fender(condition: str, fender: dict) -> CheckItem:
     row = fender_criterion()
     limit = row.limit * fender["rated_deflection_m"]
     value = fender["compression_m"]
+    criterion = "compression <= rated deflection (PIANC fender guidelines)"
+    if fender.get("hull_bears"):
+        criterion += (f"; fully compressed, the hull bears on {fender['bears_on']} behind it "
+                      f"with {fender['hull_reaction_N'] / 1e3:.1f} kN")
     return CheckItem(condition=condition, leg=fender["name"], check="fender compression",
                      value=value, limit=limit, unit="m", utilisation=value / limit,
-                     passed=value <= limit,
-                     criterion="compression <= rated deflection (PIANC fender guidelines)")
+                     passed=value <= limit, criterion=criterion)
 
 
 def _guide(condition: str, guide: dict) -> CheckItem:

@@ -62,11 +62,12 @@ def solver_option(p, default: str = "ipopt") -> None:
 
 
 def overload_option(p) -> None:
-    """``--allow-overload``: report an equilibrium in which a line exceeds its MBL instead
-    of exiting 1 (``allow_overload=True`` in Python)."""
+    """``--allow-overload``: report an equilibrium in which a line exceeds its MBL, or a
+    fender its rated deflection, instead of exiting 1 (``allow_overload=True`` in Python)."""
     p.add_argument("--allow-overload", action="store_true",
                    help="accept an equilibrium in which a line exceeds its minimum breaking "
-                        "load (it is still reported) instead of exiting 1")
+                        "load or a fender its rated deflection (it is still reported) "
+                        "instead of exiting 1")
 
 
 def check_output(path: str, option: str, extensions: tuple, describe: str | None = None) -> None:

@@ -22,6 +22,10 @@ DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 PLANAR_DOFS = ("surge", "sway", "yaw")
 #: Degrees of freedom whose balance needs mass and hydrostatics (weight against buoyancy).
 VERTICAL_DOFS = ("heave", "roll", "pitch")
+#: What a body's held pose is relative to: the still water (``water``: a floating body, the
+#: default, rises and falls with the tide) or the datum (``seabed``: a jetty, a structure on
+#: piles).
+FIXED_TO = ("water", "seabed")
 
 
 @dataclass(frozen=True)
@@ -84,13 +88,17 @@ class Body:
     hull : tuple of HullMember
         Members whose buoyancy is integrated exactly (instead of ``hydrostatics``).
     stiffness : tuple of 6 tuples of 6 floats, or None
-        Extra linear springs about the case-file pose, ``F = -K (q - q0)`` (SI, rotations in
+        Extra linear springs about the rest pose (:meth:`rest_position`), ``F = -K (q - q0)`` (SI, rotations in
         rad).
     loads : BodyLoads
     added_mass : tuple of 6 tuples or None
         Added mass [kg, kg m, kg m^2] for natural periods.
     inertia : tuple of 3 floats or None
         Moments of inertia about the centre of gravity [kg m^2] (roll, pitch, yaw axes).
+    fixed_to : str
+        ``"water"`` (floats: its case-file height is above the still water, which is
+        ``water_level`` above the datum) or ``"seabed"`` (its case-file height is on the
+        datum, whatever the tide); :data:`FIXED_TO`.
     """
 
     name: str = "body"
@@ -105,11 +113,20 @@ class Body:
     loads: BodyLoads = field(default_factory=BodyLoads)
     added_mass: Optional[tuple] = None
     inertia: Optional[tuple] = None
+    fixed_to: str = "water"
 
     @property
     def pose(self) -> tuple:
         """The case-file pose ``(x, y, z, roll, pitch, yaw)`` [m, deg]."""
         return tuple(self.position) + tuple(self.orientation_deg)
+
+    def rest_position(self, water_level: float) -> tuple:
+        """The body-frame origin [m] at rest with the still water ``water_level`` [m] above
+        the datum: where its held degrees of freedom are held, its springs and contacts are
+        referred to and a solve starts. A floating body rises with the water (same draft);
+        one fixed to the seabed does not."""
+        x, y, z = self.position
+        return (x, y, z + water_level) if self.fixed_to == "water" else (x, y, z)
 
     @property
     def buoyant(self) -> bool:

@@ -47,6 +47,8 @@ Schema (SI units, ``[...]`` lists)::
     BOUND: ea [N] | STRETCH | {model: dynamic, alpha, beta}
     body:                                      optional; absent = fairleads fixed in space
       free: [surge, sway, yaw]                 any subset, default all three
+      fixed_to: water | seabed                 default water: it floats, its fairleads rise
+                                               with water_level; seabed: on the datum
       loads: {force: [Fx, Fy, Mz], wind: {model: drag | hu_tang, ...},
               current: {model: drag | hu_tang, ...},
               wave_drift: {model: hu_tang | coefficient, ...}}
@@ -84,7 +86,7 @@ from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
-from .build_network import build_network
+from .build_network import build_network, check_held
 from .build_contact import build_contacts
 from .contact import Contacts
 from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS,
@@ -326,8 +328,12 @@ def build_case(data, default_name: str = "case") -> Case:
     network = isinstance(data, Mapping) and any(k in data for k in _NETWORK_FORM)
     common = ("name", "solver", "checks", "moordyn")
     if network:
-        m = check_mapping(data, "", required=("environment", "line_types", "lines"),
-                          optional=common + ("bodies", "points", "body", "legs") + _BERTH)
+        m = check_mapping(data, "", required=("environment",),
+                          optional=common + ("bodies", "points", "body", "legs", "lines",
+                                             "line_types") + _BERTH)
+        if m.get("lines") and "line_types" not in m:
+            raise CaseError("line_types", "required key 'line_types' is missing: the lines "
+                                          "name their types there")
         for key in _LEGS_FORM:
             if key in m:
                 raise CaseError(key, f"{key!r} belongs to the body + legs form; this case uses "
@@ -344,12 +350,15 @@ def build_case(data, default_name: str = "case") -> Case:
     # Environment first: gravity converts weights given as mass per length, and depth
     # places anchors given as [x, y].
     environment = _environment(m["environment"], "environment")
-    line_types = _line_types(m["line_types"], "line_types", environment.gravity,
-                             environment.water_density)
+    # A network scene held by contacts alone may have no lines and no line types.
+    line_types = ({} if network and m.get("line_types") is None and not m.get("lines")
+                  else _line_types(m["line_types"], "line_types", environment.gravity,
+                                   environment.water_density))
     contacts = Contacts()
     if network:
         bodies, points, lines = build_network(m, environment, line_types)
         contacts = build_contacts(m, bodies)
+        check_held(bodies, lines, contacts)
     else:
         body = None if m.get("body") is None else _body(m["body"], "body")
         lines = _legs(m["legs"], "legs", environment, line_types, body is not None)

@@ -21,6 +21,11 @@ Schema (SI units; see README "Berths: fenders, quay walls, hawsers")::
                   | {table: [[deflection [m], reaction [N]], ...]}   strictly increasing
         rated_deflection: > 0 [m]        the maker's limit; a linear fender needs one, a
                                          table defaults to its last deflection
+        height: > 0 [m]                  its full compression (a structure-mounted one's
+                                         is its face's distance from the wall or pile,
+                                         unless the face is given on it); more than the
+                                         rated deflection. Past it the hull bears on the
+                                         wall. Not given: not modelled.
     guides:
       - {name, body, at: [x, y, z] (collar centre, body frame), pile: NAME,
          clearance >= 0 [m], pads: int >= 3 (default 8)}
@@ -33,6 +38,7 @@ every guide's collar is round its pile (centre within the clearance of the pile'
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 from collections.abc import Mapping
@@ -160,7 +166,7 @@ def _pose(body: Body):
 
 def _fender(raw, path: str, bodies: dict, walls: dict, piles: dict) -> Fender:
     m = check_mapping(raw, path, required=("name", "body", "at", "reaction"),
-                      optional=("wall", "pile", "mounted", "rated_deflection"))
+                      optional=("wall", "pile", "mounted", "rated_deflection", "height"))
     name = check_name(m["name"], field_path(path, "name"), "fender name")
     body = _known(m["body"], field_path(path, "body"), bodies, "body")
     at = check_point(m["at"], field_path(path, "at"), (3,))
@@ -183,8 +189,37 @@ def _fender(raw, path: str, bodies: dict, walls: dict, piles: dict) -> Fender:
         rated = law.deflections[-1]
     fender = Fender(name=name, body=body, at=at, law=law, wall=wall, pile=pile,
                     mounted=mounted, rated_deflection=rated)
-    _check_touching(fender, path, bodies[body], walls, piles)
-    return fender
+    gap = _check_touching(fender, path, bodies[body], walls, piles)
+    height = _height(m, path, fender, gap)
+    return dataclasses.replace(fender, height=height)
+
+
+def _height(m: Mapping, path: str, fender: Fender, gap: float):
+    """A fender's full compression [m] (see :class:`Fender`): a structure-mounted one's is
+    its face's distance ``gap`` from its wall or pile, a body-mounted one's is given; it
+    must exceed the rated deflection."""
+    hpath = field_path(path, "height")
+    if fender.mounted == "structure" and gap > TOUCH_TOLERANCE:
+        if "height" in m:
+            raise CaseError(hpath, f"fender {fender.name!r} is mounted on the structure: its "
+                                   "height is its face's distance from the wall or pile "
+                                   f"({format_si(gap, 'length')}); give it through `at`")
+        height = gap
+    else:
+        # On the body, or on the structure with its face given on the wall or pile's
+        # surface (the surface drawn through the fenders' faces): given, or not known.
+        height = nullable_quantity(m, path, "height", "length", gt=0)
+    if fender.law.kind == "rigid":
+        return None
+    if height is not None and not fender.rated_deflection < height:
+        raise CaseError(field_path(path, "rated_deflection"),
+                        f"fender {fender.name!r}'s rated deflection "
+                        f"{format_si(fender.rated_deflection, 'length')} (by default its "
+                        "table's last row) must be less than its full compression, its "
+                        f"height {format_si(height, 'length')}"
+                        + (" (its face's distance from the wall or pile)"
+                           if fender.mounted == "structure" else ""))
+    return height
 
 
 def _known(raw, path: str, known: dict, what: str) -> str:
@@ -194,9 +229,10 @@ def _known(raw, path: str, known: dict, what: str) -> str:
     return raw
 
 
-def _check_touching(fender: Fender, path: str, body: Body, walls: dict, piles: dict) -> None:
+def _check_touching(fender: Fender, path: str, body: Body, walls: dict, piles: dict) -> float:
     """At the case pose a body-mounted fender touches what it bears on; a structure-mounted
-    one stands on the water side of its wall, or outside its pile."""
+    one stands on the water side of its wall, or outside its pile. Returns the face's gap
+    from the wall or pile there [m]."""
     r0, R0 = _pose(body)
     at = np.asarray(fender.at, dtype=float)
     face = r0 + R0 @ at if fender.mounted == "body" else at
@@ -214,7 +250,7 @@ def _check_touching(fender: Fender, path: str, body: Body, walls: dict, piles: d
             raise CaseError(apath, f"fender {fender.name!r} is mounted on {target} but its "
                                    f"face is {format_si(-gap, 'length')} inside it; give the "
                                    "face on the water side")
-        return
+        return max(gap, 0.0)
     if gap > TOUCH_TOLERANCE:
         raise CaseError(apath, f"fender {fender.name!r} of body {fender.body!r} is "
                                f"{format_si(gap, 'length')} off {target} at the case-file "
@@ -228,6 +264,7 @@ def _check_touching(fender: Fender, path: str, body: Body, walls: dict, piles: d
                                f"case-file pose, more than it can deflect "
                                f"({format_si(limit, 'length')}); does the wall's normal "
                                "point toward the water, where the body is?")
+    return gap
 
 
 def _guide(raw, path: str, bodies: dict, piles: dict) -> Guide:

@@ -12,6 +12,7 @@ from .bodies import PLANAR_DOFS, Body
 from .environment import Environment
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
+from .build_network import fixed_to_field
 from .lines import End, Line
 from .loads import BodyLoads
 
@@ -21,10 +22,10 @@ def _free(raw, path: str) -> tuple:
 
 
 def _body(raw, path: str) -> Body:
-    m = check_mapping(raw, path, optional=("free", "loads"))
+    m = check_mapping(raw, path, optional=("free", "loads", "fixed_to"))
     free = PLANAR_DOFS if "free" not in m else _free(m["free"], field_path(path, "free"))
     loads = BodyLoads() if m.get("loads") is None else _loads(m["loads"], field_path(path, "loads"))
-    return Body(name="body", free=free, loads=loads)
+    return Body(name="body", free=free, loads=loads, fixed_to=fixed_to_field(m, path, free))
 
 
 def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool) -> Line:

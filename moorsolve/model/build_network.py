@@ -14,13 +14,18 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
                        waterplane_area >= 0 [m^2]}
         hull: [{shape: cylinder, radius, bottom, top, centre: [x, y]}
                | {shape: box, length, width, bottom, top, centre}]   exact buoyancy instead
-        stiffness: 6x6                        extra linear springs about the case pose [SI]
+        stiffness: 6x6                        extra linear springs about the rest pose [SI]
+        fixed_to: water | seabed              default water: a floating body, held (and at
+                                              rest) relative to the still water, rising
+                                              with environment.water_level; seabed: a
+                                              structure on the datum (not free in heave)
         added_mass: 6x6, inertia: [Ixx, Iyy, Izz]   for natural periods only
         loads: {force: [Fx, Fy, Mz] or [Fx, Fy, Fz, Mx, My, Mz], wind, current, wave_drift}
     points:                                   optional list
       - {name, position: [x, y, z] or [x, y] (on the seabed), free: bool, mass >= 0 [kg],
          volume >= 0 [m^3]}
-    lines:                                    required, non-empty
+    lines:                                    a list; may be absent or empty where fenders
+                                              or pile guides hold every free body
       - name: str
         from: END                             end A
         to: END                               end B
@@ -33,7 +38,7 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
     END: a point name | [x, y] (on the seabed) | [x, y, z] fixed | {body: NAME, at: [x, y, z]}
 
 Beyond the schema: names are unique; every end names a known body or point; a free point or
-a free body that no line (nor spring nor hydrostatics) holds is refused; a body free in heave,
+a free body that no line, contact (fender, pile guide) or spring holds is refused; a body free in heave,
 roll or pitch needs a mass and hydrostatics; fixed ends lie on or above the seabed; an
 inextensible line between fixed ends is long enough to reach.
 """
@@ -47,8 +52,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..errors import CaseError
-from .bodies import DOFS, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, Hydrostatics, \
-    HullMember, Point
+from .bodies import DOFS, FIXED_TO, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, \
+    Hydrostatics, HullMember, Point
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
 from .environment import Environment
@@ -61,7 +66,8 @@ from .loads import BodyLoads
 from .units import format_si, show_value
 
 _BODY_KEYS = ("position", "orientation_deg", "free", "mass", "centre_of_gravity",
-              "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads")
+              "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads",
+              "fixed_to")
 
 
 def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -179,9 +185,25 @@ def _body(raw, path: str) -> Body:
                                 "weight against buoyancy; give them or hold that DOF")
     loads = (BodyLoads() if m.get("loads") is None
              else _loads(m["loads"], field_path(path, "loads"), (3, 6)))
+    fixed_to = fixed_to_field(m, path, free)
     return Body(name=name, free=free, position=position, orientation_deg=orientation,
                 mass=mass, centre_of_gravity=cg, hydrostatics=hydro, hull=hull,
-                stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia)
+                stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia,
+                fixed_to=fixed_to)
+
+
+def fixed_to_field(m: Mapping, path: str, free: tuple) -> str:
+    """A body's ``fixed_to`` (default ``water``): what its held pose is relative to."""
+    fixed_to = m.get("fixed_to", "water")
+    fpath = field_path(path, "fixed_to")
+    if not isinstance(fixed_to, str) or fixed_to not in FIXED_TO:
+        raise CaseError(fpath, f"{show_value(fixed_to)} is not one of {', '.join(FIXED_TO)} "
+                               "(water: a floating body, held relative to the still water, "
+                               "rising with the tide; seabed: a structure fixed on the datum)")
+    if fixed_to == "seabed" and "heave" in free:
+        raise CaseError(fpath, "a body fixed to the seabed is held in heave; free in heave it "
+                               "floats (fixed_to: water) or remove heave from free")
+    return fixed_to
 
 
 def _point(raw, path: str, environment: Environment) -> Point:
@@ -343,9 +365,8 @@ def build_network(m: Mapping, environment: Environment, line_types: dict) -> tup
         m["points"], "points", "a list of points {name, position, ...}")
     points = _unique([_point(raw, field_path("points", i), environment)
                       for i, raw in enumerate(point_items)], "points", "point")
-    line_items = check_list(m["lines"], "lines", "a list of lines {name, from, to, segments}")
-    if not line_items:
-        raise CaseError("lines", "no lines; at least one line is required")
+    line_items = [] if m.get("lines") is None else check_list(
+        m["lines"], "lines", "a list of lines {name, from, to, segments}")
     lines = _unique([_line(raw, field_path("lines", i), environment, line_types, bodies, points)
                      for i, raw in enumerate(line_items)], "lines", "line")
     attached = {}
@@ -359,12 +380,23 @@ def build_network(m: Mapping, environment: Environment, line_types: dict) -> tup
             raise CaseError(field_path(field_path("points", i), "free"),
                             f"free point {point.name!r} is not attached to any line: nothing "
                             "holds it; attach a line or make it fixed")
-    for i, body in enumerate(bodies.values()):
+    return tuple(bodies.values()), tuple(points.values()), tuple(lines.values())
+
+
+def check_held(bodies: tuple, lines: tuple, contacts) -> None:
+    """Every body free in a horizontal degree of freedom is held by something that can
+    hold it: a line, a spring, or a contact (a fender or a pile guide); a scene has at
+    least one line or contact. Raises :class:`CaseError` naming the field."""
+    if not lines and not contacts:
+        raise CaseError("lines", "no lines; a scene needs at least one line, or fenders or "
+                                 "pile guides that hold its bodies")
+    attached = {end.body for line in lines for end in (line.a, line.b)}
+    attached |= {c.body for c in contacts.fenders + contacts.guides}
+    for i, body in enumerate(bodies):
         held_by_springs = body.stiffness is not None
         horizontal = [d for d in body.free if d not in VERTICAL_DOFS]
         if horizontal and body.name not in attached and not held_by_springs:
             raise CaseError(field_path(field_path("bodies", i), "free"),
-                            f"body {body.name!r} is free in {', '.join(horizontal)} but no line "
-                            "or spring holds it; attach a line, give a stiffness, or hold "
-                            "those degrees of freedom")
-    return tuple(bodies.values()), tuple(points.values()), tuple(lines.values())
+                            f"body {body.name!r} is free in {', '.join(horizontal)} but no line, "
+                            "fender, pile guide or spring holds it; attach a line, give a "
+                            "stiffness, or hold those degrees of freedom")

@@ -121,7 +121,14 @@ class Fender:
         parallel to the wall, or normal to the pile's radius, at the case pose).
     law : ReactionLaw
     rated_deflection : float or None
-        The maker's rated deflection [m] (the check's limit).
+        The maker's rated deflection [m] (the check's limit). Past it the fender is
+        overloaded, as a line past its MBL is.
+    height : float or None
+        Its full compression [m]: the fender's height from what it is mounted on to its
+        face. Compressed that far, the hull bears on the wall or pile behind it (a rigid
+        contact). A structure-mounted fender's is its face's distance from its wall or
+        pile (unless its face is given on the wall); otherwise it is given (None: not
+        known, and not modelled). None for a rigid fender.
     """
 
     name: str
@@ -132,6 +139,7 @@ class Fender:
     pile: Optional[str] = None
     mounted: str = "body"
     rated_deflection: Optional[float] = None
+    height: Optional[float] = None
 
 
 @dataclass(frozen=True)

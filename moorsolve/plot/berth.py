@@ -36,6 +36,22 @@ def _hull_footprints(result, ax) -> None:
             ax.add_patch(Polygon(corners, color="0.8", alpha=0.6, zorder=1))
 
 
+def _show_all(ax, first: int, points: np.ndarray) -> None:
+    """Widen the axes' limits to the berth's patches drawn from ``first`` on and the
+    ``points`` (a plan drawn for lines alone may not reach the piles and hulls: a scene
+    its pile guides alone hold has no lines)."""
+    boxes = [p.get_path().transformed(p.get_patch_transform()).get_extents()
+             for p in ax.patches[first:]]
+    xs = [b.x0 for b in boxes] + [b.x1 for b in boxes] + list(points[:, 0])
+    ys = [b.y0 for b in boxes] + [b.y1 for b in boxes] + list(points[:, 1])
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    lo_x, hi_x, lo_y, hi_y = min(xs + [x0]), max(xs + [x1]), min(ys + [y0]), max(ys + [y1])
+    if (lo_x, hi_x, lo_y, hi_y) != (x0, x1, y0, y1):
+        pad = 0.05 * max(hi_x - lo_x, hi_y - lo_y)
+        ax.set_xlim(lo_x - pad, hi_x + pad)
+        ax.set_ylim(lo_y - pad, hi_y + pad)
+
+
 def _walls(result, ax, points: np.ndarray) -> None:
     """Each wall's trace in plan, as far along it as the scene reaches."""
     for wall in result.case.contacts.walls:
@@ -83,6 +99,7 @@ def plot_berth(result, ax=None, *, colour_bar: bool = True):
     points += [leg.anchor[:2] for leg in result.legs] + [leg.fairlead[:2] for leg in result.legs]
     points = np.array(points) if points else np.zeros((1, 2))
     _walls(result, ax, points)
+    before = len(ax.patches)         # the walls span what the rest reaches
     for pile in contacts.piles:
         ax.add_patch(Circle(pile.position, pile.radius, color="0.3", zorder=3))
     _hull_footprints(result, ax)
@@ -101,6 +118,7 @@ def plot_berth(result, ax=None, *, colour_bar: bool = True):
                             zorder=4))
         ax.annotate(f"{g['name']} {g['reaction_N'] / 1e3:.0f} kN", pile.position,
                     fontsize=6, xytext=(6, -10), textcoords="offset points")
+    _show_all(ax, before, points)
     if colour_bar and result.fenders:
         sm = plt.cm.ScalarMappable(cmap="RdYlGn_r", norm=plt.Normalize(0, 1))
         ax.figure.colorbar(sm, ax=ax, label="fender compression / rated deflection",

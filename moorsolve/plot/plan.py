@@ -77,7 +77,8 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
                            label="body at equilibrium"),
                     Line2D([], [], marker="o", mfc="none", mec="0.5", ms=9, ls="",
                            label="body at rest")]
-    centre = np.mean([line.fairlead[:2] for line in scene.lines], axis=0)
+    centre = (np.mean([line.fairlead[:2] for line in scene.lines], axis=0) if scene.lines
+              else np.zeros(2))
     if len(scene.bodies) == 1:
         centre = scene.bodies[0].origin[:2]
     for line in scene.removed:

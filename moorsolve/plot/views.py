@@ -27,7 +27,10 @@ __all__ = ["plot_plan", "plot_elevation", "plot_3d", "plot_profiles", "plot_equi
 
 def view_direction(scene: Scene) -> float:
     """The horizontal direction [deg] along which the scene spreads most (x or y when
-    within 10 deg of one, or when no direction dominates), for the elevation's axis."""
+    within 10 deg of one, or when no direction dominates; x for a scene without lines, held
+    by its fenders or pile guides), for the elevation's axis."""
+    if not scene.lines:
+        return 0.0
     xy = np.vstack([line.xyz[:, :2] for line in scene.lines])
     xy = xy - xy.mean(axis=0)
     w, v = np.linalg.eigh(xy.T @ xy)
@@ -112,7 +115,7 @@ def plot_elevation(result, ax=None, depth=None, *, along_deg=None):
                 zorder=5)
     if scene.fixed_ends.size:
         ax.plot(scene.fixed_ends[:, :2] @ e, scene.fixed_ends[:, 2], "s", color="k", ms=4)
-    height = max(0.0, *(line.xyz[:, 2].max() for line in scene.lines)) - low
+    height = max([0.0] + [line.xyz[:, 2].max() for line in scene.lines]) - low
     gain = _exaggeration(s[-1] - s[0], height)
     ax.set_aspect(gain)
     ax.set_ylim(low - 0.08 * scene.depth, max(0.05 * scene.depth, 0.0 + 0.05 * height))

@@ -13,6 +13,10 @@ def _fender_row(f: dict) -> str:
     util = "-" if f["utilisation"] is None else f"{f['utilisation']:.2f}"
     state = ("open" if not f["in_contact"] else
              "stick" if f["stick"] else "slip" if f["stick"] is False else "closed")
+    if f.get("overloaded"):
+        state += ", OVER RATED"
+    if f.get("hull_bears"):
+        state += f", HULL ON {f['bears_on']} {f['hull_reaction_N'] / 1e3:.1f} kN"
     return (f"{f['name']:<10}{'yes' if f['in_contact'] else 'no':>8}"
             f"{f['compression_m']:10.4f}{f['reaction_N'] / 1e3:10.2f}"
             f"{f['friction_N'] / 1e3:13.2f}{f['energy_J'] / 1e3:11.2f}{util:>7}  {state}")

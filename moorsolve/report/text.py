@@ -87,6 +87,12 @@ def format_table(result) -> str:
     if over:
         lines.append(f"OVERLOAD: {', '.join(over)} above the minimum breaking load "
                      "(accepted with --allow-overload)")
+    crushed = [f["name"] for f in result.fenders if f.get("overloaded")]
+    if crushed:
+        bearing = [f["name"] for f in result.fenders if f.get("hull_bears")]
+        lines.append(f"OVERLOAD: fender {', '.join(crushed)} past the rated deflection"
+                     + (f"; the hull bears on the wall behind {', '.join(bearing)}"
+                        if bearing else "") + " (accepted with --allow-overload)")
     # Last, where a terminal leaves them in view (moorsolve.audit.result_warnings).
     lines += [f"WARNING: {w['message']}" for w in result.warnings]
     return "\n".join(lines)

@@ -25,6 +25,15 @@ Geometries (``ContactPoint.geometry``):
   the contact is where the pile faces the panel. Flat on round is stable; a point on round
   is not (it rolls off, as a ball off a dome), which is why a panel and not a point.
 
+Behind every compliant fender whose height (its full compression) is known, the hull is a
+contact of the same geometry with the gap ``g + height``: fully compressed, the fender is a
+block and the wall bears on the hull through it with the stiffness
+:data:`~moorsolve.constants.HULL_STIFFNESS` (1 mm per MN), written as a rigid contact's
+complementarity on the opening ``g + height + lam / K``. Stiff enough that no berth sees
+the difference from a rigid contact, compliant so that several bearing points of one hull
+share the load determinately (four rigid contacts in a row would leave the share to the
+solver).
+
 A guide is expanded into its pads: a regular polygon of flat faces round the collar's
 inside (``Guide.pads`` of them, the first facing body +x), each the pile's radius plus
 the clearance from the collar's centre: the collar moves freely within the clearance and
@@ -36,15 +45,18 @@ the collar's position).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import casadi as ca
 
+from ..constants import HULL_STIFFNESS
 from ..model import Case
 from ..physics.contact import (fender_reaction, fischer_burmeister, friction_force,
                                natural_residual, plane_gap)
 from ..physics.kinematics import rotation_matrix
+from .layout import hull_behind
 
 #: Columns of ``EquilibriumProblem.contact_report``: gap and opening [m], reaction [N], the
 #: friction force [N] and the tangential slip [m] (global vectors), the force on the body
@@ -67,7 +79,8 @@ class ContactPoint:
     element : str
         The fender's or guide's name.
     owner : str
-        ``"fender"`` or ``"guide"``.
+        ``"fender"``, ``"guide"`` or ``"hull"`` (the hull behind a fender, bearing on the
+        wall or pile once the fender is fully compressed; its ``element`` is the fender).
     body : str
     geometry : str
         ``"plane"``, ``"face"`` or ``"panel"`` (see the module notes).
@@ -77,7 +90,8 @@ class ContactPoint:
         The target is a wall (else a pile).
     law : str
         ``rigid``, ``linear`` or ``table`` (a fender), ``rigid`` or ``pile`` (a guide's pad
-        on a rigid pile, or on a pile bending as a cantilever).
+        on a rigid pile, or on a pile bending as a cantilever), ``hull`` (the hull behind a
+        fender).
     table_rows : int
         Rows of a table law.
     friction : bool
@@ -103,8 +117,9 @@ class ContactPoint:
 
     @property
     def n_unknowns(self) -> int:
-        """1 for a rigid contact (its reaction), 0 for a compliant fender."""
-        return 1 if self.law == "rigid" else 0
+        """1 for a rigid contact or a fender's hull (its reaction), 0 for a compliant
+        fender."""
+        return 1 if self.law in ("rigid", "hull") else 0
 
 
 def contact_points(case: Case) -> list:
@@ -128,6 +143,13 @@ def contact_points(case: Case) -> list:
                                     owner="guide", body=g.body, geometry="panel",
                                     target=g.pile, on_wall=False, law=law,
                                     friction=pile.friction > 0, pad=k, pads=g.pads))
+    # The hull behind each compliant fender of known height: fully compressed, the fender
+    # is a block and the hull bears on the wall (or pile) through it, rigidly.
+    fenders = {p.element: p for p in out if p.owner == "fender"}
+    for f in c.fenders:
+        if hull_behind(f):
+            out.append(dataclasses.replace(fenders[f.name], name=f"{f.name}.hull",
+                                           owner="hull", law="hull", table_rows=0))
     return out
 
 
@@ -211,13 +233,22 @@ def contact_block(problem, point: ContactPoint, x, io, par, body):
         m0 = R0 @ m_b
         contact0 = ca.vertcat(centre[0], centre[1], face0[2]) - radius * m0
         moved = r + R @ (R0.T @ (contact0 - r0)) - contact0
-    if point.law == "rigid":
+    if point.owner == "hull":
+        # The hull behind the fender, its height back from the face: it meets the wall when
+        # the fender is fully compressed. Same normal, same point of action.
+        gap = gap + par(f"fender[{point.element}].height")
+    if point.n_unknowns:
         lam = x[io]
-        residuals = [fischer_burmeister(lam / k_c, gap, eps) / problem.length_scale]
-        compression, opening = 0 * lam, gap
-        closed = ca.if_else(lam / k_c > gap, 1, 0)
-        terms = dict(penetration=ca.fmax(-gap, 0),
-                     complementarity=natural_residual(lam, gap, k_c), reaction=ca.fabs(lam))
+        # A rigid contact opens by its gap; the hull behind a fender by its gap and its
+        # compliance, g + lam / K (the complementarity of a stiff spring, written with the
+        # reaction as the unknown as a rigid contact's is: the Newton path's form).
+        opening = gap + lam / HULL_STIFFNESS if point.law == "hull" else gap
+        residuals = [fischer_burmeister(lam / k_c, opening, eps) / problem.length_scale]
+        compression = 0 * lam
+        closed = ca.if_else(lam / k_c > opening, 1, 0)
+        terms = dict(penetration=ca.fmax(-opening, 0),
+                     complementarity=natural_residual(lam, opening, k_c),
+                     reaction=ca.fabs(lam))
     else:
         if point.law == "pile":
             # The pile bends as a cantilever fixed at the seabed: 3 E I / h^3 at the

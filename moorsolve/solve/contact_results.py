@@ -29,10 +29,22 @@ def _vector(row: dict, keys: str, closed: bool) -> list:
     return [row[k] if closed else 0.0 for k in keys]
 
 
-def _fender(fender, row: dict, friction: bool) -> dict:
+#: Relative margin past the rated deflection before a fender counts as overloaded (a fender
+#: placed at exactly its rated deflection is not, whatever the round-off).
+OVER_RATED = 1e-9
+
+
+def over_rated(compression: float, rated) -> bool:
+    """Whether a compression [m] is past the rated deflection [m] (None: no rating)."""
+    return rated is not None and compression > rated * (1.0 + OVER_RATED)
+
+
+def _fender(fender, row: dict, friction: bool, hull=None) -> dict:
     closed = row["closed"] > 0.5
     law = fender.law
     compression = max(-row["gap"], 0.0) if (closed and law.kind != "rigid") else 0.0
+    # Fully compressed, the fender is a block: the hull behind it bears on the wall.
+    bears = hull is not None and hull["closed"] > 0.5
     tangential = _vector(row, ("ftx", "fty", "ftz"), closed)
     slip = math.sqrt(row["sx"] ** 2 + row["sy"] ** 2 + row["sz"] ** 2)
     energy = 0.0
@@ -49,6 +61,12 @@ def _fender(fender, row: dict, friction: bool) -> dict:
         "slip_m": slip if (closed and friction) else 0.0,
         "energy_J": energy, "rated_deflection_m": rated,
         "utilisation": None if rated is None else compression / rated,
+        "overloaded": over_rated(compression, rated),
+        "height_m": fender.height if law.kind != "rigid" else None,
+        "hull_bears": bears,
+        "hull_gap_m": None if hull is None else hull["gap"],
+        "hull_reaction_N": hull["reaction"] if bears else 0.0,
+        "hull_force_N": _vector(hull, ("Fx", "Fy", "Fz"), True) if bears else [0.0] * 3,
         "force_N": _vector(row, ("Fx", "Fy", "Fz"), closed),
         "contact_point_m": [row["cx"], row["cy"], row["cz"]],
         "normal": [row["nx"], row["ny"], row["nz"]],
@@ -95,7 +113,8 @@ def contact_results(problem, case: Case, x, p, poses: np.ndarray) -> tuple:
     for point, row in zip(problem.contacts, rows):
         by_element.setdefault((point.owner, point.element), []).append(row)
         friction[point.element] = point.friction
-    fenders = tuple(_fender(f, by_element[("fender", f.name)][0], friction[f.name])
+    fenders = tuple(_fender(f, by_element[("fender", f.name)][0], friction[f.name],
+                            by_element.get(("hull", f.name), [None])[0])
                     for f in case.contacts.fenders)
     index = {b.name: i for i, b in enumerate(case.bodies)}
     guides = tuple(_guide(case, g, by_element[("guide", g.name)],

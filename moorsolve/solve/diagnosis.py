@@ -24,7 +24,8 @@ from .result import Result
 from .start import end_positions
 from .weathervane import WALKED
 
-__all__ = ["diagnose", "over_mbl", "pulled_straight", "unbalanced_force", "SUCCESS_STATUSES"]
+__all__ = ["diagnose", "over_mbl", "over_rated", "pulled_straight", "unbalanced_force",
+           "SUCCESS_STATUSES"]
 
 #: The status of a scene with nothing free whose lines' remembered state certifies as it
 #: stands (:func:`~.equilibrium.rest_point`): there is nothing for a solver to do.
@@ -88,6 +89,24 @@ def over_mbl(result: Result, problem=None, post=None) -> list:
                        f"it would break: tension {tension}")
         else:
             out.append(f"leg {name} would break: tension {tension}")
+    return out
+
+
+def over_rated(result: Result) -> list:
+    """``"fender NAME is compressed ..."`` for every fender past its rated deflection, the
+    fender's overload as a line's is its MBL; where it is fully compressed, that the hull
+    bears on the wall (or pile) behind it."""
+    out = []
+    for f in result.fenders:
+        if not f.get("overloaded"):
+            continue
+        text = (f"fender {f['name']} is compressed {f['compression_m']:.3f} m, past its rated "
+                f"deflection {f['rated_deflection_m']:.3f} m (reaction "
+                f"{f['reaction_N'] / 1e3:.1f} kN)")
+        if f["hull_bears"]:
+            text += (f", and fully compressed: the hull of {f['body']} bears on "
+                     f"{f['bears_on']} behind it with {f['hull_reaction_N'] / 1e3:.1f} kN")
+        out.append(text)
     return out
 
 
@@ -181,7 +200,7 @@ def diagnose(problem, case, result) -> str:
             f"{', '.join(lengths)}), though each spans its ends at the case's pose: the "
             "solver ran away, most likely pulled toward a straight inextensible line, whose "
             "tension double precision cannot resolve; give the line types an ea")
-    reasons += over_mbl(result)
+    reasons += over_mbl(result) + over_rated(result)
     drifts = drifting_bodies(case)
     # A body no line path holds has no equilibrium under a horizontal load: name it
     # rather than blame the lines that hold the others.

@@ -33,8 +33,8 @@ from ..errors import ConvergenceError
 from ..model import Case
 from .bathymetry import plane_slices, solve_on_grid
 from .cache import get_problem
-from .diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, pulled_straight,
-                        unbalanced_force)
+from .diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, over_rated,
+                        pulled_straight, unbalanced_force)
 from ..audit import audit as audit_result
 from ..audit import result_warnings
 from .outcome import build_result, hull_out_of_range
@@ -78,8 +78,9 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         (:mod:`moorsolve.solve.newton`), which falls back to the IPOPT strategy when it
         does not certify; ``Result.solver`` tells which produced the result.
     allow_overload : bool
-        Return an equilibrium in which a line exceeds its minimum breaking load instead of
-        raising ConvergenceError (for damaged-condition checks that must report it).
+        Return an equilibrium in which a line exceeds its minimum breaking load, or a fender
+        its rated deflection, instead of raising ConvergenceError (for damaged-condition
+        checks that must report it).
     start : numpy.ndarray, optional
         A previous ``Result.state`` of the same scene structure to warm-start from.
     stability : bool
@@ -206,7 +207,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         raise ConvergenceError("; ".join(outside), residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
-    broken = over_mbl(result, problem, post)
+    broken = over_mbl(result, problem, post) + over_rated(result)
     if broken and not allow_overload:
         raise ConvergenceError(
             "overload: " + "; ".join(broken) + " (the mooring cannot hold this; to accept "

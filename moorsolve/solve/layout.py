@@ -123,10 +123,14 @@ def segment_parameters(case: Case, kinds) -> np.ndarray:
 
 
 def body_parameters(case: Case) -> np.ndarray:
-    """Block 5: every body's pose, force, mass and hydrostatics, springs and hull members."""
+    """Block 5: every body's rest pose (:meth:`~moorsolve.model.Body.rest_position`), force,
+    mass and hydrostatics, springs and hull members."""
     values = []
+    level = case.environment.water_level
     for body in case.bodies:
-        x, y, z = body.position
+        # Held, sprung and in contact relative to its rest: a floating body's rises with
+        # the tide (its draft kept), a structure's stays on the datum.
+        x, y, z = body.rest_position(level)
         roll, pitch, yaw = (math.radians(a) for a in body.orientation_deg)
         force = (0.0,) * 6
         if case.form == "network" and body.loads.force is not None:
@@ -163,6 +167,12 @@ def law_values(law) -> list:
     return list(law.deflections) + list(law.reactions)
 
 
+def hull_behind(fender) -> bool:
+    """Whether the hull behind ``fender`` is modelled: a compliant fender whose full
+    compression (its height) is known; the hull bears on the wall past it."""
+    return fender.law.kind != "rigid" and fender.height is not None
+
+
 def contact_parameters(case: Case) -> np.ndarray:
     """Block 7: walls, piles, fenders and guides."""
     c = case.contacts
@@ -174,6 +184,8 @@ def contact_parameters(case: Case) -> np.ndarray:
                    pile.bending_stiffness or 0.0]
     for fender in c.fenders:
         values += [*fender.at, *law_values(fender.law)]
+        if hull_behind(fender):
+            values.append(fender.height)
     for guide in c.guides:
         values += [*guide.at, guide.clearance]
     return np.asarray(values, dtype=float)
@@ -294,6 +306,8 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
         add(f"fender[{fender.name}].at", 3)
         if fender.law.kind != "rigid":
             add(f"fender[{fender.name}].law", len(law_values(fender.law)))
+        if hull_behind(fender):
+            add(f"fender[{fender.name}].height")
     for guide in c.guides:
         add(f"guide[{guide.name}].at", 3)
         add(f"guide[{guide.name}].clearance")

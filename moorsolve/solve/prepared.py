@@ -359,8 +359,9 @@ _MASKS = LockedLRU(64)
 def load_mask(case) -> np.ndarray:
     """Entries of ``case``'s parameter vector that act only through the load factor."""
     kinds = line_kinds_of(case)
+    # The berth's block changes the vector's length (a fender's table rows, its height).
     key = (id(kinds), tuple((b.stiffness is not None, len(b.hull)) for b in case.bodies),
-           len(case.free_points),
+           len(case.free_points), layout.contact_parameters(case).size,
            bool(case.environment.current is not None and case.environment.current.profile))
     hit = _MASKS.get(key)
     if hit is not None and hit[0] is kinds:

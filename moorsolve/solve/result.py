@@ -348,7 +348,9 @@ class Result:
     #: dicts ``{"code", "leg", "message"}`` from :func:`moorsolve.audit.result_warnings`.
     warnings: tuple = ()
     #: Per fender: in_contact, compression_m, reaction_N, friction_N, stick, slip_m,
-    #: energy_J, utilisation (compression over rated deflection), force_N, contact_point_m
+    #: energy_J, utilisation (compression over rated deflection), overloaded (past it),
+    #: height_m (full compression), hull_bears (fully compressed: the hull bears on the
+    #: wall), hull_reaction_N, hull_force_N, hull_gap_m, force_N, contact_point_m
     #: (:mod:`.contact_results`).
     fenders: tuple = ()
     #: Per pile guide: in_contact, reaction_N, force_N, offset_m, height_m, on_pile,

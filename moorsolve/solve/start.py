@@ -97,8 +97,25 @@ def _scales(case: Case) -> tuple:
         tensions += [HAWSER_STRAIN * start_ea(line.line_type) for line in case.lines
                      if line.line_type.weight_in_water == 0 and line.line_type.elastic
                      and not line.multi_segment]
+    if not any(t > 0 for t in tensions):
+        tensions += _held_by_contacts(case)
     force = max(max(tensions, default=1.0), 1.0)
     return force, max(case.environment.depth, 1.0)
+
+
+def _held_by_contacts(case: Case) -> list:
+    """Force scales [N] of a scene whose lines carry nothing to scale by (none, or slack
+    weightless ones): what its fenders and pile guides hold, the bodies' weights and the
+    fenders' reactions at their rated deflections."""
+    out = [case.environment.gravity * body.mass for body in case.bodies
+           if body.mass is not None]
+    for fender in case.contacts.fenders:
+        law = fender.law
+        if law.kind == "linear" and fender.rated_deflection is not None:
+            out.append(law.stiffness * fender.rated_deflection)
+        elif law.kind == "table":
+            out.append(law.reactions[-1])
+    return out
 
 
 def rest_line_states(case: Case) -> list:
@@ -295,11 +312,10 @@ def initial_point(problem, case: Case) -> np.ndarray:
     for j, (owner, index, dof) in enumerate(problem.nodes):
         if owner == "body":
             body = case.bodies[index]
-            value = dict(zip(("surge", "sway", "heave"), body.position))
-            if body.buoyant:
-                # A floating body free in heave starts at the still-water level's height
-                # above the datum (a tide), where it floats as placed.
-                value["heave"] += case.environment.water_level
+            # A floating body starts at its rest: risen with the tide, where it floats as
+            # placed.
+            value = dict(zip(("surge", "sway", "heave"),
+                             body.rest_position(case.environment.water_level)))
             value.update(zip(("roll", "pitch", "yaw"),
                              (math.radians(a) for a in body.orientation_deg)))
             x[j] = value[dof]

@@ -22,7 +22,7 @@ import dataclasses
 import math
 import statistics
 
-from ..errors import ConvergenceError
+from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from ..solve.equilibrium import solve
 
@@ -59,6 +59,9 @@ def accuracy_ladder(case: Case, *, tolerances=TOLERANCES, solvers=("ipopt", "new
                     repeats: int = 7, allow_overload: bool = False) -> list[Rung]:
     """Measure both ladders on ``case``; see the module notes. ``allow_overload`` as for
     :func:`moorsolve.solve` (every solve of the ladder)."""
+    if not case.lines:
+        raise CaseError("lines", "the accuracy ladder measures line tensions and this scene "
+                                 "has no lines (its contacts alone hold it)")
     over = dict(allow_overload=allow_overload)
     reference = solve(case, tol=REFERENCE_TOL, solver="ipopt", **over)
     rungs = []

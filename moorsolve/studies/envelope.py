@@ -155,6 +155,10 @@ def offset_envelope(case: Case, headings_deg: Optional[Sequence[float]] = None, 
     Envelope
     """
     env = case.environment
+    if not case.lines:
+        raise CaseError("lines", "the envelope reports each heading's worst line tension, and "
+                                 "this scene has no lines (its contacts alone hold it): "
+                                 "sweep the flows' toward_deg instead (moorsolve sweep)")
     names_b = [b.name for b in case.bodies]
     if body is None and len(names_b) > 1:
         raise CaseError("body", f"the case has {len(names_b)} bodies ({', '.join(names_b)}); "

@@ -68,16 +68,19 @@ def posed_case(case: Case, poses: dict, free_body: Optional[str] = None) -> Case
     of freedom with its frame turned so that its orientation is zero (its attachment points
     expressed in global axes about its origin)."""
     bodies, turned = [], {}
+    level = case.environment.water_level
     for body in case.bodies:
-        pose = poses.get(body.name, np.array(list(body.position) + [
+        pose = poses.get(body.name, np.array(list(body.rest_position(level)) + [
             math.radians(a) for a in body.orientation_deg]))
+        # The poses are absolute, on the datum, whatever the tide: fixed_to "seabed".
         if body.name == free_body:
             turned[body.name] = rotation(*pose[3:])
-            bodies.append(Body(name=body.name, free=DOFS, position=tuple(pose[:3])))
+            bodies.append(Body(name=body.name, free=DOFS, position=tuple(pose[:3]),
+                               fixed_to="seabed"))
         else:
             bodies.append(Body(name=body.name, free=(), position=tuple(pose[:3]),
                                orientation_deg=tuple(math.degrees(a) for a in pose[3:]),
-                               loads=BodyLoads()))
+                               loads=BodyLoads(), fixed_to="seabed"))
     lines = []
     for line in case.lines:
         ends = {}
@@ -201,16 +204,18 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
 # ---- restoring curves ---------------------------------------------------------------------
 
 
-def _pose6(position, body: Body) -> np.ndarray:
+def _pose6(position, body: Body, level: float = 0.0) -> np.ndarray:
     """A 3-long ``(x, y, yaw_deg)`` offset or a 6-long ``(x, y, z, roll, pitch, yaw)``
-    offset [m, deg] from the body's case pose, as an absolute pose [m, rad]."""
+    offset [m, deg] from the body's case pose (its rest at the water ``level`` [m]), as an
+    absolute pose [m, rad]."""
     pos = np.asarray(position, dtype=float)
     if pos.size == 3:
         pos = np.array([pos[0], pos[1], 0.0, 0.0, 0.0, pos[2]])
     if pos.size != 6:
         raise ValueError(f"position {position!r}: give (x, y, yaw_deg) or "
                          "(x, y, z, roll_deg, pitch_deg, yaw_deg) from the case pose")
-    base = np.array(list(body.position) + [math.radians(a) for a in body.orientation_deg])
+    base = np.array(list(body.rest_position(level))
+                    + [math.radians(a) for a in body.orientation_deg])
     return base + np.concatenate([pos[:3], np.radians(pos[3:])])
 
 
@@ -240,7 +245,7 @@ def mooring_force(case: Case, position: Sequence[float], *, body: Optional[str] 
     names = [b.name for b in case.bodies]
     name = body or names[0]
     target = case.body_named(name)
-    poses = {name: _pose6(position, target)}
+    poses = {name: _pose6(position, target, case.environment.water_level)}
     held = posed_case(case, poses)
     result = solve(held, solver=solver, start=start, allow_overload=True, stability=False)
     problem = get_problem(held)

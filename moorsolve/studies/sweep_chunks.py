@@ -11,7 +11,8 @@ import numpy as np
 from ..errors import ConvergenceError
 from ..physics.kinematics import wrap_degrees
 from ..solve.cache import get_problem
-from ..solve.diagnosis import over_mbl
+from ..solve.contact_results import OVER_RATED
+from ..solve.diagnosis import over_mbl, over_rated
 from ..solve.equilibrium import solve, turn_jumps
 from ..solve.stability import _layout, assess
 from .sweep_warnings import NONE, POSE, POST, screen
@@ -230,9 +231,11 @@ def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
             vectors[points[rows], n_p:], has_body, allow_overload)
 
 
-def _record(table, rows, body, tf, ta, reactions, mbl, has_body, allow_overload) -> None:
+def _record(table, rows, body, tf, ta, reactions, limits, has_body, allow_overload) -> None:
     """Write the kernel's outputs of certified ``rows`` (arrays with one row each) into
-    ``table``: body pose, tensions, reactions, and an overload against ``mbl``."""
+    ``table``: body pose, tensions, reactions, and an overload against ``limits`` (each
+    line's MBL, then each fender's reaction at its rated deflection,
+    :func:`.sweep_grid.rated_reactions`)."""
     if len(rows) == 0:
         return
     rows = np.asarray(rows)
@@ -248,14 +251,20 @@ def _record(table, rows, body, tf, ta, reactions, mbl, has_body, allow_overload)
         table.poses[rows] = pose.reshape(len(rows), -1)
     table.t_fair[rows], table.t_anchor[rows] = tf, ta
     table.reactions[rows] = reactions
+    n = len(table.names)
+    mbl, rated = limits[:, :n], limits[:, n:]
     over = np.maximum(tf, ta) > mbl
-    table.converged[rows] = allow_overload | ~over.any(axis=1)
-    for k in np.flatnonzero(over.any(axis=1)).tolist():
+    crushed = reactions > rated * (1.0 + OVER_RATED)
+    table.converged[rows] = allow_overload | ~(over.any(axis=1) | crushed.any(axis=1))
+    for k in np.flatnonzero(over.any(axis=1) | crushed.any(axis=1)).tolist():
         row = int(rows[k])
         table.reason[row] = "overload: " + "; ".join(
-            f"leg {table.names[j]} would break: tension "
-            f"{max(tf[k, j], ta[k, j]) / 1e3:.1f} kN > MBL {mbl[k, j] / 1e3:.1f} kN"
-            for j in np.flatnonzero(over[k]))
+            [f"leg {table.names[j]} would break: tension "
+             f"{max(tf[k, j], ta[k, j]) / 1e3:.1f} kN > MBL {mbl[k, j] / 1e3:.1f} kN"
+             for j in np.flatnonzero(over[k])]
+            + [f"fender {table.contacts[j]} is past its rated deflection: reaction "
+               f"{reactions[k, j] / 1e3:.1f} kN > {rated[k, j] / 1e3:.1f} kN at the rating"
+               for j in np.flatnonzero(crushed[k])])
 
 
 def _has_body_nodes(problem) -> bool:
@@ -264,7 +273,7 @@ def _has_body_nodes(problem) -> bool:
 
 def _overload(result) -> str:
     """The overload of an equilibrium accepted with ``allow_overload`` (else "")."""
-    over = over_mbl(result)
+    over = over_mbl(result) + over_rated(result)
     return "overload: " + "; ".join(over) if over else ""
 
 

@@ -153,10 +153,24 @@ def _axes(grid) -> list[tuple[tuple, list]]:
 
 def _point_vector(case: Case) -> np.ndarray:
     """Everything a point may change without changing the problem: the solver's
-    parameters, then each leg's minimum breaking load (for the overload check)."""
+    parameters, then each leg's minimum breaking load and each fender's and guide's
+    reaction limit (for the overload check)."""
     mbl = [leg.line_type.mbl if leg.line_type.mbl is not None else np.inf
            for leg in case.legs]
-    return np.concatenate([parameter_vector(case, 1.0), mbl])
+    return np.concatenate([parameter_vector(case, 1.0), mbl, rated_reactions(case)])
+
+
+def rated_reactions(case: Case) -> list:
+    """Per fender, then per guide, the reaction [N] past which it is overloaded: a fender's
+    at its rated deflection (its reaction rises strictly with compression, so a reaction
+    above it is a compression past the rating); infinite for a rigid fender and a guide."""
+    from ..physics.contact import fender_reaction
+    out = []
+    for fender in case.contacts.fenders:
+        law = fender.law
+        out.append(np.inf if law.kind == "rigid" or fender.rated_deflection is None
+                   else float(fender_reaction(fender.rated_deflection, *law.curve)))
+    return out + [np.inf] * len(case.contacts.guides)
 
 
 def snake_order(shape: tuple[int, ...]) -> list[tuple[int, ...]]:

@@ -125,7 +125,7 @@ def check_result_json(data: dict, leg_names: list) -> None:
 def leg_names(case_path: Path) -> list:
     with open(case_path, encoding="utf-8") as f:
         data = yaml.safe_load(f)
-        return [leg["name"] for leg in data.get("legs", data.get("lines"))]
+        return [leg["name"] for leg in data.get("legs") or data.get("lines") or []]
 
 
 # ---- 1. solve on the shipped cases ------------------------------------------------------

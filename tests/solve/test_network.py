@@ -414,7 +414,7 @@ def test_heave_without_mass_or_hydrostatics_names_the_body_and_field():
 def test_body_nothing_holds_is_refused():
     def mutate(d):
         d["bodies"].append({"name": "drifter", "free": ["surge"]})
-    _bad(mutate, "bodies[1].free", "no line or spring holds it")
+    _bad(mutate, "bodies[1].free", "no line, fender, pile guide or spring holds it")
 
 
 # ---- threads ---------------------------------------------------------------------------
