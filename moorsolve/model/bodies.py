@@ -91,6 +91,12 @@ class Body:
         Added mass [kg, kg m, kg m^2] for natural periods.
     inertia : tuple of 3 floats or None
         Moments of inertia about the centre of gravity [kg m^2] (roll, pitch, yaw axes).
+    hydrodynamics : Hydrodynamics or None
+        Frequency-dependent added mass, damping, excitation and mean drift
+        (:class:`~moorsolve.model.sea.Hydrodynamics`): the body moves in a sea state.
+    damping : ExtraDamping or None
+        Damping added to the radiation damping for motions
+        (:class:`~moorsolve.model.sea.ExtraDamping`).
     """
 
     name: str = "body"
@@ -105,6 +111,8 @@ class Body:
     loads: BodyLoads = field(default_factory=BodyLoads)
     added_mass: Optional[tuple] = None
     inertia: Optional[tuple] = None
+    hydrodynamics: Optional[object] = None
+    damping: Optional[object] = None
 
     @property
     def pose(self) -> tuple:
