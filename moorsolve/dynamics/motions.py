@@ -36,7 +36,8 @@ from ..errors import CaseError, MoorsolveWarning
 from ..model import DOFS
 from ..model.build_network import rotation
 from .hydro import BodyHydro
-from .response import mean_drift_force, newman_spectrum, statistics, transfer
+from .response import mean_drift_force, statistics
+from .system import System, solved_pose as _pose
 from .spectra import energy_band, spectrum_of
 
 #: Spectrum energy a frequency range must hold before a warning says what it misses.
@@ -178,30 +179,6 @@ def _moving_bodies(case) -> list:
     return moving
 
 
-def _kinematics(pose_rad) -> np.ndarray:
-    """``J`` (6x6): body-frame velocity from the rates of (x, y, z, roll, pitch, yaw)."""
-    roll, pitch, yaw = pose_rad[3:]
-    R = rotation(roll, pitch, yaw)
-    cp, sp, cy, sy = math.cos(pitch), math.sin(pitch), math.cos(yaw), math.sin(yaw)
-    E = np.array([[cy * cp, -sy, 0.0], [sy * cp, cy, 0.0], [-sp, 0.0, 1.0]])
-    J = np.zeros((6, 6))
-    J[:3, :3] = R.T
-    J[3:, 3:] = R.T @ E
-    return J
-
-
-def _pose(result, name: str) -> np.ndarray:
-    b = result.body_named(name)
-    return np.array([b["x_m"], b["y_m"], b["z_m"], math.radians(b["roll_deg"]),
-                     math.radians(b["pitch_deg"]), math.radians(b["yaw_deg"])])
-
-
-def _mass_matrix(body) -> np.ndarray:
-    from ..studies.stiffness import rigid_body_mass
-    return rigid_body_mass(body.mass or 0.0, body.centre_of_gravity,
-                           body.inertia or (0.0, 0.0, 0.0))
-
-
 # ---- the mean drift re-solve --------------------------------------------------------------
 
 
@@ -245,28 +222,43 @@ def _with_mean_drift(case, result, moving, hydros, grid, density, solver, tol):
 
 
 def _grid(hydros, waves, density, n_omega, omega):
+    """``(omega, covered, (lo, hi), band)``: the wave frequencies (half over the tables'
+    range, half over the part of it where the spectrum's energy is, unless given), the
+    fraction of m0 the tables' range holds, that range, and the spectrum's energy band."""
     lo = max(h.omega[0] for h in hydros.values())
     hi = min(h.omega[-1] for h in hydros.values())
-    band_lo, band_hi = energy_band(density, waves.tp or _table_tp(waves), BAND_TAIL)
-    fine = np.linspace(min(lo, band_lo), max(hi, band_hi), 20001)
+    band = energy_band(density, waves.tp or _table_tp(waves), BAND_TAIL)
+    fine = np.linspace(min(lo, band[0]), max(hi, band[1]), 20001)
     Sf = density(fine)
     total = np.trapezoid(Sf, fine)
     inside = (fine >= lo) & (fine <= hi)
     covered = float(np.trapezoid(Sf[inside], fine[inside]) / total) if total > 0 else 1.0
     if omega is None:
-        a, b = max(lo, band_lo), min(hi, band_hi)
+        a, b = max(lo, band[0]), min(hi, band[1])
         if not b > a:
             raise CaseError("environment.waves", f"the spectrum's energy lies outside the "
                                                  f"hydrodynamics' frequencies [{lo:.4g}, "
                                                  f"{hi:.4g}] rad/s: 0 % of m0 covered")
-        omega = np.linspace(a, b, n_omega)
+        half = max(n_omega // 2, 2)
+        omega = np.unique(np.concatenate([np.linspace(lo, hi, half),
+                                          np.linspace(a, b, max(n_omega - half, 2))]))
     else:
         omega = np.asarray(omega, dtype=float)
         if omega.ndim != 1 or omega.size < 2 or np.any(np.diff(omega) <= 0) \
                 or omega[0] < lo - 1e-12 or omega[-1] > hi + 1e-12:
             raise ValueError(f"omega: give increasing frequencies within the hydrodynamics' "
                              f"range [{lo:.4g}, {hi:.4g}] rad/s")
-    return omega, covered, (lo, hi)
+    return omega, covered, (lo, hi), band
+
+
+def _refined(grid, system, lo, hi) -> np.ndarray:
+    """``grid`` with points added round each lightly damped wave-frequency resonance (80
+    half-bandwidths either side), so the trapezoidal rule sees its peak."""
+    extra = [grid]
+    for wn, zeta in system.resonances(lo, hi):
+        half = wn * max(zeta, 1e-4)
+        extra.append(np.clip(wn + half * np.linspace(-80, 80, 321), lo, hi))
+    return np.unique(np.concatenate(extra))
 
 
 def _table_tp(waves) -> float:
@@ -324,7 +316,8 @@ def motions(result_or_case, *, n_omega: int = 400, omega=None, solver: str = "ip
                                "in the sea state", sea)
     hydros = {b.name: BodyHydro(b.hydrodynamics, f"{p}.hydrodynamics") for p, b in moving}
     density = spectrum_of(waves)
-    grid, covered, (lo, hi) = _grid(hydros, waves, density, n_omega, omega)
+    given = omega is not None
+    grid, covered, (lo, hi), band = _grid(hydros, waves, density, n_omega, omega)
     if covered < COVERAGE_WARNING:
         warnings.warn(MoorsolveWarning(
             f"the hydrodynamics' frequencies [{lo:.4g}, {hi:.4g}] rad/s hold {covered:.1%} of "
@@ -332,134 +325,46 @@ def motions(result_or_case, *, n_omega: int = 400, omega=None, solver: str = "ip
             "range)"), stacklevel=2)
     result, forces = _with_mean_drift(case, result, moving, hydros, grid, density, solver, tol)
     K, labels = coupled_stiffness(result)
-    return _respond(case, result, moving, hydros, K, labels, grid, density, forces,
-                    {**sea, "coverage": covered})
+    system = System(moving, hydros, result, K, labels, waves.toward_deg)
+    if not given:
+        grid = _refined(grid, system, lo, hi)
+    return _respond(case, result, moving, system, grid, density, forces,
+                    {**sea, "coverage": covered, "slow_drift_below_rad_s": band[0]})
 
 
-def _respond(case, result, moving, hydros, K, labels, grid, density, forces, sea) -> Motions:
+def _respond(case, result, moving, system, grid, density, forces, sea) -> Motions:
     waves = case.environment.waves
-    n, m = len(labels), grid.size
-    index = {lab: i for i, lab in enumerate(labels)}
-    M_w = np.zeros((m, n, n))
-    B_w = np.zeros((m, n, n))
-    M0 = np.zeros((n, n))
-    B_ext = np.zeros((n, n))
-    F = np.zeros((m, n), dtype=complex)
-    D_parts = []
-    slots = {}
-    crit = []
-    for path, body in moving:
-        idx = [index[f"{body.name}.{d}"] for d in body.free]
-        cols = [DOFS.index(d) for d in body.free]
-        slots[body.name] = (idx, cols, path)
-        pose = _pose(result, body.name)
-        J = _kinematics(pose)[:, cols]
-        h = hydros[body.name]
-        beta = waves.toward_deg - math.degrees(pose[5])
-        Mb = _mass_matrix(body)
-        ix = np.ix_(idx, idx)
-        M_w[(slice(None),) + ix] += J.T @ (Mb + h.added_mass(grid)) @ J
-        B_w[(slice(None),) + ix] += J.T @ h.damping(grid) @ J
-        M0[ix] += J.T @ (Mb + h.added_mass_low()) @ J
-        damping = body.damping
-        if damping is not None:
-            B_ext[ix] += J.T @ np.diag(damping.linear) @ J
-            crit += [(i, damping.critical_fraction[c], path) for i, c in zip(idx, cols)]
-        F[:, idx] = h.excitation(grid, beta) @ J
-        D_parts.append((idx, J, h, beta))
-    for i, zeta, path in crit:
-        if zeta > 0:
-            if not K[i, i] > 0:
-                raise CaseError(f"{path}.damping.critical_fraction",
-                                f"{labels[i]} has no restoring stiffness ({K[i, i]:.4g}): "
-                                "a fraction of critical damping needs one; give linear "
-                                "damping instead")
-            B_ext[i, i] += 2 * zeta * math.sqrt(K[i, i] * M0[i, i])
-    X = transfer(grid, M_w, B_w + B_ext[None], K, F)
+    X = system.response(grid)
     S = density(grid)
     wf_spec = np.abs(X) ** 2 * S[:, None]
-    has_drift = any(h.has_drift for _, _, h, _ in D_parts)
-    lf_mu, lf_spec, lf_cross = None, np.zeros((1, n)), None
-    if has_drift:
-        lf_mu, lf_cross = _slow_drift(grid, density, D_parts, n, M0, B_ext, K, labels,
-                                      slots, waves)
+    lf_mu, lf_cross = None, None
+    if system.has_drift:
+        lf_mu, lf_cross = system.slow_drift(grid, density, sea["slow_drift_below_rad_s"])
         lf_spec = np.real(np.einsum("mii->mi", lf_cross))
     duration = waves.duration
     bodies = []
     for path, body in moving:
-        idx, cols, _ = slots[body.name]
+        idx, cols, _ = system.slots[body.name]
         scale = np.array([math.degrees(1.0) if c in ROTATIONS else 1.0 for c in cols])
         wf = statistics(grid, wf_spec[:, idx] * scale ** 2, duration)
-        lf = (statistics(lf_mu, lf_spec[:, idx] * scale ** 2, duration) if has_drift
+        lf = (statistics(lf_mu, lf_spec[:, idx] * scale ** 2, duration) if lf_mu is not None
               else statistics(np.array([0.0, 1.0]), np.zeros((2, len(idx))), duration))
         b = result.body_named(body.name)
         mean = np.array([b[POSE_KEYS[c]] for c in cols])
         rao = np.zeros((grid.size, 6), dtype=complex)
         rao[:, cols] = X[:, idx] * scale
-        design = _design_offset(b, body, idx, cols, X, S, grid, lf_mu, lf_cross, duration)
+        design = _design_offset(b, idx, cols, X, S, grid, lf_mu, lf_cross, duration)
         bodies.append(BodyMotions(
             name=body.name, dofs=tuple(body.free), mean=mean, wf=wf, lf=lf,
             design_offset_m=design, mean_drift=forces.get(body.name, np.zeros(6)), rao=rao,
             heading_deg=waves.toward_deg - b["yaw_deg"]))
     simulated = (["mean_drift"] if forces else []) + ["wave_frequency"] + (
-        ["slow_drift"] if has_drift else [])
+        ["slow_drift"] if lf_mu is not None else [])
     return Motions(sea={**sea, "simulated": simulated}, result=result, omega=grid,
                    bodies=tuple(bodies), spectrum=S)
 
 
-def _slow_drift(grid, density, D_parts, n, M0, B_ext, K, labels, slots, waves):
-    """Newman's slow drift: the force cross-spectra on a coarse grid of difference
-    frequencies, the response on a fine one refined around each slow mode."""
-    def drift(w):
-        out = np.zeros((np.size(w), n))
-        for idx, J, h, beta in D_parts:
-            out[:, idx] += h.drift(w, beta) @ J
-        return out
-
-    mu_max = min(grid[-1] - grid[0], grid[0])
-    coarse = np.linspace(0.0, mu_max, 161)
-    SF = newman_spectrum(coarse, grid, density, drift)
-    # Slow modes: their damping must be given, or their response is unbounded.
-    from scipy.linalg import eig
-    vals, vecs = eig(K, M0)
-    fine = [np.linspace(0.0, mu_max, 4001)]
-    for lam, v in zip(vals, vecs.T):
-        wn = math.sqrt(lam.real) if lam.real > 0 else 0.0
-        if not 0 < wn < mu_max:
-            continue
-        v = np.real(v)
-        mass = v @ M0 @ v
-        zeta = (v @ B_ext @ v) / (2 * wn * mass) if mass > 0 else 0.0
-        force = v @ _interp_matrix(coarse, SF, wn) @ v
-        scale = max(abs(np.trace(_interp_matrix(coarse, SF, wn))), 1e-300)
-        if zeta <= 1e-9 and force > 1e-9 * scale * (v @ v):
-            main = labels[int(np.argmax(np.abs(v) * np.sqrt(np.diag(M0))))]
-            body, dof = main.split(".", 1)
-            path = slots[body][2]
-            raise CaseError(f"{path}.damping",
-                            f"the slow drift excites a mode of period {2 * math.pi / wn:.4g} s "
-                            f"(mostly {main}) that has no damping: give the body's "
-                            f"damping (linear or critical_fraction of {dof})")
-        band = wn * max(zeta, 1e-4)
-        fine.append(np.clip(wn + band * np.linspace(-40, 40, 801), 0.0, mu_max))
-    mu = np.unique(np.concatenate(fine))
-    SFm = _interp_stack(coarse, SF, mu)
-    H = transfer(mu, M0, B_ext, K)
-    cross = H @ SFm @ np.conj(np.transpose(H, (0, 2, 1)))
-    return mu, cross
-
-
-def _interp_matrix(x, Y, xi) -> np.ndarray:
-    return _interp_stack(x, Y, np.array([xi]))[0]
-
-
-def _interp_stack(x, Y, xi) -> np.ndarray:
-    k = np.clip(np.searchsorted(x, xi) - 1, 0, x.size - 2)
-    t = ((xi - x[k]) / (x[k + 1] - x[k]))[:, None, None]
-    return (1 - t) * Y[k] + t * Y[k + 1]
-
-
-def _design_offset(b, body, idx, cols, X, S, grid, lf_mu, lf_cross, duration):
+def _design_offset(b, idx, cols, X, S, grid, lf_mu, lf_cross, duration):
     """API RP 2SK's design offset [m] along the mean horizontal offset (or the waves'
     heading when there is none)."""
     has = [c for c in (0, 1) if c in cols]

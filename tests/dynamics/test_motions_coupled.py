@@ -151,7 +151,7 @@ def reference(case, m):
         D[:, s] = d
     Dw = interp_entries(D, w)
     dw = w[1] - w[0]
-    mu_max = min(w[-1] - w[0], w[0])
+    mu_max = m.sea["slow_drift_below_rad_s"]
     kmax = int(mu_max / dw)
     lf_var = np.zeros(n)
     mus, SF = [], []

@@ -132,7 +132,7 @@ def test_slow_drift_against_double_sum(solved):
     a2 = 2 * jonswap(w, HS, TP, GAMMA) * dw
     i, j = np.triu_indices(w.size, 1)
     mu = w[j] - w[i]
-    keep = mu <= min(hi - lo, lo)          # the slow band: below the wave frequencies
+    keep = mu <= m.sea["slow_drift_below_rad_s"]   # the slow band: below the waves' energy
     i, j, mu = i[keep], j[keep], mu[keep]
     Dij = drift(0.5 * (w[i] + w[j]))
     var_f = 2 * a2[i] * a2[j] * Dij ** 2
