@@ -14,10 +14,17 @@ import math
 
 import numpy as np
 
-from ..errors import CaseError
+import warnings
+
+from ..errors import CaseError, MoorsolveWarning
 from ..model import DOFS
 from ..model.build_network import rotation
 from .response import newman_spectrum, transfer
+
+
+#: A slow mode with less than this fraction of critical damping is refused, and with less
+#: than LIGHT_DAMPING it is warned of: its response grows as 1/damping.
+UNDAMPED, LIGHT_DAMPING = 1e-6, 1e-3
 
 
 def velocity_map(pose_rad) -> np.ndarray:
@@ -169,14 +176,18 @@ class System:
             Sn = _interp_stack(coarse, SF, np.array([wn]))[0]
             force = v @ Sn @ v
             scale = max(abs(np.trace(Sn)), 1e-300)
-            if zeta <= 1e-9 and force > 1e-9 * scale * (v @ v):
+            if zeta < LIGHT_DAMPING and force > 1e-9 * scale * (v @ v):
                 main = self.labels[int(np.argmax(np.abs(v) * np.sqrt(np.abs(np.diag(self.M0)))))]
                 body, dof = main.split(".", 1)
-                raise CaseError(f"{self.slots[body][2]}.damping",
-                                f"the slow drift excites a mode of period "
-                                f"{2 * math.pi / wn:.4g} s (mostly {main}) that has no damping: "
-                                f"give the body's damping (linear or critical_fraction of "
-                                f"{dof})")
+                field = f"{self.slots[body][2]}.damping"
+                what = (f"the slow drift excites a mode of period {2 * math.pi / wn:.4g} s "
+                        f"(mostly {main}) with {zeta:.2g} of critical damping")
+                if zeta < UNDAMPED:
+                    raise CaseError(field, f"{what}: it has no damping; give the body's "
+                                           f"damping (linear or critical_fraction of {dof})")
+                warnings.warn(MoorsolveWarning(
+                    f"{field}: {what}: its slow drift grows as 1/damping (slow-drift damping "
+                    "is usually a few % of critical)"), stacklevel=4)
             band = wn * max(zeta, 1e-4)
             fine.append(np.clip(wn + band * np.linspace(-40, 40, 801), 0.0, mu_max))
         mu = np.unique(np.concatenate(fine))
