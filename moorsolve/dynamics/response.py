@@ -78,34 +78,29 @@ def newman_spectrum(mu, omega, density, drift) -> np.ndarray:
     mu : array
         Difference frequencies [rad/s], >= 0.
     omega : array (m,)
-        Integration points, uniform or not, over the range where the wave spectrum and
-        ``drift`` are known; pairs ``(w, w + mu)`` leaving it are not counted.
+        Integration points, increasing (uniform or not), over the range where the wave
+        spectrum and ``drift`` are known; for each ``mu`` the trapezoidal rule runs over the
+        points with ``w + mu`` still in it.
     density : callable
         The wave spectrum ``S(w)`` [m^2 s/rad].
     drift : callable
         ``w -> D(w)`` (len(w), k): mean drift force per amplitude squared [N/m^2, ...].
     """
     w = np.asarray(omega, dtype=float)
+    mu = np.asarray(mu, dtype=float)
     hi = w[-1]
-    out = np.zeros((len(mu), 0, 0))
-    rows = []
-    Sw = density(w)
-    for m in np.asarray(mu, dtype=float):
-        inside = w + m <= hi + 1e-12
-        wi = w[inside]
-        if wi.size < 2:
-            rows.append(None)
+    dx = np.diff(w)
+    weights = np.zeros((mu.size, w.size))
+    for r, m in enumerate(mu):
+        last = int(np.searchsorted(w, hi - m, side="right")) - 1
+        if last < 1:
             continue
-        g = Sw[inside] * density(wi + m)
-        D = drift(wi + 0.5 * m)
-        integrand = g[:, None, None] * D[:, :, None] * D[:, None, :]
-        rows.append(8.0 * np.trapezoid(integrand, wi, axis=0))
-    k = next((r.shape[0] for r in rows if r is not None), 0)
-    out = np.zeros((len(rows), k, k))
-    for i, r in enumerate(rows):
-        if r is not None:
-            out[i] = r
-    return out
+        weights[r, :last] += 0.5 * dx[:last]
+        weights[r, 1:last + 1] += 0.5 * dx[:last]
+    S = density(w)
+    pair = S[None, :] * density(w[None, :] + mu[:, None]) * weights        # (len(mu), m)
+    D = drift((w[None, :] + 0.5 * mu[:, None]).ravel()).reshape(mu.size, w.size, -1)
+    return 8.0 * np.einsum("rw,rwi,rwj->rij", pair, D, D, optimize=True)
 
 
 def mean_drift_force(omega, S, D) -> np.ndarray:

@@ -74,6 +74,7 @@ class System:
         self.M0 = np.zeros((n, n))
         self.B_ext = np.zeros((n, n))
         self.slots = {}
+        self._drift_tables = None
         critical = []
         for path, body in moving:
             idx = [index[f"{body.name}.{d}"] for d in body.free]
@@ -125,10 +126,16 @@ class System:
         return any(h.has_drift for _, _, h, _, _ in self.parts)
 
     def drift(self, w) -> np.ndarray:
-        """Generalised mean drift coefficients (m, n) [N/m^2, ...]."""
-        out = np.zeros((np.size(w), self.n))
-        for idx, J, h, beta, _ in self.parts:
-            out[:, idx] += h.drift(w, beta) @ J
+        """Generalised mean drift coefficients (m, n) [N/m^2, ...], linear in frequency
+        between the tables' points (each table turned to the DOFs once)."""
+        w = np.asarray(w, dtype=float)
+        if self._drift_tables is None:
+            self._drift_tables = [(idx, h.omega, h.drift(h.omega, beta) @ J)
+                                  for idx, J, h, beta, _ in self.parts if h.has_drift]
+        out = np.zeros((w.size, self.n))
+        for idx, omega, table in self._drift_tables:
+            for c, i in enumerate(idx):
+                out[:, i] += np.interp(w, omega, table[:, c])
         return out
 
     def resonances(self, lo: float, hi: float) -> list:
@@ -160,10 +167,10 @@ class System:
         difference frequencies, the response on a fine one refined round each slow mode."""
         from scipy.linalg import eig
 
-        coarse = np.linspace(0.0, mu_max, 161)
+        coarse = np.linspace(0.0, mu_max, 101)
         SF = newman_spectrum(coarse, grid, density, self.drift)
         vals, vecs = eig(self.K, self.M0)
-        fine = [np.linspace(0.0, mu_max, 4001)]
+        fine = [np.linspace(0.0, mu_max, 801)]
         for lam, v in zip(vals, vecs.T):
             if not (np.isfinite(lam) and lam.real > 0):
                 continue

@@ -181,3 +181,16 @@ def test_missing_mass_or_inertia(key, field):
     with pytest.raises(CaseError) as err:
         moorsolve.motions(case)
     assert err.value.field == field
+
+
+def test_unused_sea_state_is_warned():
+    data = _data()
+    del data["bodies"][0]["hydrodynamics"]
+    with pytest.warns(moorsolve.UnusedInputWarning, match="no body has hydrodynamics"):
+        moorsolve.load_case(data)
+    data = _data()
+    data["environment"]["waves"] = {"hs": 2.5}
+    with pytest.warns(moorsolve.UnusedInputWarning, match="no sea state") as rec:
+        moorsolve.load_case(data)
+    assert any(getattr(r.message, "field", "") == "bodies[0].hydrodynamics" for r in rec) or \
+        any("bodies[0].hydrodynamics" in str(r.message) for r in rec)
