@@ -108,6 +108,8 @@ class Motions:
     omega: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))
     bodies: tuple = ()
     spectrum: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))
+    #: Each moving body's hydrodynamics as used (tables; Capytaine's computed ones).
+    hydrodynamics: dict = dataclasses.field(default_factory=dict)
 
     @property
     def static(self) -> bool:
@@ -314,7 +316,8 @@ def motions(result_or_case, *, n_omega: int = 400, omega=None, solver: str = "ip
     if not moving:
         return _static(result, "no body has hydrodynamics (bodies[i].hydrodynamics) to move "
                                "in the sea state", sea)
-    hydros = {b.name: BodyHydro(b.hydrodynamics, f"{p}.hydrodynamics") for p, b in moving}
+    tables = {b.name: _tables(b, p, case, result) for p, b in moving}
+    hydros = {b.name: BodyHydro(tables[b.name], f"{p}.hydrodynamics") for p, b in moving}
     density = spectrum_of(waves)
     given = omega is not None
     grid, covered, (lo, hi), band = _grid(hydros, waves, density, n_omega, omega)
@@ -328,8 +331,19 @@ def motions(result_or_case, *, n_omega: int = 400, omega=None, solver: str = "ip
     system = System(moving, hydros, result, K, labels, waves.toward_deg)
     if not given:
         grid = _refined(grid, system, lo, hi)
-    return _respond(case, result, moving, system, grid, density, forces,
-                    {**sea, "coverage": covered, "slow_drift_below_rad_s": band[0]})
+    out = _respond(case, result, moving, system, grid, density, forces,
+                   {**sea, "coverage": covered, "slow_drift_below_rad_s": band[0]})
+    return dataclasses.replace(out, hydrodynamics=tables)
+
+
+def _tables(body, path, case, result):
+    """A body's hydrodynamics as tables: given, or computed with Capytaine at its draft."""
+    h = body.hydrodynamics
+    if getattr(h, "source", "") != "capytaine":
+        return h
+    from .bem import capytaine_hydrodynamics
+    z = result.body_named(body.name)["z_m"] - case.environment.water_level
+    return capytaine_hydrodynamics(body, h, case.environment, z, f"{path}.hydrodynamics")
 
 
 def _respond(case, result, moving, system, grid, density, forces, sea) -> Motions:

@@ -172,12 +172,21 @@ class System:
         vals, vecs = eig(self.K, self.M0)
         fine = [np.linspace(0.0, mu_max, 801)]
         for lam, v in zip(vals, vecs.T):
-            if not (np.isfinite(lam) and lam.real > 0):
+            if not np.isfinite(lam):
+                continue
+            v = np.real(v)
+            if lam.real <= 1e-12 * max(abs(vals[np.isfinite(vals)]).max(), 1e-300):
+                # No restoring stiffness: a steady drift force would carry it away.
+                S0 = SF[0]
+                if v @ S0 @ v > 1e-9 * max(abs(np.trace(S0)), 1e-300) * (v @ v):
+                    main = self.labels[int(np.argmax(np.abs(v)))]
+                    raise CaseError(f"{self.slots[main.split('.', 1)[0]][2]}.free",
+                                    f"the slow drift pushes {main}, which nothing restrains "
+                                    "(no stiffness): hold that DOF or moor it")
                 continue
             wn = math.sqrt(lam.real)
             if not wn < mu_max:
                 continue
-            v = np.real(v)
             mass = v @ self.M0 @ v
             zeta = (v @ self.B_ext @ v) / (2 * wn * mass) if mass > 0 else 0.0
             Sn = _interp_stack(coarse, SF, np.array([wn]))[0]
@@ -197,7 +206,9 @@ class System:
                     "is usually a few % of critical)"), stacklevel=4)
             band = wn * max(zeta, 1e-4)
             fine.append(np.clip(wn + band * np.linspace(-40, 40, 801), 0.0, mu_max))
-        mu = np.unique(np.concatenate(fine))
+        # From just above zero: a DOF without stiffness and without slow force (a free yaw)
+        # leaves K singular at mu = 0 itself.
+        mu = np.unique(np.clip(np.concatenate(fine), 1e-6 * mu_max, None))
         H = transfer(mu, self.M0, self.B_ext, self.K)
         cross = H @ _interp_stack(coarse, SF, mu) @ np.conj(np.transpose(H, (0, 2, 1)))
         return mu, cross

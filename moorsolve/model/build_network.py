@@ -187,6 +187,10 @@ def _body(raw, path: str, environment: Environment) -> Body:
     if m.get("hydrodynamics") is not None:
         sea["hydrodynamics"] = hydrodynamics(m["hydrodynamics"], field_path(path, "hydrodynamics"),
                                              environment.water_density, environment.gravity)
+        if getattr(sea["hydrodynamics"], "source", "") == "capytaine" and not hull:
+            raise CaseError(field_path(path, "hull"),
+                            f"body {name!r}: source capytaine meshes the body's hull members; "
+                            "give hull: [{shape: cylinder | box, ...}]")
     if m.get("damping") is not None:
         sea["damping"] = extra_damping(m["damping"], field_path(path, "damping"))
     return Body(name=name, free=free, position=position, orientation_deg=orientation,

@@ -14,6 +14,8 @@ Schema (SI units)::
        mean_drift: [{heading_deg, values: [6 per omega]}, ...]}          (optional)
       | {source: wamit, files: [NAME.1, NAME.3, NAME.8 | NAME.9 | NAME.12d], ulen: > 0 [m]}
                                               files read by load_case (moorsolve.io.wamit)
+      | {source: capytaine, omega: [...], headings_deg: [...], panel_size: > 0 [m],
+         cache: FOLDER}                       BEM from the body's hull members (optional extra)
     bodies[i].damping: {linear: [6 values], critical_fraction: {DOF: 0..2, ...}}
 """
 
@@ -25,8 +27,8 @@ from collections.abc import Mapping
 from ..errors import CaseError
 from .bodies import DOFS
 from .fields import check_list, check_mapping, field_path, quantity
-from .sea import (DEFAULT_DURATION, SPECTRUM_MODELS, DriftTable, ExcitationTable, ExtraDamping,
-                  Hydrodynamics, Spectrum)
+from .sea import (DEFAULT_DURATION, SPECTRUM_MODELS, CapytaineHull, DriftTable,
+                  ExcitationTable, ExtraDamping, Hydrodynamics, Spectrum)
 from .units import show_value
 
 #: Largest peak enhancement factor accepted (DNV-RP-C205 gives 1 to 7 for real seas).
@@ -150,13 +152,13 @@ def hydrodynamics(raw, path: str, rho: float, g: float) -> Hydrodynamics:
     """``bodies[i].hydrodynamics`` as a :class:`Hydrodynamics` (SI, body frame)."""
     if isinstance(raw, Mapping) and raw.get("source") == "wamit":
         return _wamit(raw, path, rho, g)
+    if isinstance(raw, Mapping) and raw.get("source") == "capytaine":
+        return _capytaine(raw, path)
     m = check_mapping(raw, path, required=("source", "omega", "added_mass", "damping",
                                            "excitation"), optional=("mean_drift",))
     if m["source"] != "table":
         raise CaseError(field_path(path, "source"),
-                        f"{show_value(m['source'])} must be table or wamit (capytaine: not "
-                        "available in this version; compute the table with it and give it "
-                        "here)")
+                        f"{show_value(m['source'])} must be table, wamit or capytaine")
     return _table(m, path, "table")
 
 
@@ -197,6 +199,34 @@ def _wamit(raw, path: str, rho: float, g: float) -> Hydrodynamics:
     from .wamit_scale import dimensional
     data = dimensional(m["values"], ulen, rho, g)
     return _table(data, field_path(path, "files"), "wamit")
+
+
+def _capytaine(raw, path: str) -> CapytaineHull:
+    m = check_mapping(raw, path, required=("source", "omega", "headings_deg"),
+                      optional=("panel_size", "cache"))
+    opath = field_path(path, "omega")
+    omega = _array(m["omega"], opath, (None,), "a list of frequencies [rad/s]")
+    if len(omega) < 2:
+        raise CaseError(opath, f"{len(omega)} value(s); give at least 2 frequencies")
+    _increasing(omega, opath, "omega")
+    if omega[0] < OMEGA_RANGE[0] or omega[-1] > OMEGA_RANGE[1]:
+        raise CaseError(opath, f"frequencies must lie in [{OMEGA_RANGE[0]:g}, "
+                               f"{OMEGA_RANGE[1]:g}] rad/s")
+    hpath = field_path(path, "headings_deg")
+    headings = _array(m["headings_deg"], hpath, (None,), "a list of headings [deg]")
+    if not headings:
+        raise CaseError(hpath, "is empty; give at least one heading")
+    _increasing(headings, hpath, "headings_deg")
+    if headings[0] < -180 or headings[-1] >= 360 or headings[-1] - headings[0] >= 360:
+        raise CaseError(hpath, "headings must lie in [-180, 360) deg and span less than one turn")
+    panel = None
+    if m.get("panel_size") is not None:
+        panel = quantity(m["panel_size"], field_path(path, "panel_size"), "length", gt=0)
+    cache = m.get("cache")
+    if cache is not None and not (isinstance(cache, str) and cache.strip()):
+        raise CaseError(field_path(path, "cache"), f"{show_value(cache)} must be a folder name")
+    return CapytaineHull(omega=tuple(omega), headings_deg=tuple(headings), panel_size=panel,
+                         cache=cache)
 
 
 def extra_damping(raw, path: str) -> ExtraDamping:

@@ -87,3 +87,17 @@ class ExtraDamping:
 
     linear: tuple = (0.0,) * 6
     critical_fraction: tuple = (0.0,) * 6
+
+
+@dataclass(frozen=True)
+class CapytaineHull:
+    """Hydrodynamics to compute with Capytaine (BEM) from the body's ``hull`` members at
+    frequencies ``omega`` [rad/s] and wave headings ``headings_deg`` (toward, relative to
+    body x), panels of about ``panel_size`` [m] (None: a sixth of the smallest member
+    dimension), cached in ``cache`` (a folder; None: the user's cache folder)."""
+
+    omega: tuple
+    headings_deg: tuple
+    panel_size: Optional[float] = None
+    cache: Optional[str] = None
+    source: str = "capytaine"

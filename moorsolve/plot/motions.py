@@ -26,7 +26,7 @@ def _body(m, body):
 def _hydro(m, body):
     from ..dynamics.hydro import BodyHydro
     b = _body(m, body)
-    return b, BodyHydro(m.result.case.body_named(b.name).hydrodynamics, b.name)
+    return b, BodyHydro(m.hydrodynamics[b.name], b.name)
 
 
 def plot_wave_spectrum(m, ax=None):

@@ -84,7 +84,8 @@ def test_interpolation_frequency_and_heading():
      "bodies[0].hydrodynamics.excitation[1].heading_deg", "strictly increasing"),
     (lambda t: t["mean_drift"][0].update(values=[[1] * 5] * 5),
      "bodies[0].hydrodynamics.mean_drift[0].values", "6 values"),
-    (lambda t: t.update(source="capytaine"), "bodies[0].hydrodynamics.source", "table or wamit"),
+    (lambda t: t.update(source="bem"), "bodies[0].hydrodynamics.source",
+     "table, wamit or capytaine"),
     (lambda t: t["damping"][0][0].__setitem__(0, "big"), "bodies[0].hydrodynamics.damping",
      "numbers only"),
 ])
