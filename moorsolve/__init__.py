@@ -35,6 +35,7 @@ _NAMES = {
     "body_natural_periods": ".studies.stiffness", "restoring_curve": ".studies.stiffness",
     "natural_periods": ".studies.stiffness",
     "stiffness_bounds": ".studies.bounds",
+    "motions": ".dynamics.motions",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
@@ -103,7 +104,7 @@ def optimise(case, study, **options):
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
            "offset_envelope", "stiffness", "coupled_stiffness", "body_natural_periods",
-           "restoring_curve", "natural_periods", "sensitivity", "optimise", "stiffness_bounds",
+           "restoring_curve", "natural_periods", "motions", "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
            "MoorsolveError", "CaseError", "ConvergenceError", "MoorsolveWarning",

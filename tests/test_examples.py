@@ -64,3 +64,12 @@ def test_dock_chain_optimisation(tmp_path, capsys, monkeypatch):
     assert saved > 0
     png = tmp_path / "dock_chain_optimisation.png"
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_cylinder_buoy_hydrodynamics(capsys, monkeypatch):
+    # The example writes the table the shipped case carries, value for value.
+    import yaml
+    out = run_example("cylinder_buoy_hydrodynamics.py", [], capsys, monkeypatch)
+    table = yaml.safe_load(out)["hydrodynamics"]
+    case = yaml.safe_load((ROOT / "cases" / "buoy_sea.yaml").read_text())
+    assert table == case["bodies"][0]["hydrodynamics"]

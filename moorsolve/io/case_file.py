@@ -19,6 +19,7 @@ from ..errors import CaseError, UnusedInputWarning
 from ..model import Case
 from ..model.build import build_case
 from .bathymetry import resolve_in_case
+from .wamit import resolve_in_case as resolve_wamit
 from ..model.fields import FAIRLEAD_Z_MAX
 from ..model.units import show_value
 from ..model.usage import unused_inputs
@@ -148,6 +149,10 @@ def load_case(source, *, keep_source: bool = True) -> Case:
     # A bathymetry file is read here (io), relative to the case file; the source keeps
     # its absolute name, so a sweep's edited copy reads it from anywhere.
     built, data = resolve_in_case(data, base)
+    # WAMIT files likewise: read here, their names kept absolute in the source.
+    built, kept = resolve_wamit(built, base)
+    if kept is not built:
+        data = resolve_wamit(data, base)[1]
     try:
         case = build_case(built, default_name)
     except RecursionError:

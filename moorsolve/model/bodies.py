@@ -99,6 +99,12 @@ class Body:
         ``"water"`` (floats: its case-file height is above the still water, which is
         ``water_level`` above the datum) or ``"seabed"`` (its case-file height is on the
         datum, whatever the tide); :data:`FIXED_TO`.
+    hydrodynamics : Hydrodynamics or None
+        Frequency-dependent added mass, damping, excitation and mean drift
+        (:class:`~moorsolve.model.sea.Hydrodynamics`): the body moves in a sea state.
+    damping : ExtraDamping or None
+        Damping added to the radiation damping for motions
+        (:class:`~moorsolve.model.sea.ExtraDamping`).
     """
 
     name: str = "body"
@@ -114,6 +120,8 @@ class Body:
     added_mass: Optional[tuple] = None
     inertia: Optional[tuple] = None
     fixed_to: str = "water"
+    hydrodynamics: Optional[object] = None
+    damping: Optional[object] = None
 
     @property
     def pose(self) -> tuple:

@@ -29,7 +29,8 @@ Schema (SI units, ``[...]`` lists)::
                                                profile: [[z <= 0, speed], ...] z ascending
                                                (speed signed along toward_deg), or
                                                [[z, speed >= 0, toward_deg], ...]
-      waves: {hs: >= 0 [m], toward_deg | from_deg}   optional
+      waves: {hs: >= 0 [m], toward_deg | from_deg,   optional; tp, spectrum, duration
+              tp, spectrum, duration}          make it a sea state (:mod:`.build_sea`)
       water_level: [m]                         still water above the datum (tide); default 0
     line_types:                                required, at least one
       NAME: {weight_in_water [N/m or mass/m], ea > 0 [N], mbl > 0 [N], diameter > 0 [m],
@@ -87,6 +88,7 @@ from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
 from .build_network import build_network, check_held
+from .build_sea import sea_state_fields
 from .build_contact import build_contacts
 from .contact import Contacts
 from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS,
@@ -146,10 +148,11 @@ def _current_profile(raw, ppath: str, compass: Compass) -> tuple:
 
 
 def _waves(raw, path: str, compass: Compass) -> Waves:
-    m = check_mapping(raw, path, required=("hs",), optional=DIRECTION_KEYS)
+    m = check_mapping(raw, path, required=("hs",),
+                      optional=DIRECTION_KEYS + ("tp", "spectrum", "duration"))
     hs = quantity(m["hs"], field_path(path, "hs"), "length", ge=0, le=MAX_HS)
     toward = flow_direction(m, path, compass, _angle)
-    return Waves(hs=hs, toward_deg=toward)
+    return Waves(hs=hs, toward_deg=toward, **sea_state_fields(m, path, hs))
 
 
 def _environment(raw, path: str) -> Environment:

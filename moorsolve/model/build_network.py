@@ -19,7 +19,9 @@ Schema (SI units; see CONTRACT.md "The scene as a network")::
                                               rest) relative to the still water, rising
                                               with environment.water_level; seabed: a
                                               structure on the datum (not free in heave)
-        added_mass: 6x6, inertia: [Ixx, Iyy, Izz]   for natural periods only
+        added_mass: 6x6, inertia: [Ixx, Iyy, Izz]   for natural periods (inertia: motions too)
+        hydrodynamics: {source: table | wamit, ...}  frequency-dependent (:mod:`.build_sea`)
+        damping: {linear: [6], critical_fraction: {DOF: fraction}}   extra, for motions
         loads: {force: [Fx, Fy, Mz] or [Fx, Fy, Fz, Mx, My, Mz], wind, current, wave_drift}
     points:                                   optional list
       - {name, position: [x, y, z] or [x, y] (on the seabed), free: bool, mass >= 0 [kg],
@@ -56,6 +58,7 @@ from .bodies import DOFS, FIXED_TO, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Bod
     Hydrostatics, HullMember, Point
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
+from .build_sea import extra_damping, hydrodynamics
 from .environment import Environment
 from .fields import (FAIRLEAD_Z_MAX, check_choices, MAX_AREA, MAX_LINE_LENGTH, MIN_LINE_LENGTH,
                      check_list,
@@ -67,7 +70,7 @@ from .units import format_si, show_value
 
 _BODY_KEYS = ("position", "orientation_deg", "free", "mass", "centre_of_gravity",
               "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads",
-              "fixed_to")
+              "fixed_to", "hydrodynamics", "damping")
 
 
 def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -126,7 +129,7 @@ def _hull_member(raw, path: str) -> HullMember:
     return HullMember(shape=shape, bottom=bottom, top=top, centre=centre, **dims)
 
 
-def _body(raw, path: str) -> Body:
+def _body(raw, path: str, environment: Environment) -> Body:
     m = check_mapping(raw, path, required=("name",), optional=_BODY_KEYS)
     name = check_name(m["name"], field_path(path, "name"), "body name")
     position = ((0.0, 0.0, 0.0) if "position" not in m
@@ -186,10 +189,20 @@ def _body(raw, path: str) -> Body:
     loads = (BodyLoads() if m.get("loads") is None
              else _loads(m["loads"], field_path(path, "loads"), (3, 6)))
     fixed_to = fixed_to_field(m, path, free)
+    sea = {}
+    if m.get("hydrodynamics") is not None:
+        sea["hydrodynamics"] = hydrodynamics(m["hydrodynamics"], field_path(path, "hydrodynamics"),
+                                             environment.water_density, environment.gravity)
+        if getattr(sea["hydrodynamics"], "source", "") == "capytaine" and not hull:
+            raise CaseError(field_path(path, "hull"),
+                            f"body {name!r}: source capytaine meshes the body's hull members; "
+                            "give hull: [{shape: cylinder | box, ...}]")
+    if m.get("damping") is not None:
+        sea["damping"] = extra_damping(m["damping"], field_path(path, "damping"))
     return Body(name=name, free=free, position=position, orientation_deg=orientation,
                 mass=mass, centre_of_gravity=cg, hydrostatics=hydro, hull=hull,
                 stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia,
-                fixed_to=fixed_to)
+                fixed_to=fixed_to, **sea)
 
 
 def fixed_to_field(m: Mapping, path: str, free: tuple) -> str:
@@ -359,7 +372,8 @@ def build_network(m: Mapping, environment: Environment, line_types: dict) -> tup
     """``(bodies, points, lines)`` of a network-form case mapping (see the module notes)."""
     body_items = [] if m.get("bodies") is None else check_list(
         m["bodies"], "bodies", "a list of bodies {name, ...}")
-    bodies = _unique([_body(raw, field_path("bodies", i)) for i, raw in enumerate(body_items)],
+    bodies = _unique([_body(raw, field_path("bodies", i), environment)
+                      for i, raw in enumerate(body_items)],
                      "bodies", "body")
     point_items = [] if m.get("points") is None else check_list(
         m["points"], "points", "a list of points {name, position, ...}")

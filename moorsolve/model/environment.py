@@ -61,10 +61,24 @@ class Flow:
 
 @dataclass(frozen=True)
 class Waves:
-    """An irregular sea: significant height ``hs`` [m] travelling toward ``toward_deg``."""
+    """An irregular sea: significant height ``hs`` [m] travelling toward ``toward_deg``.
+
+    With a peak period ``tp`` [s] (or a tabulated spectrum) it is a sea state: its
+    ``spectrum`` (:class:`~moorsolve.model.sea.Spectrum`) and storm ``duration`` [s] drive
+    the bodies' motions (:mod:`moorsolve.dynamics`). Without, only the drift load models
+    hear ``hs``.
+    """
 
     hs: float
     toward_deg: float = 0.0
+    tp: Optional[float] = None
+    spectrum: Optional[object] = None
+    duration: float = 3 * 3600.0
+
+    @property
+    def sea_state(self) -> bool:
+        """Whether the waves are a spectrum (a period or a table given), not only a height."""
+        return self.spectrum is not None
 
 
 @dataclass(frozen=True)

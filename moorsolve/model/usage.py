@@ -47,10 +47,13 @@ def unused_inputs(case: Case) -> list[tuple[str, str]]:
     bodies = _bodies(case)
     drag_types = _line_drag(case)
     out = []
+    moving = [path for path, body in bodies if getattr(body, "hydrodynamics", None) is not None]
     for flow, model in _FLOW_MODEL.items():
         if getattr(env, flow) is None:
             continue
         if any(getattr(body.loads, model) is not None for _, body in bodies):
+            continue
+        if flow == "waves" and env.waves.sea_state and moving:
             continue
         if flow == "current" and drag_types:
             continue
@@ -64,6 +67,17 @@ def unused_inputs(case: Case) -> list[tuple[str, str]]:
                   f"no body declares a {kind} load model")
         out.append((f"environment.{flow}",
                     f"given but not used: {holder}; add {what} for it to act"))
+    if env.waves is not None and env.waves.sea_state and not moving:
+        out.append(("environment.waves.tp" if env.waves.tp is not None
+                    else "environment.waves.spectrum",
+                    "given but not used by the static solve: no body has hydrodynamics "
+                    "(bodies[i].hydrodynamics) to move in the sea state"))
+    for path, body in bodies:
+        if getattr(body, "hydrodynamics", None) is not None and (
+                env.waves is None or not env.waves.sea_state):
+            out.append((f"{path}.hydrodynamics",
+                        "given but not used: the environment has no sea state (give "
+                        "environment.waves with hs and tp)"))
     if env.current is not None and env.current.profile and not drag_types:
         out.append(("environment.current.profile",
                     "given but not used: only lines with drag data see the current profile "
