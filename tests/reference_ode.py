@@ -413,19 +413,30 @@ def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None, strain
 
 
 def reference_interpolant(strain, tension):
-    """The table law by scipy: PCHIP's slopes, the end slopes kept between ``delta^2 /
-    d_next`` and ``3 delta`` (scipy would take 0 where its estimate is not positive;
-    moorsolve's documented rule, so that the rope is not rigid beyond the table)."""
+    """The table law by scipy: PCHIP's slopes, taken as they are wherever positive; an end
+    slope scipy sets to 0 or nearly (below 1e-9 of its secant) is
+    ``min(delta^2 / d_next, 3 delta)`` instead (moorsolve's documented rule, so that the
+    rope is not rigid beyond the table)."""
     T, e = np.asarray(tension, float), np.asarray(strain, float)
     d = PchipInterpolator(T, e).derivative()(T)
     if len(T) > 2:
         delta = np.diff(e) / np.diff(T)
-        h = np.diff(T)
-        for i, (h0, h1, m0, m1, dn) in ((0, (h[0], h[1], delta[0], delta[1], d[1])),
-                                        (-1, (h[-1], h[-2], delta[-1], delta[-2], d[-2]))):
-            three = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
-            d[i] = min(max(three, m0 * m0 / dn), 3 * m0)
+        for i, (m0, dn) in ((0, (delta[0], d[1])), (-1, (delta[-1], d[-2]))):
+            if not d[i] > 1e-9 * m0:
+                d[i] = min(m0 * m0 / dn, 3 * m0)
     return CubicHermiteSpline(T, e, d)
+
+
+def linear_table_reference(strain, tension):
+    """A table joined by chords (MoorDyn's reading of a curve file) as a plain function:
+    ``numpy.interp`` inside, the last chord continued beyond the last row."""
+    slope = (strain[-1] - strain[-2]) / (tension[-1] - tension[-2])
+
+    def f(T):
+        if T <= tension[-1]:
+            return float(np.interp(T, tension, strain))
+        return strain[-1] + slope * (T - tension[-1])
+    return f
 
 
 def table_reference(strain, tension):

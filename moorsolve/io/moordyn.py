@@ -76,8 +76,8 @@ def line_type_data(scene: MDScene, report: ImportReport,
             entry = {"weight_in_water": weight, "stretch": lt.stretch}
             source = ("the SYROPE rope's static law" if is_syrope(lt.ea_token)
                       else f"EA from the curve file {lt.ea_token.split('|')[0]!r}")
-            stiffness = (f"{source}: a table law of {len(lt.stretch['strain'])} rows "
-                         "(moorsolve interpolates them by a monotone cubic, MoorDyn linearly)")
+            stiffness = (f"{source}: a table law of {len(lt.stretch['strain'])} rows, "
+                         "linear between the rows as MoorDyn reads them")
         else:
             entry = {"weight_in_water": weight, "ea": lt.ea}
             static = (" (the static part of " + repr(lt.ea_token) + ")"

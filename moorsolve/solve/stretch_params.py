@@ -16,7 +16,7 @@ import casadi as ca
 import numpy as np
 
 from ..model import Case
-from ..physics.stretch import BARANOV, TABLE, NumericLaw, StretchModel
+from ..physics.stretch import NumericLaw, StretchModel
 
 __all__ = ["law_model", "stretch_parameters", "law_slot", "line_laws", "numeric_law",
            "start_ea", "stiffness_scale_column", "baranov_n_column"]
@@ -25,11 +25,7 @@ __all__ = ["law_model", "stretch_parameters", "law_slot", "line_laws", "numeric_
 def law_model(line_type) -> StretchModel | None:
     """The :class:`StretchModel` of a line type with a law other than Hooke's, else None."""
     law = line_type.stretch
-    if law is None:
-        return None
-    if law.model == "baranov":
-        return StretchModel(BARANOV)
-    return StretchModel(TABLE, law.rows)
+    return None if law is None else law.structure()
 
 
 def stretch_parameters(case: Case) -> np.ndarray:
