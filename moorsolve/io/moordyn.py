@@ -164,6 +164,11 @@ def _network_reason(graph: Graph, chains) -> str | None:
         return "lines close a loop through free points"
     for first, chain, last in chains:
         ids = ", ".join(graph.line_label(i) for i, _ in chain)
+        if scene.bathymetry is not None and len(chain) > 1:
+            # A grid takes one-segment lines (each its own seabed plane) and free points,
+            # not multi-segment legs.
+            return (f"line(s) {ids} join through free points on a bathymetry grid "
+                    "(a grid takes the free points as points, not as leg joints)")
         kinds = {first.kind, last.kind}
         if kinds == {"carrier"}:
             return f"line(s) {ids} join two fairleads ({first.label}, {last.label})"
