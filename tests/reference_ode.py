@@ -409,23 +409,81 @@ def integrate_through_surface(*, H, V, L, w_water, w_air, z_top, ea=None, strain
     return dict(X=-x, Z=z_top - z, VA=tz, **crossed)
 
 
+def integrate_air_and_water(*, H, V, L, w_water, w_air, z_top, ea=None, strain=None):
+    """A suspended line from its upper end, ``z_top`` above the still-water level, down its
+    whole length: weight ``w_air`` per unstretched metre wherever the line is above z = 0
+    and ``w_water`` below, however often it crosses (each crossing is an event; the
+    integration restarts there with the other weight). No seabed.
+
+    Returns ``X``, ``Z`` (the upper end relative to the lower), ``VA`` (the line's upward
+    pull on its lower end), ``crossings`` (the unstretched arc lengths from the upper end
+    where the line crosses z = 0) and ``air_length`` (its unstretched length above it).
+    """
+    factor = _stretch_factor(ea, strain)
+
+    def rhs_for(w):
+        def rhs(s, y):
+            x, z, tx, tz = y
+            T = math.hypot(tx, tz)
+            return [factor(T) * tx / T, factor(T) * tz / T, 0.0, w]
+        return rhs
+
+    y = [0.0, float(z_top), float(H), float(V)]
+    s, above, crossings, air = L, z_top > 0, [], 0.0
+    scale = max(L, abs(z_top))
+    atol = [1e-16 * scale] * 2 + [1e-16 * max(abs(V), H)] * 2
+    while s > 0:
+        def crossing(t, yy):
+            return yy[1]
+        crossing.terminal = True
+        # Integrating toward s = 0: from above the water z falls through 0, from below it
+        # rises (the restart at z = 0 is not a crossing of the sought direction).
+        crossing.direction = -1 if above else 1
+        sol = solve_ivp(rhs_for(w_air if above else w_water), (s, 0.0), y, method="DOP853",
+                        rtol=RTOL, atol=atol, events=crossing)
+        if sol.status == 1 and sol.t_events[0][0] < s:
+            s_c = sol.t_events[0][0]
+            y = list(sol.y_events[0][0])
+            y[1] = 0.0
+            air += (s - s_c) if above else 0.0
+            crossings.append(L - s_c)
+            s, above = s_c, not above
+        else:
+            air += s if above else 0.0
+            y = list(sol.y[:, -1])
+            s = 0.0
+    x, z, tx, tz = y
+    return dict(X=-x, Z=z_top - z, VA=tz, crossings=crossings, air_length=air)
+
+
 # ---- a tension-strain table as a plain function ---------------------------------------------
 
 
 def reference_interpolant(strain, tension):
-    """The table law by scipy: PCHIP's slopes, the end slopes kept between ``delta^2 /
-    d_next`` and ``3 delta`` (scipy would take 0 where its estimate is not positive;
-    moorsolve's documented rule, so that the rope is not rigid beyond the table)."""
+    """The table law by scipy: PCHIP's slopes, taken as they are wherever positive; an end
+    slope scipy sets to 0 or nearly (below 1e-9 of its secant) is
+    ``min(delta^2 / d_next, 3 delta)`` instead (moorsolve's documented rule, so that the
+    rope is not rigid beyond the table)."""
     T, e = np.asarray(tension, float), np.asarray(strain, float)
     d = PchipInterpolator(T, e).derivative()(T)
     if len(T) > 2:
         delta = np.diff(e) / np.diff(T)
-        h = np.diff(T)
-        for i, (h0, h1, m0, m1, dn) in ((0, (h[0], h[1], delta[0], delta[1], d[1])),
-                                        (-1, (h[-1], h[-2], delta[-1], delta[-2], d[-2]))):
-            three = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
-            d[i] = min(max(three, m0 * m0 / dn), 3 * m0)
+        for i, (m0, dn) in ((0, (delta[0], d[1])), (-1, (delta[-1], d[-2]))):
+            if not d[i] > 1e-9 * m0:
+                d[i] = min(m0 * m0 / dn, 3 * m0)
     return CubicHermiteSpline(T, e, d)
+
+
+def linear_table_reference(strain, tension):
+    """A table joined by chords (MoorDyn's reading of a curve file) as a plain function:
+    ``numpy.interp`` inside, the last chord continued beyond the last row."""
+    slope = (strain[-1] - strain[-2]) / (tension[-1] - tension[-2])
+
+    def f(T):
+        if T <= tension[-1]:
+            return float(np.interp(T, tension, strain))
+        return strain[-1] + slope * (T - tension[-1])
+    return f
 
 
 def table_reference(strain, tension):

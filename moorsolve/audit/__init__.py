@@ -14,6 +14,8 @@ the solver calls it, never the reverse.
 - :mod:`.bodies`: the balance of every free body and free point.
 """
 
-from .run import AuditFailure, audit, audit_findings, closed_form_audit, result_warnings
+from .run import (AuditFailure, air_hint, audit, audit_findings, closed_form_audit,
+                  result_warnings)
 
-__all__ = ["audit", "audit_findings", "closed_form_audit", "result_warnings", "AuditFailure"]
+__all__ = ["audit", "audit_findings", "closed_form_audit", "result_warnings", "AuditFailure",
+           "air_hint"]

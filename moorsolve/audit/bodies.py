@@ -98,7 +98,8 @@ def body_findings(result, case, positions, forces, t_lines: float) -> list[str]:
         on_point = rows.get(("point", point.name))
         if on_point is not None:
             total += forces[on_point].sum(axis=0)
-        gx, gy = env.seabed.gradient
+        # The seabed's slope where the point rests (a bathymetry grid's, or the plane's).
+        gx, gy = env.seabed.slope_at(reported["x_m"], reported["y_m"])
         normal = np.array([-gx, -gy, 1.0]) / math.sqrt(1 + gx * gx + gy * gy)
         total += reported.get("seabed_reaction_N", 0.0) * normal
         if not np.linalg.norm(total) <= tol:

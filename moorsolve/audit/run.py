@@ -79,9 +79,36 @@ def audit(result, case, problem=None, post=None, full: bool = False) -> list[str
         c = result.certificate
         raise AuditFailure(
             "the solution certified but its reported quantities fail the independent audit: "
-            + "; ".join(problems), residual_N=c.force_N, residual_Nm=c.moment_Nm,
-            status=c.status, iterations=c.iterations, result=result)
+            + "; ".join(problems) + air_hint(case, result.legs), residual_N=c.force_N,
+            residual_Nm=c.moment_Nm, status=c.status, iterations=c.iterations, result=result)
     return [line.name for line in case.lines]
+
+
+def air_hint(case, legs) -> str:
+    """What the user can change when lines with an end above the water are modelled with
+    their weight in water there (no ``weight_in_air``, or a multi-segment or lumped-node
+    line): a sentence to close an audit failure's message, or ``""``."""
+    level = case.environment.water_level
+    named = {leg.name for leg in legs}
+    hints = []
+    for leg_case in case.lines:
+        if leg_case.name not in named:
+            continue
+        leg = next(leg for leg in legs if leg.name == leg_case.name)
+        if not (leg.fairlead[2] > level or leg.anchor[2] > level):
+            continue
+        types = [seg.line_type for seg in leg_case.segments]
+        if all(lt.weight_in_water == 0 and lt.weight_in_air is None for lt in types):
+            continue
+        if any(lt.weight_in_air is None for lt in types):
+            hints.append(f"line {leg_case.name} has an end above the water and no "
+                         "weight_in_air: give its line type(s) one")
+        elif leg_case.multi_segment or is_lumped(case, leg_case):
+            hints.append(f"line {leg_case.name} has an end above the water but, as a "
+                         "multi-segment or lumped-node line, weighs its weight in water "
+                         "there: give it as one segment (its own line type) or keep its "
+                         "ends below the water")
+    return (" (" + "; ".join(hints) + ")") if hints else ""
 
 
 def audit_findings(result, case, boundaries_only: bool = False) -> list[str]:

@@ -76,8 +76,8 @@ def line_type_data(scene: MDScene, report: ImportReport,
             entry = {"weight_in_water": weight, "stretch": lt.stretch}
             source = ("the SYROPE rope's static law" if is_syrope(lt.ea_token)
                       else f"EA from the curve file {lt.ea_token.split('|')[0]!r}")
-            stiffness = (f"{source}: a table law of {len(lt.stretch['strain'])} rows "
-                         "(moorsolve interpolates them by a monotone cubic, MoorDyn linearly)")
+            stiffness = (f"{source}: a table law of {len(lt.stretch['strain'])} rows, "
+                         "linear between the rows as MoorDyn reads them")
         else:
             entry = {"weight_in_water": weight, "ea": lt.ea}
             static = (" (the static part of " + repr(lt.ea_token) + ")"
@@ -164,6 +164,11 @@ def _network_reason(graph: Graph, chains) -> str | None:
         return "lines close a loop through free points"
     for first, chain, last in chains:
         ids = ", ".join(graph.line_label(i) for i, _ in chain)
+        if scene.bathymetry is not None and len(chain) > 1:
+            # A grid takes one-segment lines (each its own seabed plane) and free points,
+            # not multi-segment legs.
+            return (f"line(s) {ids} join through free points on a bathymetry grid "
+                    "(a grid takes the free points as points, not as leg joints)")
         kinds = {first.kind, last.kind}
         if kinds == {"carrier"}:
             return f"line(s) {ids} join two fairleads ({first.label}, {last.label})"

@@ -16,9 +16,11 @@ MoorDyn takes at most 30 points (``nCoef``), splits rows on blanks, and its C re
 an empty line, so a file it reads has no blank line, not even a final newline; the writer
 here writes it so. (MoorPy's reader wants the name in quotes and a closing ``---`` line,
 which MoorDyn would not read: MoorDyn's form is written.) MoorDyn interpolates linearly
-and holds the last tension beyond the table; moorsolve interpolates the same rows by a
-monotone cubic and continues linearly (:mod:`moorsolve.physics.stretch`): the two agree at
-the rows.
+between the rows, so an imported curve is a table law with ``interpolation: linear``: the
+same strain at every tension. Beyond the last row MoorDyn holds the last tension (the rope
+would stretch without bound); moorsolve continues the last chord, so a statics solve past
+the table still has a rope. A monotone-cubic law written out is sampled at up to
+``MAX_POINTS`` rows (:func:`sample_cubic`), and its departure reported.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from pathlib import Path
 from ..errors import CaseError
 
 __all__ = ["MAX_POINTS", "is_number", "read_curve", "curve_text", "curve_file_name",
-           "sample_law", "sample_table"]
+           "sample_law", "sample_table", "sample_cubic", "chord_departure"]
 
 #: MoorDyn's ``nCoef``: the most points a curve file may hold.
 MAX_POINTS = 30
@@ -55,7 +57,8 @@ def read_curve(folder: Path, token: str, error) -> dict:
     """The table law of curve file ``token`` (quotes stripped) in ``folder``.
 
     ``error(message)`` makes the exception to raise (the MoorDyn file and line). Returns
-    ``{"model": "table", "strain": [...], "tension": [...]}`` as a case file holds it.
+    ``{"model": "table", "strain": [...], "tension": [...], "interpolation": "linear"}`` as
+    a case file holds it: MoorDyn's own linear reading of the rows.
     """
     name = token.strip().strip("'\"")
     path = folder / name
@@ -84,7 +87,7 @@ def read_curve(folder: Path, token: str, error) -> dict:
     if len(strain) > MAX_POINTS:
         raise error(f"column 'EA': curve file {name} has {len(strain)} rows; MoorDyn reads at "
                     f"most {MAX_POINTS}")
-    return {"model": "table", "strain": strain, "tension": tension}
+    return {"model": "table", "strain": strain, "tension": tension, "interpolation": "linear"}
 
 
 def curve_file_name(prefix: str, line_type: str) -> str:
@@ -126,4 +129,47 @@ def sample_table(law) -> tuple:
             return abs(tension[k] - (t0 + (t2 - t0) * (e1 - e0) / (e2 - e0))) / t2
         k = min(range(1, len(strain) - 1), key=miss)
         del strain[k], tension[k]
+    return strain, tension
+
+
+#: Samples per interval when measuring how far MoorDyn's chords depart from a cubic law.
+_PROBES = 64
+
+
+def chord_departure(law, strain, tension) -> float:
+    """Largest departure of MoorDyn's chords through ``(strain, tension)`` from ``law``
+    (a :class:`~moorsolve.model.stretch.StretchLaw`) up to the last row: the tension
+    error at the law's strain, relative to the last row's tension [-]."""
+    worst = 0.0
+    for k in range(len(strain) - 1):
+        T = [tension[k] + (tension[k + 1] - tension[k]) * (i + 1) / (_PROBES + 1)
+             for i in range(_PROBES)]
+        eps = law.strains(T)
+        slope = (tension[k + 1] - tension[k]) / (strain[k + 1] - strain[k])
+        chord = tension[k] + slope * (eps - strain[k])
+        worst = max(worst, float(max(abs(chord - T))))
+    return worst / tension[-1]
+
+
+def sample_cubic(law) -> tuple:
+    """``(strain, tension)`` rows for MoorDyn (which joins rows by chords) of a
+    monotone-cubic table law: its own rows (cut to ``MAX_POINTS`` by :func:`sample_table`
+    when more), then points of the cubic added one at a time where the chords miss the
+    law most (the middle tension of the worst interval), up to ``MAX_POINTS`` rows. The
+    chords then depart from the law by about 1/16 of the original intervals' departure
+    where the added rows go; :func:`chord_departure` gives what is left."""
+    strain, tension = sample_table(law) if law.rows > MAX_POINTS else (list(law.strain),
+                                                                       list(law.tension))
+    strain, tension = list(strain), list(tension)
+
+    def miss(k):
+        return chord_departure(law, strain[k:k + 2], tension[k:k + 2]) * tension[k + 1]
+
+    misses = [miss(k) for k in range(len(strain) - 1)]
+    while len(strain) < MAX_POINTS:
+        k = max(range(len(misses)), key=misses.__getitem__)
+        T = (tension[k] + tension[k + 1]) / 2
+        strain.insert(k + 1, float(law.strains([T])[0]))
+        tension.insert(k + 1, T)
+        misses[k:k + 1] = [miss(k), miss(k + 1)]
     return strain, tension

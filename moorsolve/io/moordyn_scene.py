@@ -144,16 +144,18 @@ class MDScene:
 
 def _onto_grid(points: dict, depth: float, grid: dict, converted: list) -> None:
     """Fixed points on MoorDyn's flat seabed (z = -depth, or 'seabed') or below the grid's
-    surface are put on that surface: they are anchors on the bathymetry."""
+    surface are put on that surface: they are anchors on the bathymetry. A free point below
+    the surface starts on it (MoorDyn's seabed pushes it up there)."""
     from ..model.bathymetry import bathymetry_from_mapping
 
     surface = bathymetry_from_mapping(grid, "SeafloorFile")
     for p in list(points.values()):
-        if p.kind != "fixed":
+        if p.kind not in ("fixed", "free"):
             continue
         x, y, z = p.position
         bed = surface.height(x, y)
-        if z != bed and (abs(z + depth) <= 1e-9 * depth or z < bed):
+        flat = p.kind == "fixed" and abs(z + depth) <= 1e-9 * depth
+        if z != bed and (flat or z < bed):
             points[p.id] = replace(p, position=(x, y, bed))
             converted.append(f"point {p.id} (line {p.line}): z = {z:g} m is put on the "
                              f"bathymetry's surface, z = {bed:.6g} m")

@@ -17,7 +17,7 @@ tension at ``xi = (eps - eps_min)/(eps_max - eps_min)`` is ``Tmax0 xi`` (linear)
 ``Tmax0 xi (k2 xi + 1 - k2)`` (quadratic) or ``Tmax0 (1 - e^(k2 xi))/(1 - e^k2)`` (exp).
 Above ``Tmax0`` the rope is back on the original curve (and ``Tmax`` follows it up). The two
 meet at ``(eps_max, Tmax0)``, so the static law is one table: the working curve's points,
-then the original curve's beyond ``Tmax0``.
+then the original curve's beyond ``Tmax0``, interpolated linearly as MoorDyn does.
 
 The working curve carries no tension below ``eps_min``: a rope once loaded keeps a permanent
 stretch. A case's table law starts at (0, 0), so each SYROPE line becomes its own line type
@@ -196,7 +196,8 @@ def apply_syrope(md, types: dict, lines: dict, converted: list, ignored: list) -
         name = f"{lt.name}_line{line.id}"
         types[name] = replace(lt, name=name, mass=lt.mass / scale,
                               diameter=lt.diameter / math.sqrt(scale), syrope=None,
-                              stretch={"model": "table", "strain": strain, "tension": tension},
+                              stretch={"model": "table", "strain": strain, "tension": tension,
+                                       "interpolation": "linear"},
                               columns={k: v for k, v in lt.columns.items() if k != "ea"})
         lines[line.id] = replace(line, type=types[name], length=line.length * scale)
         converted.append(

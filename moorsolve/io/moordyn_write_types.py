@@ -5,11 +5,17 @@ NumSegs. Shared by the legs-form and network-form writers."""
 
 from __future__ import annotations
 
+import logging
 import math
 
 from ..errors import CaseError
-from .moordyn_curves import (MAX_POINTS, curve_file_name, curve_text, is_number, sample_law,
-                             sample_table)
+from .moordyn_curves import (MAX_POINTS, chord_departure, curve_file_name, curve_text,
+                             is_number, sample_cubic, sample_law, sample_table)
+
+log = logging.getLogger(__name__)
+#: Departure of MoorDyn's chords from a monotone-cubic law (relative to its last row's
+#: tension) above which the export warns.
+CHORD_WARNING = 1e-3
 
 STEEL_DENSITY = 7850.0          # [kg/m^3], for a line type without a diameter
 CHAIN_COEFFICIENTS = {"cd": "1.333", "ca": "1.0", "cdax": "0.639", "caax": "0.5"}
@@ -74,11 +80,23 @@ def _curve(lt, prefix: str, curves: dict) -> tuple:
     a curve file's name, its text put into ``curves``."""
     law = lt.stretch
     title = f"{lt.name}: {law.describe()}"
-    if law.model == "table" and law.rows <= MAX_POINTS:
+    if law.model == "table" and law.interpolation == "linear" and law.rows <= MAX_POINTS:
         strain, tension = law.strain, law.tension
-    elif law.model == "table":
+    elif law.model == "table" and law.interpolation == "linear":
         strain, tension = sample_table(law)
         title += f", {MAX_POINTS} of its rows (MoorDyn reads at most {MAX_POINTS})"
+    elif law.model == "table":
+        # MoorDyn joins the rows by chords: the cubic is sampled between them.
+        strain, tension = sample_cubic(law)
+        departure = chord_departure(law, strain, tension)
+        title += (f", its monotone cubic sampled at {len(strain)} rows (chords within "
+                  f"{departure:.2g} of the top tension)")
+        if departure > CHORD_WARNING:
+            log.warning("line type %s: MoorDyn's linear interpolation of the %d rows written "
+                        "departs from the monotone-cubic table by %.2g of its top tension "
+                        "(MoorDyn reads at most %d rows); give interpolation: linear with "
+                        "the rows MoorDyn should use", lt.name, len(strain), departure,
+                        MAX_POINTS)
     else:
         strain, tension = sample_law(law, lt.mbl)
     name = curve_file_name(prefix, lt.name)

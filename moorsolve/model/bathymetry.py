@@ -184,9 +184,10 @@ def bathymetry_from_mapping(raw, path: str, source: str = "inline") -> Bathymetr
 def check_scene(environment, lines, points, contacts, network: bool) -> None:
     """Refuse what a bathymetry grid does not model yet, naming the field.
 
-    Each one-segment line gets its own seabed plane (:mod:`moorsolve.solve.bathymetry`);
-    multi-segment and lumped-node lines, free points resting on the seabed and piles read
-    one seabed plane for the whole scene, which a grid does not give.
+    Each one-segment line gets its own seabed plane, and each free point the plane touching
+    the grid where it rests (:mod:`moorsolve.solve.bathymetry`); multi-segment and
+    lumped-node lines and piles read one seabed plane for the whole scene, which a grid
+    does not give.
     """
     if environment.seabed.bathymetry is None:
         return
@@ -203,9 +204,6 @@ def check_scene(environment, lines, points, contacts, network: bool) -> None:
                             "a line with drag data in a current is a lumped-node line, which "
                             "a bathymetry seabed does not take yet (remove the drag data or "
                             "the current)")
-    if points:
-        raise CaseError(f"points[{points[0].name}]", "free points on a bathymetry seabed are "
-                        "not modelled yet (give environment.seabed.gradient for a plane)")
     if contacts.piles:
         raise CaseError(f"piles[{contacts.piles[0].name}]", "piles on a bathymetry seabed are "
                         "not modelled yet (give environment.seabed.gradient for a plane)")

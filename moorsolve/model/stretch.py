@@ -4,13 +4,15 @@ Case-file forms (CONTRACT.md, "Nonlinear line stiffness")::
 
     stretch: {model: hooke, ea: 5.6e8}              same as ``ea: 5.6e8``
     stretch: {model: baranov, n: 2.0e-4}            strain n sqrt(T), n in N^-1/2
-    stretch: {model: table, strain: [0, 0.01, ...], tension: [0, 1.2e5, ...]}
+    stretch: {model: table, strain: [0, 0.01, ...], tension: [0, 1.2e5, ...],
+              interpolation: monotone_cubic}   # or linear; monotone_cubic by default
 
 A table gives the tension at each strain (or the strain at each tension: the same rows),
 both strictly increasing from the row (0, 0); when the first row is not (0, 0) it is
 added. The solver interpolates the strain between rows by the monotone cubic of Fritsch
-and Carlson and continues it linearly beyond the last row
-(:mod:`moorsolve.physics.stretch`).
+and Carlson (the default) or by straight lines (``interpolation: linear``, MoorDyn's
+reading of a curve file: a MoorDyn import keeps it) and continues it linearly beyond the
+last row (:mod:`moorsolve.physics.stretch`).
 
 Offshore standards ask for a fibre rope to be analysed with an upper and a lower bound of
 its stiffness. ``stiffness_bounds: {lower: SPEC, upper: SPEC}`` gives them, each SPEC an
@@ -37,6 +39,8 @@ from .units import show_value
 __all__ = ["StretchLaw", "DynamicStiffness", "StiffnessBounds", "parse_stretch",
            "parse_stiffness_bounds", "line_type_fields", "LINE_TYPE_KEYS", "MAX_TABLE_ROWS"]
 
+#: How a table law may run between its rows (:mod:`moorsolve.physics.stretch`).
+INTERPOLATIONS = ("monotone_cubic", "linear")
 #: Rows a tension-strain table may have (after the (0, 0) row is added): the solver builds
 #: one cubic piece per row, so a much finer table only slows it down.
 MAX_TABLE_ROWS = 200
@@ -57,12 +61,15 @@ class StretchLaw:
         Baranov's coefficient [N^-1/2]: strain ``n sqrt(T)``.
     strain, tension : tuple of float
         The table's rows [-], [N], strictly increasing, the first (0, 0).
+    interpolation : {"monotone_cubic", "linear"}
+        How a table runs between its rows.
     """
 
     model: str
     n: Optional[float] = None
     strain: tuple = ()
     tension: tuple = ()
+    interpolation: str = "monotone_cubic"
 
     @property
     def rows(self) -> int:
@@ -76,11 +83,26 @@ class StretchLaw:
 
     def strain_at(self, T: float) -> float:
         """Strain at tension ``T`` [N] as the solver has it: Baranov's law, or the table's
-        monotone cubic (:mod:`moorsolve.physics.stretch`, evaluated on floats)."""
-        from ..physics.stretch import BARANOV, TABLE, NumericLaw, StretchModel
-        model = StretchModel(BARANOV) if self.model == "baranov" else StretchModel(TABLE,
-                                                                                  self.rows)
-        return float(NumericLaw(model, self.parameters()).strain(max(float(T), 0.0)))
+        interpolant (:mod:`moorsolve.physics.stretch`, evaluated on floats)."""
+        from ..physics.stretch import NumericLaw
+        return float(NumericLaw(self.structure(), self.parameters()).strain(max(float(T),
+                                                                                0.0)))
+
+    def strains(self, T):
+        """:meth:`strain_at` on an array of tensions ``T >= 0`` [N] (a numpy array)."""
+        import numpy as np
+
+        from ..physics.stretch import NumericLaw
+        return np.asarray(NumericLaw(self.structure(), self.parameters()).strain(
+            np.maximum(np.asarray(T, dtype=float), 0.0)), dtype=float)
+
+    def structure(self):
+        """The law's :class:`~moorsolve.physics.stretch.StretchModel` (which law, the
+        table's rows and interpolation)."""
+        from ..physics.stretch import BARANOV, TABLE, StretchModel
+        if self.model == "baranov":
+            return StretchModel(BARANOV)
+        return StretchModel(TABLE, self.rows, self.interpolation)
 
     def secant_ea(self, T: Optional[float] = None) -> float:
         """``T / strain(T)`` [N]: the Hooke stiffness that stretches as much at ``T``
@@ -94,7 +116,8 @@ class StretchLaw:
     def describe(self) -> str:
         if self.model == "baranov":
             return f"Baranov, n = {self.n:.4g} N^-1/2"
-        return (f"table of {self.rows} rows up to {self.strain[-1]:.4g} strain at "
+        how = " (linear between rows)" if self.interpolation == "linear" else ""
+        return (f"table of {self.rows} rows{how} up to {self.strain[-1]:.4g} strain at "
                 f"{self.tension[-1] / 1e3:.6g} kN")
 
 
@@ -162,7 +185,14 @@ def _table(m: dict, path: str) -> StretchLaw:
     _strictly_increasing(tension, tpath, "tension")
     secant = tension[-1] / strain[-1]
     check_bounds(None, secant, "force", tpath, ge=MIN_EA, le=MAX_EA)
-    return StretchLaw(model="table", strain=tuple(strain), tension=tuple(tension))
+    interpolation = m.get("interpolation", "monotone_cubic")
+    if interpolation not in INTERPOLATIONS:
+        raise CaseError(field_path(path, "interpolation"),
+                        f"{show_value(interpolation)} is not a table interpolation; allowed: "
+                        f"{', '.join(INTERPOLATIONS)} (monotone_cubic by default; linear is "
+                        "MoorDyn's reading of a curve file)")
+    return StretchLaw(model="table", strain=tuple(strain), tension=tuple(tension),
+                      interpolation=interpolation)
 
 
 def _ea(raw, path: str) -> float:
@@ -204,7 +234,8 @@ def parse_stretch(raw, path: str, *, dynamic: bool = False):
         alpha = quantity(m["alpha"], field_path(path, "alpha"), "dimensionless", gt=0)
         beta = quantity(m["beta"], field_path(path, "beta"), "dimensionless", ge=0)
         return None, DynamicStiffness(alpha=alpha, beta=beta)
-    m = check_mapping(raw, path, required=("model", "strain", "tension"))
+    m = check_mapping(raw, path, required=("model", "strain", "tension"),
+                      optional=("interpolation",))
     return None, _table(m, path)
 
 

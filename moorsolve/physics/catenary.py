@@ -89,6 +89,10 @@ class LegKind:
     air : bool
         The upper end is above the water and the line type gives its weight in air: the
         part above the surface is the catenary of :func:`air_part`.
+    air_ends : bool
+        With ``air``: the lower end is above the water too (not an anchor), so the line
+        may hang in air throughout or dip into the water between two parts in air
+        (:func:`moorsolve.physics.air.air_line`).
     surface : bool
         A buoyant line bounded by the free surface (:func:`surface_leg_equations`).
     from_fairlead : bool
@@ -110,6 +114,7 @@ class LegKind:
     from_fairlead: bool = False
     air: bool = False
     law: Optional[StretchModel] = None
+    air_ends: bool = False
 
     @property
     def bounded(self) -> bool:
@@ -134,7 +139,7 @@ class LegKind:
         else:
             parts.append("suspended")
         if self.air:
-            parts.append("air")
+            parts.append("air_ends" if self.air_ends else "air")
         if self.law is not None:
             parts.append(self.law.tag)
         return "_".join(parts)

@@ -8,11 +8,14 @@ A line element of unstretched length ``ds0`` under tension ``T`` has the stretch
   ``eps = n sqrt(T)``, parameter ``n`` [N^-1/2];
 - **table** (synthetic ropes: polyester, nylon, HMPE): the strain at ``rows`` tensions,
   interpolated by the monotone piecewise-cubic Hermite interpolant of Fritsch and Carlson
-  (PCHIP: the interior slopes of ``scipy.interpolate.PchipInterpolator``; end slopes kept
-  positive, :func:`pchip_slopes`), continued linearly with the end slopes outside the
-  table. The strain is then continuous with its first derivative, so the tangent stiffness
-  ``dT/deps`` that Newton's method sees is continuous, and finite everywhere.
-  Parameters: the strains, then the tensions; the number of rows is structure.
+  (``monotone_cubic``, PCHIP: the slopes of ``scipy.interpolate.PchipInterpolator``, an
+  end slope scipy would set to zero kept positive, :func:`pchip_slopes`) or by straight
+  lines between the rows (``linear``, MoorDyn's own reading of a curve file), continued
+  linearly with the end slopes outside the table. The cubic strain is continuous with its
+  first derivative, so the tangent stiffness ``dT/deps`` that Newton's method sees is
+  continuous; the linear one has a kink at every row. Both are finite everywhere.
+  Parameters: the strains, then the tensions; the number of rows and the interpolation
+  are structure.
 
 Exact along the catenary
 ------------------------
@@ -33,7 +36,7 @@ Each law has these integrals in closed form or to round-off:
   Gauss-Legendre quadrature for ``|th| <= 2`` (the integrand's nearest singularity is at
   ``i pi/2``, so the rule is exact to round-off there) and beyond by the convergent series
   ``sqrt(cosh t) = 2^-1/2 e^(t/2) sum_k binom(1/2, k) e^(-2kt)`` integrated term by term;
-- table: on each cubic piece ``eps = a0 + a1 T + a2 T^2 + a3 T^3`` and
+- table: on each cubic piece (a chord is a cubic of zero ``a2, a3``) ``eps = a0 + a1 T + a2 T^2 + a3 T^3`` and
   ``int eps(H cosh th) dth = a0 th + a1 T_v + a2 (H^2 th + T_v T)/2 + a3 (H^2 T_v + T_v^3/3)``
   (from the antiderivatives of ``cosh^k``), summed over the pieces the tension passes
   through; the piece is selected by comparisons inside the graph.
@@ -56,15 +59,24 @@ from .stretch_baranov import _baranov_horizontal
 from .stretch_ops import _T_FLOOR, ARRAYS, SYMBOLIC, _root
 from .stretch_table import _Table, pchip_slopes
 
-__all__ = ["StretchModel", "Law", "HOOKE", "BARANOV", "TABLE", "MODELS", "strain",
+__all__ = ["StretchModel", "Law", "HOOKE", "BARANOV", "TABLE", "MODELS", "MONOTONE_CUBIC",
+           "LINEAR", "INTERPOLATIONS", "strain",
            "compliance", "energy", "mean_strain", "horizontal", "descent", "pchip_slopes",
            "law_function", "evaluate", "NumericLaw", "law_model", "numeric_law"]
 
 HOOKE, BARANOV, TABLE = "hooke", "baranov", "table"
 MODELS = (HOOKE, BARANOV, TABLE)
+MONOTONE_CUBIC, LINEAR = "monotone_cubic", "linear"
+#: How a table law interpolates between its rows.
+INTERPOLATIONS = (MONOTONE_CUBIC, LINEAR)
 
-#: Newton steps of the descent equation (see :meth:`Law.descent`) from its midpoint start.
+#: Newton steps of the descent equation (see :meth:`Law.descent`) from its midpoint start;
+#: one more for a table of chords, whose kinks make a step that crosses a row only linear.
 _DESCENT_STEPS = 3
+
+
+def _descent_steps(model) -> int:
+    return _DESCENT_STEPS + (model.name == TABLE and model.interpolation == LINEAR)
 
 
 @dataclass(frozen=True)
@@ -76,10 +88,13 @@ class StretchModel:
     name : {"hooke", "baranov", "table"}
     rows : int
         Rows of a table law (at least 2; the first is (0, 0)); 0 for the others.
+    interpolation : {"monotone_cubic", "linear"}
+        How a table law runs between its rows (ignored by the other laws).
     """
 
     name: str
     rows: int = 0
+    interpolation: str = MONOTONE_CUBIC
 
     def __post_init__(self):
         if self.name not in MODELS:
@@ -87,6 +102,9 @@ class StretchModel:
         if (self.name == TABLE) != (self.rows >= 2):
             raise ValueError(f"a table law needs at least 2 rows, other laws none "
                              f"(got {self.name!r} with {self.rows} rows)")
+        if self.interpolation not in INTERPOLATIONS:
+            raise ValueError(f"interpolation {self.interpolation!r}: must be one of "
+                             f"{', '.join(INTERPOLATIONS)}")
 
     @property
     def n_params(self) -> int:
@@ -95,7 +113,9 @@ class StretchModel:
 
     @property
     def tag(self) -> str:
-        return f"table{self.rows}" if self.name == TABLE else self.name
+        if self.name != TABLE:
+            return self.name
+        return f"table{self.rows}" + ("_linear" if self.interpolation == LINEAR else "")
 
 
 # ---- the laws ------------------------------------------------------------------------------
@@ -115,7 +135,8 @@ class Law:
         if len(self.params) != model.n_params:
             raise ValueError(f"{model.tag} law takes {model.n_params} parameters, "
                              f"got {len(self.params)}")
-        self._table = _Table(model.rows, self.params, xp) if model.name == TABLE else None
+        self._table = (_Table(model.rows, self.params, xp, model.interpolation == LINEAR)
+                       if model.name == TABLE else None)
 
     def strain(self, T):
         """Strain ``eps(T)`` [-] at effective tension ``T`` [N].
@@ -188,14 +209,14 @@ class Law:
         stretch makes it smaller. Newton's method, unrolled into the graph, from the
         midpoint estimate ``rise / (1 + eps(H + rise/2))`` (relative error about
         ``eps^2 / 2``); with quadratic convergence three steps reach round-off for strains
-        up to 30 %. Hooke has the closed form
+        up to 30 % (four for a table of chords: a step across a row converges linearly). Hooke has the closed form
         ``delta = 2 rise / ((1 + cH) + sqrt((1 + cH)^2 + 2 c rise))``.
         """
         if self.model.name == HOOKE:
             c = self.params[0]
             return 2 * rise / ((1 + c * H) + self.xp.sqrt((1 + c * H) ** 2 + 2 * c * rise))
         delta = rise / (1 + self.strain(H + rise / 2))
-        for _ in range(_DESCENT_STEPS):
+        for _ in range(_descent_steps(self.model)):
             f = delta * (1 + self.mean(H, H + delta)) - rise
             delta = self.xp.fmax(delta - f / (1 + self.strain(H + delta)), 0)
         return delta
@@ -219,7 +240,7 @@ def _drop(law, T, rise):
     """See :meth:`Law.drop`."""
     xp = law.xp
     delta = xp.fmin(xp.fmax(rise / (1 + law.strain(xp.fmax(T - rise / 2, 0))), 0), T)
-    for _ in range(_DESCENT_STEPS):
+    for _ in range(_descent_steps(law.model)):
         f = delta * (1 + law.mean(T - delta, T)) - rise
         delta = xp.fmin(xp.fmax(delta - f / (1 + law.strain(T - delta)), 0), T)
     return delta
@@ -350,11 +371,7 @@ def law_model(line_type) -> StretchModel | None:
     """The :class:`StretchModel` of a line type (of :mod:`moorsolve.model`) with a law
     other than Hooke's, else None."""
     law = line_type.stretch
-    if law is None:
-        return None
-    if law.model == "baranov":
-        return StretchModel(BARANOV)
-    return StretchModel(TABLE, law.rows)
+    return None if law is None else law.structure()
 
 
 def numeric_law(line_type) -> NumericLaw | None:

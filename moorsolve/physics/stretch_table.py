@@ -1,21 +1,29 @@
-"""The table stretch law: PCHIP pieces of strain against tension, with their exact
-integrals along a catenary (see :mod:`moorsolve.physics.stretch`)."""
+"""The table stretch law: pieces of strain against tension (monotone cubic or linear), with
+their exact integrals along a catenary (see :mod:`moorsolve.physics.stretch`)."""
 
 from __future__ import annotations
 
 from .stretch_ops import _T_FLOOR, SYMBOLIC
 
 
+#: An end slope below this share of its secant is a rigid rope to every digit that matters:
+#: the trend is taken instead (see :func:`pchip_slopes`).
+_RIGID = 1e-9
+
+
 def pchip_slopes(T, e, xp=SYMBOLIC):
-    """Slopes ``d eps / d T`` at the table's rows: Fritsch-Carlson (PCHIP), positive ends.
+    """Slopes ``d eps / d T`` at the table's rows: scipy's ``PchipInterpolator``, positive.
 
     ``T`` and ``e`` strictly increasing, so every secant ``delta_k`` is positive. Interior
-    rows: the weighted harmonic mean of the two secants (Fritsch and Butland; scipy's
-    ``PchipInterpolator``). End rows: scipy's one-sided three-point estimate, but kept
-    between ``delta^2 / d_next`` (the slope continuing the trend of its neighbour's) and
-    ``3 delta`` (Fritsch-Carlson's bound for monotonicity), where scipy would set it to
-    zero: a zero end slope would make the rope infinitely stiff beyond the table, where the
-    law continues with that slope. Two rows: the secant.
+    rows: the weighted harmonic mean of the two secants (Fritsch and Butland). End rows:
+    the one-sided three-point estimate, as scipy takes it, wherever it is positive (above
+    ``1e-9 delta``; for increasing rows scipy's bound of ``3 delta`` never binds). Where
+    scipy would set it to zero or nearly (the secants change by a factor of about two or
+    more at the end) the slope
+    continuing its neighbour's trend, ``delta^2 / d_next`` (at most ``3 delta``, the
+    Fritsch-Carlson bound for monotonicity), is taken instead: a zero end slope would make
+    the rope rigid beyond the table, where the law continues with that slope. Two rows:
+    the secant.
     """
     m = len(T)
     h = [T[k + 1] - T[k] for k in range(m - 1)]
@@ -29,7 +37,8 @@ def pchip_slopes(T, e, xp=SYMBOLIC):
 
     def end(h0, h1, m0, m1, d_next):
         three_point = ((2 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
-        return xp.fmin(xp.fmax(three_point, m0 * m0 / d_next), 3 * m0)
+        trend = xp.fmin(m0 * m0 / d_next, 3 * m0)
+        return xp.where(three_point > _RIGID * m0, three_point, trend)
 
     d[0] = end(h[0], h[1], delta[0], delta[1], d[1])
     d[-1] = end(h[-1], h[-2], delta[-1], delta[-2], d[-2])
@@ -39,31 +48,38 @@ def pchip_slopes(T, e, xp=SYMBOLIC):
 class _Table:
     """The pieces of a table law, built once per evaluation site from its parameters.
 
-    Piece ``k`` (``0 <= k < rows - 1``) is the Hermite cubic on ``[T_k, T_k+1]``; piece
-    ``rows - 1`` is the linear continuation beyond the last row. Local form on a piece:
-    ``eps = e + d t + c2 t^2 + c3 t^3`` with ``t = T - T_k``.
+    Piece ``k`` (``0 <= k < rows - 1``) is the Hermite cubic (or, ``linear``, the chord) on
+    ``[T_k, T_k+1]``; piece ``rows - 1`` is the linear continuation beyond the last row.
+    Local form on a piece: ``eps = e + d t + c2 t^2 + c3 t^3`` with ``t = T - T_k``
+    (``c2 = c3 = 0`` on a chord). Below the first row the law continues with the first
+    piece's slope at ``T_0``.
     """
 
-    def __init__(self, rows: int, params, xp=SYMBOLIC):
+    def __init__(self, rows: int, params, xp=SYMBOLIC, linear: bool = False):
         self.xp = xp
         e = list(params[:rows])
         T = list(params[rows:2 * rows])
-        d = pchip_slopes(T, e, xp)
-        self.T, self.e, self.d = T, e, d
+        self.T, self.e = T, e
         self.local = []
-        for k in range(rows - 1):
-            h = T[k + 1] - T[k]
-            delta = (e[k + 1] - e[k]) / h
-            c2 = (3 * delta - 2 * d[k] - d[k + 1]) / h
-            c3 = (d[k] + d[k + 1] - 2 * delta) / h**2
-            self.local.append((e[k], d[k], c2, c3))
-        self.local.append((e[-1], d[-1], 0, 0))
-        # Integral of each whole piece (Hermite: h (e0 + e1)/2 + h^2 (d0 - d1)/12) and the
-        # prefix sums: Q[k] = int_0^T_k eps.
-        Q = [0]
-        for k in range(rows - 1):
-            h = T[k + 1] - T[k]
-            Q.append(Q[-1] + h * (e[k] + e[k + 1]) / 2 + h**2 * (d[k] - d[k + 1]) / 12)
+        Q = [0]                   # prefix integrals: Q[k] = int_0^T_k eps
+        if linear:
+            delta = [(e[k + 1] - e[k]) / (T[k + 1] - T[k]) for k in range(rows - 1)]
+            self.d = [delta[0]] + delta          # d[0]: below the table, d[-1]: beyond it
+            for k in range(rows - 1):
+                self.local.append((e[k], delta[k], 0, 0))
+                Q.append(Q[-1] + (T[k + 1] - T[k]) * (e[k] + e[k + 1]) / 2)
+        else:
+            d = pchip_slopes(T, e, xp)
+            self.d = d
+            for k in range(rows - 1):
+                h = T[k + 1] - T[k]
+                delta = (e[k + 1] - e[k]) / h
+                c2 = (3 * delta - 2 * d[k] - d[k + 1]) / h
+                c3 = (d[k] + d[k + 1] - 2 * delta) / h**2
+                self.local.append((e[k], d[k], c2, c3))
+                # Hermite: h (e0 + e1)/2 + h^2 (d0 - d1)/12 over the whole piece.
+                Q.append(Q[-1] + h * (e[k] + e[k + 1]) / 2 + h**2 * (d[k] - d[k + 1]) / 12)
+        self.local.append((e[-1], self.d[-1], 0, 0))
         self.Q = Q
 
     def piece(self, x):

@@ -31,7 +31,8 @@ import numpy as np
 
 from ..model.build_network import end_position
 
-__all__ = ["PLANE", "initial_planes", "planes_from_legs", "solve_on_grid", "deviation"]
+__all__ = ["PLANE", "initial_planes", "planes_from_legs", "solve_on_grid", "deviation",
+           "point_plane", "point_plane_slices"]
 
 #: The per-line plane's entries in the parameter layout (``line[L].seabed``).
 PLANE = ("depth", "gradient_x", "gradient_y")
@@ -59,6 +60,18 @@ def chord_plane(env, lower, direction, reach: float) -> tuple:
     return (-(z0 - gx * x0 - gy * y0), gx, gy)
 
 
+def point_plane(env, x: float, y: float) -> tuple:
+    """The plane ``(depth0, gx, gy)`` touching the grid's seabed at ``(x, y)``: what a free
+    point resting there lies on."""
+    z0 = env.seabed_z(float(x), float(y))
+    gx, gy = env.seabed.slope_at(float(x), float(y))
+    return (-(z0 - gx * x - gy * y), gx, gy)
+
+
+def _point_planes(case, positions) -> list:
+    return [point_plane(case.environment, x, y) for x, y in positions]
+
+
 def _direction(lower, upper) -> tuple:
     dx, dy = upper[0] - lower[0], upper[1] - lower[1]
     X = math.hypot(dx, dy)
@@ -66,8 +79,9 @@ def _direction(lower, upper) -> tuple:
 
 
 def initial_planes(case, kinds) -> np.ndarray:
-    """Every line's plane from the chord to the seabed under its upper end (case pose);
-    ``kinds`` are the case's line kinds."""
+    """Every line's plane from the chord to the seabed under its upper end (case pose),
+    then every free point's, touching the grid under its case position; ``kinds`` are the
+    case's line kinds."""
     env = case.environment
     bodies = {b.name: b for b in case.bodies}
     out = []
@@ -76,7 +90,8 @@ def initial_planes(case, kinds) -> np.ndarray:
         lower, upper = (b, a) if kind.flipped else (a, b)
         u, X = _direction(lower, upper)
         out.append(chord_plane(env, lower, u, max(X, REACH_REL * line.length)))
-    return np.asarray(out, float)
+    out += _point_planes(case, [pt.position[:2] for pt in case.free_points])
+    return np.asarray(out, float).reshape(-1, len(PLANE))
 
 
 def _touchdown_reach(line, leg) -> float:
@@ -115,11 +130,13 @@ def deviation(env, leg, plane) -> float:
 
 def solve_on_grid(case, kinds, solve_once, start=None):
     """Solve ``case`` on its grid: ``solve_once(planes, start)`` solves with the given
-    per-line planes; the touchdowns decide the next planes (module notes). Returns the last
-    result with each leg's plane and deviation, and a note of the rounds."""
+    per-line planes (then the free points' planes); the touchdowns and the points' resting
+    places decide the next planes (module notes). Returns the last result with each leg's
+    plane and deviation, and a note of the rounds."""
     planes = initial_planes(case, kinds)
     lengths = np.array([line.length for line in case.lines])
-    previous = None
+    settle_points = TOUCHDOWN_REL * max(case.environment.depth, 1.0)
+    previous, previous_points = None, None
     iterations, seconds = 0, 0.0
     for rounds in range(1, MAX_ROUNDS + 1):
         used = planes           # the planes of this solve (what its legs lie on)
@@ -129,12 +146,18 @@ def solve_on_grid(case, kinds, solve_once, start=None):
         seconds += result.certificate.solve_time_s
         reach = np.array([_touchdown_reach(line, leg)
                           for line, leg in zip(case.lines, result.legs)])
-        if previous is not None and np.all(np.abs(reach - previous) <= TOUCHDOWN_REL * lengths):
+        points = np.array([(pt["x_m"], pt["y_m"]) for pt in result.points],
+                          float).reshape(-1, 2)
+        if (previous is not None and np.all(np.abs(reach - previous) <= TOUCHDOWN_REL * lengths)
+                and np.all(np.abs(points - previous_points) <= settle_points)):
             break
         new, reach = planes_from_legs(case, kinds, result.legs)
+        new = np.concatenate([new.reshape(-1, len(PLANE)),
+                              np.asarray(_point_planes(case, points), float).reshape(
+                                  -1, len(PLANE))])
         if previous is None and np.all(np.abs(new - planes) <= 1e-12 * (1 + np.abs(planes))):
             break       # the first chord was already the touchdown's (a plane grid)
-        previous, planes = reach, new
+        previous, previous_points, planes = reach, points, new
     else:
         rounds = -MAX_ROUNDS
     # The certificate is the last solve's; its effort is all of them.
@@ -177,6 +200,12 @@ def plane_slices(problem) -> list:
     return [problem.layout.slice(f"line[{line.name}].seabed") for line in problem.case.lines]
 
 
+def point_plane_slices(problem) -> list:
+    """Where each free point's plane sits in ``problem``'s parameters, in point order."""
+    return [problem.layout.slice(f"point[{pt.name}].seabed")
+            for pt in problem.case.free_points]
+
+
 def result_parameters(problem, result, case=None) -> np.ndarray:
     """``problem``'s parameters for ``case`` (default ``result.case``) with each line's
     seabed plane where ``result``'s solve left it: what the stiffness and sensitivities
@@ -189,4 +218,8 @@ def result_parameters(problem, result, case=None) -> np.ndarray:
         if leg.seabed_plane is not None:
             z0, gx, gy = leg.seabed_plane
             p[where] = (-z0, gx, gy)
+    # A free point's plane touches the grid where it rests (the last solve's plane, to the
+    # iteration's tolerance on the point's movement).
+    for where, pt in zip(point_plane_slices(problem), result.points):
+        p[where] = point_plane(case.environment, pt["x_m"], pt["y_m"])
     return p

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from .bathymetry import plane_slices, solve_on_grid
+from .bathymetry import plane_slices, point_plane_slices, solve_on_grid
 from .cache import get_problem
 from .diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, over_rated,
                         pulled_straight, unbalanced_force)
@@ -127,7 +127,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         return result
     p_full = problem.parameters(case, 1.0)
     if _planes is not None:
-        for where, plane in zip(plane_slices(problem), _planes):
+        for where, plane in zip(plane_slices(problem) + point_plane_slices(problem), _planes):
             p_full[where] = plane
     if start is not None and np.shape(start) != (problem.n_x,):
         start = None

@@ -255,6 +255,9 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
         # Each line's own seabed plane (solve/bathymetry.py), only on a grid.
         for line in case.lines:
             add(f"line[{line.name}].seabed", len(PLANE))
+        # and each free point's (the plane touching the grid where it rests).
+        for point in case.free_points:
+            add(f"point[{point.name}].seabed", len(PLANE))
     for line, kind in zip(case.lines, kinds):
         if kind.multi:
             for k in range(len(line.segments)):

@@ -264,6 +264,13 @@ def line_kind(case: Case, line: Line) -> LineKind:
     # surface is solved from that end (LegKind.from_fairlead). An upper end above the water
     # with a weight in air given: the part in air is its own catenary (LegKind.air).
     air = tz > 1e-9 and w != 0 and lt.weight_in_air is not None
+    # Both ends above the water (a bridle to an apex in air, a hawser): the line may hang in
+    # air throughout or dip into the water between them (physics/air.py).
+    lz = _start_height(case, line.b if flipped else line.a)
+    if air and w > 0 and lower != "anchor" and lz > 1e-9:
+        block = LegKind(elastic=lt.elastic, contact=False, air=True, air_ends=True,
+                        law=law_model(lt))
+        return LineKind(block, flipped, lower, upper)
     block = LegKind(elastic=lt.elastic, contact=contact,
                     friction=contact and case.environment.seabed.friction > 0,
                     neutral=(w == 0), sloped=contact and case.environment.seabed.sloped,

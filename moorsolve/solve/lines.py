@@ -57,7 +57,8 @@ from functools import lru_cache
 
 import casadi as ca
 
-from ..physics.catenary import air_part, leg_function, weightless_line_function
+from ..physics.air import air_line
+from ..physics.catenary import LEG_OUTPUTS, air_part, leg_function, weightless_line_function
 from ..physics.segments import (descent_force, lifted_segment_function, straight_segment_function,
                                 surface_leg_function, surface_segment_function)
 from ..physics.sloped import sloped_leg_function
@@ -123,6 +124,8 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
         # The stretch law's parameters (solve/stretch_params.py).
         args["law"] = ca.vertcat(*problem.line_laws[i][0])
         law = Law(block.law, problem.line_laws[i][0])
+    if block.air_ends:
+        return _air_line_block(problem, kind, xs, iu, P, args, law, ux, uy, upper)
     air = None
     if block.air:
         # The upper end is above the water: its part in air, in closed form, then the water
@@ -169,6 +172,24 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(residuals, force_a, force_b, closing_force(J, out["rX"], out["rZ"]),
                      row, [], [])
+
+
+def _air_line_block(problem, kind, xs, iu, P, args, law, ux, uy, upper) -> LineBlock:
+    """A one-segment line with both ends above the water (physics/air.py)."""
+    block = kind.block
+    out = air_line(args["X"], args["Z"], args["u"], args["V"], upper[2], P["length"],
+                   P["weight"], P["weight_air"], P["ea_inv"] if block.elastic else 0,
+                   law=law)
+    scale = 1.0 / P["length"]
+    J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
+                    ca.vertcat(xs[iu], xs[iu + 1])) / problem.force_scale
+    on_upper = ca.vertcat(-out["H"] * ux, -out["H"] * uy, -out["VF"])
+    on_lower = ca.vertcat(out["HA"] * ux, out["HA"] * uy, out["VA"])
+    row = dict({k: out[k] for k in LEG_OUTPUTS}, J=ca.reshape(J, 4, 1), X=args["X"],
+               Z=args["Z"])
+    force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
+    return LineBlock([out["rX"] * scale, out["rZ"] * scale], force_a, force_b,
+                     closing_force(J, out["rX"], out["rZ"]), row, [], [])
 
 
 @lru_cache(maxsize=None)

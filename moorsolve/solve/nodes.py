@@ -96,7 +96,8 @@ def node_balances(case, par, E, seabed, poses, rotations, body_force, body_momen
         name = f"point[{point.name}]"
         net = g * (par(name + ".mass") - rho * par(name + ".volume"))
         pt = points[pi]
-        gx, gy = seabed["gradient_x"], seabed["gradient_y"]
+        bed = pt.get("bed", seabed)           # its own plane on a bathymetry grid
+        gx, gy = bed["gradient_x"], bed["gradient_y"]
         normal = ca.vertcat(-gx, -gy, 1) / ca.sqrt(1 + gx**2 + gy**2)
         N = ca.fmax(-pt["zeta"], 0) * k_contact
         force = pt["force"] + ca.vertcat(0, 0, -net) + N * normal

@@ -9,18 +9,20 @@ joint, lumped-node lines through their nodes).
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import math
 
 import numpy as np
 
 from ..model import Case
+from ..physics.air import air_line_profile
 from ..physics.catenary import LegKind, air_part
 from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
 from ..physics.kinematics import wrap_degrees
 from ..physics.wall_tension import wall_tension
-from ..audit import AuditFailure
+from ..audit import AuditFailure, air_hint
 from .bathymetry import plane_slices
 from .contact_results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
@@ -252,6 +254,14 @@ def _single_result(case, line, kind, row, u, stiffness, cert, batch=None,
     def draw() -> dict:
         length, Vw, Xw, Zw = line.length, VF, X, Z
         law = numeric_law(lt)
+        if kind.block.air_ends:
+            prof = air_line_profile(H=H, V=VF, z_top=upper[2], L=line.length,
+                                    w=lt.weight_in_water, w_air=lt.weight_in_air, ea=lt.ea,
+                                    n=_PROFILE_POINTS, law=law)
+            prof["z"] = prof["z"] - lower[2]          # _orient takes heights above end A
+            profile = _orient(prof, lower, upper, kind.flipped, line.length)
+            _add_wall_tension(profile, line, env)
+            return profile
         if kind.block.air:
             # The water part up to the surface crossing; the part in air is added below.
             part = {k: float(v) for k, v in air_part(
@@ -294,7 +304,7 @@ def _single_result(case, line, kind, row, u, stiffness, cert, batch=None,
             draw, lambda prof: _add_wall_tension(prof, line, env))
     else:
         drawing = draw
-    profile = LazyProfile(_ends_checked(drawing, line, env, a, b, fa, fb, cert))
+    profile = LazyProfile(_ends_checked(drawing, line, case, a, b, fa, fb, cert))
     fields = _end_fields(line.name, a, b, fa, fb)
     fields.update(floating_length_m=floating,
                   touchup_from_anchor_m=_first_at_surface(profile, a) if floating > 0 else 0.0)
@@ -319,7 +329,11 @@ def _single_result(case, line, kind, row, u, stiffness, cert, batch=None,
         mbl_N=lt.mbl, profile=profile, **fields)
 
 
-def _ends_checked(draw, line, env, a, b, fa, fb, cert):
+#: A line's name and end positions, as :func:`~.audit.air_hint` reads a leg result.
+_Ends = collections.namedtuple("_Ends", "name anchor fairlead")
+
+
+def _ends_checked(draw, line, case, a, b, fa, fb, cert):
     """``draw`` made to check what it drew: the profile runs from end A to end B with their
     reported tensions, or :class:`~moorsolve.audit.AuditFailure` says it does not (where
     the audit ran in closed form, :mod:`moorsolve.audit.closed_form`, this is the only look
@@ -330,7 +344,7 @@ def _ends_checked(draw, line, env, a, b, fa, fb, cert):
         lt = line.line_type
         f_tol = 2e-6 * max(ta, tb, abs(lt.weight_in_water) * line.length, 1.0)
         stretch = max(ta, tb) / lt.ea if lt.ea else 0.0
-        tol = 1e-6 * max(line.length * (1.0 + stretch), env.depth, 1.0)
+        tol = 1e-6 * max(line.length * (1.0 + stretch), case.environment.depth, 1.0)
         x, y, z, t = (np.asarray(prof[k], float) for k in ("x_m", "y_m", "z_m", "tension_N"))
         misses = [("starts", math.dist((x[0], y[0], z[0]), a), "from end A"),
                   ("ends", math.dist((x[-1], y[-1], z[-1]), b), "from end B")]
@@ -342,7 +356,8 @@ def _ends_checked(draw, line, env, a, b, fa, fb, cert):
         if found:
             raise AuditFailure(
                 f"the solution certified but leg {line.name}'s profile drawn from it fails "
-                "the independent audit: " + "; ".join(found), residual_N=cert.force_N,
+                "the independent audit: " + "; ".join(found)
+                + air_hint(case, [_Ends(line.name, a, b)]), residual_N=cert.force_N,
                 residual_Nm=cert.moment_Nm, status=cert.status, iterations=cert.iterations,
                 certified=True)
         return prof

@@ -240,8 +240,11 @@ class EquilibriumProblem(Certification, SolverAccess):
         for pi, point in enumerate(case.free_points):
             j0 = self.nodes.index(("point", pi, "x"))
             px, py, zeta = x[j0], x[j0 + 1], x[j0 + 2]
-            pos = ca.vertcat(px, py, seabed_height(seabed, px, py) + ca.fmax(zeta, 0))
-            points.append(dict(position=pos, zeta=zeta, force=ca.SX.zeros(3)))
+            # On a grid each point rests on its own plane (solve/bathymetry.py).
+            bed = (dict(zip(SEABED_PARAMS, ca.vertsplit(par(f"point[{point.name}].seabed"))))
+                   if grid else seabed)
+            pos = ca.vertcat(px, py, seabed_height(bed, px, py) + ca.fmax(zeta, 0))
+            points.append(dict(position=pos, zeta=zeta, force=ca.SX.zeros(3), bed=bed))
         for q in poses:
             rotations.append(rotation_matrix(q[3], q[4], q[5]))
         body_force = [ca.SX.zeros(3) for _ in case.bodies]

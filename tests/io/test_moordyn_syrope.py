@@ -5,8 +5,8 @@ fixed and a coupled point, so its tension is the law's at the strain ``span/10 -
 reference here is the working-curve formula of the MoorDyn documentation ("Syrope Model for
 Polyester Lines") and MoorDyn's ``Line::setWorkingCurve``, written out again below: the
 strain of each file lands on one of MoorDyn's 30 working-curve points (or on a row of the
-original curve above Tmax0), where MoorDyn's linear interpolation, moorsolve's monotone
-cubic and the formula all agree, so the tension must match to round-off.
+original curve above Tmax0), where MoorDyn's linear interpolation, the imported law (the
+same chords) and the formula all agree, so the tension must match to round-off.
 """
 
 from __future__ import annotations

@@ -7,8 +7,9 @@ References, none sharing code with ``moorsolve.physics``:
   rtol 1e-13) for any strain law given as a Python function. It is first checked against
   the exact Hooke catenary (the leg block's closed forms) to 1e-9.
 - The table law is ``scipy.interpolate.PchipInterpolator`` continued linearly with its end
-  slope (``reference_ode.table_reference``); Baranov's law is ``n sqrt(T)`` (Alekseev,
-  seed 003; REFERENCE.md section 5).
+  slope (``reference_ode.table_reference``), or with ``interpolation: linear``
+  ``numpy.interp`` continued with its last chord (``reference_ode.linear_table_reference``);
+  Baranov's law is ``n sqrt(T)`` (Alekseev, seed 003; REFERENCE.md section 5).
 - Integrals of the laws by ``scipy.integrate.quad``.
 
 For Baranov and table laws, suspended and with touchdown (with and without friction, slack,
@@ -30,7 +31,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 from hypothesis_budget import examples
 from reference_ode import (integrate_from_anchor, integrate_leg, integrate_through_surface,
-                           reference_interpolant, table_reference)
+                           linear_table_reference, reference_interpolant, table_reference)
 from scipy.integrate import quad
 from test_leg_ode import REGIMES as ODE_REGIMES
 from test_leg_ode import _span_map
@@ -55,6 +56,8 @@ BARANOV_N = 8e-5                     # [N^-1/2]: 5.7 % at 0.5 MN
 LAWS = {
     "table": (StretchModel("table", len(STRAIN)), STRAIN + TENSION,
               table_reference(STRAIN, TENSION), TENSION),
+    "table_linear": (StretchModel("table", len(STRAIN), "linear"), STRAIN + TENSION,
+                     linear_table_reference(STRAIN, TENSION), TENSION),
     "baranov": (StretchModel("baranov"), [BARANOV_N], lambda T: BARANOV_N * math.sqrt(T), ()),
 }
 
@@ -114,15 +117,56 @@ def test_table_law_is_the_monotone_cubic(table):
     assert np.allclose(got["strain"][~inside], e[-1] + slope * (Ts[~inside] - T[-1]),
                        rtol=1e-10)
     assert np.all(got["compliance"] > 0)
-    # Where scipy's own end slopes are positive they are taken unchanged.
+    # Wherever scipy's own slopes are positive they are taken unchanged (its end slope too:
+    # the documented rule); where scipy's end slope is 0, ours is positive. (An estimate
+    # within round-off of 1e-9 of the secant may fall either side of the switch.)
     pch = PchipInterpolator(T, e).derivative()(T)
     slopes = np.array([float(v) for v in pchip_slopes(T, e)])
-    assert np.allclose(slopes[1:-1], pch[1:-1], rtol=1e-12)
-    keep = (pch > 0) & (pch >= slopes * (1 - 1e-12))
+    secants = np.diff(e) / np.diff(T)
+    ends = np.concatenate([[secants[0]], np.zeros(len(T) - 2), [secants[-1]]])
+    if np.any(np.abs(pch - 1e-9 * ends) <= 1e-12 * ends):
+        return
+    keep = pch > 1e-9 * ends
     assert np.allclose(slopes[keep], pch[keep], rtol=1e-12)
+    if len(T) > 2:
+        assert keep[1:-1].all() and np.all(slopes > 0)
+        inner = np.linspace(0.0, T[-1], 301)
+        assert np.allclose(evaluate(model, e + T, inner)["strain"],
+                           PchipInterpolator(T, e)(inner) if keep.all() else ref(inner),
+                           rtol=1e-10, atol=1e-12 * e[-1])
     # Monotone between the rows (Fritsch-Carlson): never decreasing.
     fine = evaluate(model, e + T, np.linspace(0.0, T[-1], 2001))["strain"]
     assert np.all(np.diff(fine) >= -1e-15 * e[-1])
+
+
+@settings(max_examples=examples(40), deadline=None)
+@given(tables())
+def test_linear_table_law_is_the_chords(table):
+    """``interpolation: linear``: the strain is ``numpy.interp`` of the rows (MoorDyn's
+    reading of a curve file), the compliance each chord's slope, the last chord continued
+    beyond the table and the first below it; energy and mean are the integrals of the
+    chords (trapezoids, exact)."""
+    e, T = table
+    model = StretchModel("table", len(T), "linear")
+    Ts = np.linspace(-0.2 * T[-1], 1.5 * T[-1], 53)
+    got = evaluate(model, e + T, Ts, T2=np.abs(Ts[::-1]))
+    first = (e[1] - e[0]) / (T[1] - T[0])
+    last = (e[-1] - e[-2]) / (T[-1] - T[-2])
+    want = np.where(Ts < 0, first * Ts, np.where(Ts > T[-1], e[-1] + last * (Ts - T[-1]),
+                                                 np.interp(Ts, T, e)))
+    assert np.allclose(got["strain"], want, rtol=1e-12, atol=1e-14 * e[-1])
+    k = np.clip(np.searchsorted(T, Ts, side="right") - 1, 0, len(T) - 1)
+    chords = np.append(np.diff(e) / np.diff(T), last)
+    assert np.allclose(got["compliance"], chords[k], rtol=1e-12)
+    f = linear_table_reference(e, T)
+    for a, b in [(0.0, T[-1]), (0.1 * T[-1], 1.3 * T[-1]), (T[1] * 0.3, T[1] * 0.6)]:
+        pts = [t for t in T if a < t < b] or None
+        ref = quad(f, a, b, epsabs=0, epsrel=1e-13, limit=200, points=pts)[0]
+        mean = float(evaluate(model, e + T, a, T2=b)["mean"])
+        assert mean == pytest.approx(ref / (b - a), rel=1e-11)
+    trapezoids = np.sum(np.diff(T) * (np.array(e[1:]) + np.array(e[:-1])) / 2)
+    assert float(evaluate(model, e + T, T[-1])["energy"]) == pytest.approx(trapezoids,
+                                                                           rel=1e-12)
 
 
 @pytest.mark.parametrize("name", sorted(LAWS))
@@ -179,6 +223,8 @@ def test_numpy_evaluation_is_the_graphs(name):
 
 @pytest.mark.parametrize("model, params", [
     (LAWS["table"][0], LAWS["table"][1]), (LAWS["baranov"][0], LAWS["baranov"][1]),
+    (LAWS["table_linear"][0], LAWS["table_linear"][1]),
+    (StretchModel("table", 3, "linear"), [0.0, 0.2, 0.35, 0.0, 1e5, 4e5]),
     (StretchModel("baranov"), [1e-3]),                      # 32 % strain at 100 kN
     (StretchModel("table", 3), [0.0, 0.2, 0.35, 0.0, 1e5, 4e5])])
 def test_descent_solves_its_equation(model, params):
