@@ -26,7 +26,7 @@ Per line:
 - a joint the seabed or the surface pushes is on it.
 
 No body is inside a quay wall or pile: the hull behind each fender, where its height is
-known, and a rigid fender's face (:func:`.audit_bodies.wall_findings`).
+known, and a rigid fender's face (:func:`.bodies.wall_findings`).
 
 Per free body, in every free degree of freedom of six: the reported end forces at their
 reported positions, the reported forces of its fenders and pile guides at their contact

@@ -1,7 +1,7 @@
 """The audit's fast path: the one free body's balance screened with half the margin,
 compiled with the closed-form line checks.
 
-A screen that passes must mean the plain balance (``audit_bodies.body_findings``) passes;
+A screen that passes must mean the plain balance (``moorsolve.audit.bodies.body_findings``) passes;
 a screen that fails hands the result to the plain balance, so a defect planted in the
 reported pose, loads or body data is found and worded exactly as before.
 """

@@ -128,7 +128,7 @@ def test_a_multi_segment_bridle_in_air_says_what_to_change():
     """Multi-segment lines still weigh their weight in water above it (README, "Not yet"):
     the audit catches the weight it does not carry, and its message says what the user
     can change (one segment with a weight in air, or ends below the water)."""
-    from moorsolve.solve.audit import AuditFailure
+    from moorsolve.audit import AuditFailure
     data = calm_scene(72.0)
     for line in data["lines"][:2]:
         line["segments"] = [{"type": "chain", "length": 5.4}] * 2

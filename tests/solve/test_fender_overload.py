@@ -24,7 +24,7 @@ import moorsolve
 from moorsolve import CaseError, ConvergenceError, load_case
 from moorsolve.cli import main
 from moorsolve.constants import HULL_STIFFNESS
-from moorsolve.solve.audit_bodies import wall_findings
+from moorsolve.audit.bodies import wall_findings
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 SOLVERS = ("ipopt", "newton")
