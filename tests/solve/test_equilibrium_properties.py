@@ -20,7 +20,8 @@ def dock_data():
 
 
 def max_tension(result):
-    return max(max(leg.fairlead_tension_N, leg.anchor_tension_N) for leg in result.legs)
+    return max((max(leg.fairlead_tension_N, leg.anchor_tension_N) for leg in result.legs),
+               default=0.0)
 
 
 @pytest.mark.parametrize("path", SHIPPED, ids=[p.stem for p in SHIPPED])
