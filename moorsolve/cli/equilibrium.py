@@ -93,13 +93,15 @@ def run_stiffness(args) -> int:
     result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     K = stiffness(result, args.body)
     body = args.body or (names[0] if names else None)
+    held = [n for n in names if n != body]
     if args.json:
         table = stiffness_table(K, DOFS)
-        print_text(json.dumps({"body": body, "dofs": list(DOFS), "matrix": K.tolist(),
-                               "rows": list(table.rows), "columns": list(table.columns)},
-                              indent=2))
+        print_text(json.dumps({"body": body, "held_bodies": held,
+                               "about": "solved poses", "dofs": list(DOFS),
+                               "matrix": K.tolist(), "rows": list(table.rows),
+                               "columns": list(table.columns)}, indent=2))
     else:
-        print_text(format_stiffness(K, body, case.name))
+        print_text(format_stiffness(K, body, case.name, held))
     return EXIT_OK
 
 

@@ -108,8 +108,11 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     result_or_case : Result or Case
         A solved equilibrium, or a case to solve first (with ``solver``).
     body : str, optional
-        The body's name; default the only body. A case without bodies: the lines' fixed
-        upper ends move as one rigid frame about the global origin.
+        The body's name; default the only body (a case of several bodies must name one).
+        The other bodies are held at their solved poses while it moves; free points and
+        lines re-equilibrate (lines shared with the others are stretched against them).
+        A case without bodies: the lines' fixed upper ends move as one rigid frame about
+        the global origin.
 
     Returns
     -------
@@ -156,23 +159,26 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     x = np.concatenate([np.concatenate([poses[name][:3], np.zeros(3)])
                         / problem.x_scale[:6], held_result.state])
     p = result_parameters(problem, held_result, free)
-    return _condensed_wrench_stiffness(problem, x, p)
+    index = [b.name for b in free.bodies].index(name)
+    return _condensed_wrench_stiffness(problem, x, p, index)
 
 
-def _condensed_wrench_stiffness(problem, x, p) -> np.ndarray:
-    """``-dW/dq`` of the first body's six unknowns, the rest condensed out."""
+def _condensed_wrench_stiffness(problem, x, p, index: int) -> np.ndarray:
+    """``-dW/dq`` of the wrench on body ``index`` (in the case's order) against the six
+    unknowns of the one free body (the problem's first six), the rest condensed out."""
     import casadi as ca
 
+    key = f"_wrench_jacobian_{index}"
     with problem.lock:
-        f = problem.__dict__.get("_wrench_jacobian")
+        f = problem.__dict__.get(key)
         if f is None:
             xs = ca.SX.sym("x", problem.n_x)
             ps = ca.SX.sym("p", problem.n_p)
-            W = problem.report(xs, ps)[5][:6]
+            W = problem.report(xs, ps)[5][6 * index: 6 * index + 6]
             g = problem.residual(xs, ps)
             f = ca.Function("wrench_jacobian", [xs, ps], [ca.jacobian(W, xs),
                                                           ca.jacobian(g, xs)])
-            problem.__dict__["_wrench_jacobian"] = f
+            problem.__dict__[key] = f
         W_x, G_x = (np.asarray(v) for v in f(x, p))
     q = np.arange(6)
     rest = np.arange(6, problem.n_x)
