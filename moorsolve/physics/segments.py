@@ -17,7 +17,8 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, ground_stretch, law_inputs, law_tag, shared
-from .catenary import _H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, _suspended_spans
+from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, _span_factor, _suspended_spans,
+                       lateral_stiffness, loose_part, taut_part)
 from .stretch import StretchModel
 
 
@@ -100,13 +101,14 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         on the lower end [N]; ``grounded`` [m]; ``suspended_x`` horizontal extent of the part
         rising to the upper end [m]; ``descent_x`` horizontal extent of the descent [m].
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     Hg = ca.fmax(H, _H_FLOOR)
     bound = bind(model, law) if elastic else None
     c = ea_inv if elastic and bound is None else 0
     VA = V - w * L
     V1 = descent_force(H, h, w, c, bound)
     Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
+    compliance = _span_factor(Hg, V, VA, w, L) / w + L * c
     s1 = -V1 / w
     x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
     LB = L - s1 - V / w
@@ -116,6 +118,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     if bound is not None:
         psi_V, psi_VA, psi_1 = bound.horizontal(Hg, V, VA, -V1)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
+        compliance = compliance + (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
         x1 = x1 + (H / w) * psi_1
         x_rise = x_rise + (H / w) * psi_V
@@ -129,7 +132,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     if bound is not None:
         Xt = x1 + LB + ground_stretch(bound, H, LB, HA_t, mu * w if friction else None) \
             + x_rise
-    loose = ca.fmax(-u, 0) / w
+    loose = loose_part(u) / w
     if between_joints:
         # Between two free joints the span may be negative: loose line is then only where
         # the line lies, and at most all of that, or a slack segment folded back past its
@@ -149,6 +152,8 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, x_rise),
         descent_x=ca.if_else(suspended, 0, x1),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), compliance, H,
+                                  ca.if_else(suspended, Xs, Xt) - loose),
     )
 
 
@@ -275,7 +280,7 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None,
     hangs vertical under the joint loads. (A weightless segment with no tension at all has
     no definite shape; the model does not represent it.)
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
     bound = bind(model, law) if elastic else None
     if bound is not None:
@@ -297,9 +302,9 @@ def lifted_segment_function(elastic: bool, friction: bool = False,
                                    between_joints=between_joints, model=model, law=law)
     tag = (law_tag(elastic, model) + ("_friction" if friction else "")
            + ("_joints" if between_joints else ""))
+    outputs = SEGMENT_OUTPUTS + ("lateral",)
     return ca.Function(f"segment_lifted_{tag}", args,
-                       shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
-                       list(SEGMENT_OUTPUTS))
+                       shared([out[k] for k in outputs], law), names, list(outputs))
 
 
 STRAIGHT_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv")

@@ -15,7 +15,7 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, law_inputs, law_tag, shared
-from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp)
+from .catenary import _H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, loose_part, taut_part
 from .stretch import StretchModel
 
 __all__ = ["SLOPED_INPUTS", "sloped_leg_equations", "sloped_leg_function"]
@@ -61,7 +61,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
     the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     Hg = ca.fmax(H, _H_FLOOR)
     bound = bind(model, law) if elastic else None
     c = ea_inv if elastic and bound is None else 0
@@ -72,7 +72,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
 
     Vtd = H * t
-    loose = ca.fmax(-u, 0) / w
+    loose = loose_part(u) / w
     LB = L - (V - Vtd) / w
     Ls = L - LB
     x_susp = (H / w) * (ca.asinh(V / Hg) - ca.asinh(t)) + H * Ls * c

@@ -69,6 +69,10 @@ __all__ = ["LineBlock", "closing_force", "plane_geometry", "single_block", "mult
 
 #: Keeps derivatives finite for a vertical line (X = 0); moves X by less than 1e-18 m.
 _X_FLOOR = 1e-12
+#: Below this horizontal span [fraction of the line's length] a line's horizontal pull
+#: ``H e`` (``e = d/X``, ``d`` the horizontal offset of its ends) is written ``(dH/dX) d``:
+#: its limit at ``X -> 0``, where ``H/X`` is ``0/0`` (see :func:`horizontal_pull`).
+_NEAR_VERTICAL = 1e-6
 
 @dataclass
 class LineBlock:
@@ -163,12 +167,36 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
         # The part in air depends on (u, V) too: the derivative through it.
         J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
                         ca.vertcat(xs[iu], xs[iu + 1])) / problem.force_scale
-    on_upper = ca.vertcat(-out["H"] * ux, -out["H"] * uy, -out["VF"])
-    on_lower = ca.vertcat(out["HA"] * ux, out["HA"] * uy, out["VA"])
+    # A block that knows H/X on its own span without 0/0 (a line hanging straight down)
+    # says so; the part in air shifts the water block's span, so not there.
+    lateral = out.get("lateral") if air is None else None
+    offset = ca.vertcat(upper[0] - lower[0], upper[1] - lower[1])
+    near = X < _NEAR_VERTICAL * P["length"]
+    on_upper = ca.vertcat(-horizontal_pull(out["H"], X, offset, near, lateral), -out["VF"])
+    on_lower = ca.vertcat(horizontal_pull(out["HA"], X, offset, near, lateral), out["VA"])
     row = dict(out, J=ca.reshape(J, 4, 1), X=X, Z=Z)
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(residuals, force_a, force_b, closing_force(J, out["rX"], out["rZ"]),
                      row, [], [])
+
+
+def horizontal_pull(H, X, offset, near, lateral=None):
+    """The horizontal force ``H e`` [N] of a line along its plane's direction ``e =
+    offset / X`` (``offset`` the horizontal vector from its lower to its upper end [m]).
+
+    ``H(X)`` vanishes with the span (a line hanging straight down pulls straight down), so
+    ``H e = (H/X) offset`` is smooth in ``offset`` at ``X = 0`` although ``X = |offset|`` is
+    not: its derivative there is ``(dH/dX) I``, the lateral stiffness of the hanging line.
+    Written as ``H e`` at the floored span its derivative is ``H/X`` = 0/0 (whatever the
+    solve left in ``H``). Within ``near`` (``X`` below :data:`_NEAR_VERTICAL` of the length)
+    the block's own ``lateral`` (``H/X`` on its span, which it evaluates without 0/0:
+    :func:`~moorsolve.physics.catenary.lateral_stiffness`) is used instead; at an
+    equilibrium the two are equal. Both ends of a line hanging straight are suspended, so
+    the lower end's ``H_A = H`` shares it.
+    """
+    if lateral is None:
+        return (H / X) * offset
+    return ca.if_else(near, lateral, H / X) * offset
 
 
 @lru_cache(maxsize=None)

@@ -81,3 +81,76 @@ def assert_matrix_close(K, ref, rtol=1e-3, label=""):
     assert err.max() <= rtol, (f"{label} entry ({i}, {j}): {K[i, j]:.6e} against "
                                f"{ref[i, j]:.6e} (re-solved), error {err.max():.2e} of its "
                                f"scale {scale[i, j]:.3e}")
+
+
+def resolved_coupled(result, step: float = 1e-4) -> np.ndarray:
+    """The total stiffness ``-dQ/dq`` [SI] of every free body DOF (the bodies' own
+    coordinates, as :func:`moorsolve.coupled_stiffness` labels them) by central differences:
+    each DOF moved by ``step`` [m, or rad], every other body DOF held, and the lines and
+    free points re-solved (Newton on their own rows to 1e-14) before the bodies' generalized
+    forces are evaluated."""
+    from moorsolve.solve.stability import _rows, _split
+
+    case = result.case
+    problem = get_problem(case)
+    p = result_parameters(problem, result)
+    keep, rest = _split(problem)
+    rq, rr = _rows(problem, keep), _rows(problem, rest)
+    row_scale = np.array([problem.moment_scale if problem.rotational[j]
+                          else problem.force_scale for j in keep])
+
+    def forces(x):
+        x = x.copy()
+        for _ in range(60):
+            g = np.asarray(problem.residual(x, p)).ravel()
+            if rest.size == 0 or np.max(np.abs(g[rr])) < 1e-14:
+                break
+            J = np.asarray(problem.jacobian(x, p))
+            x[rest] -= np.linalg.lstsq(J[np.ix_(rr, rest)], g[rr], rcond=None)[0]
+        else:
+            raise AssertionError("the lines did not re-solve")
+        return row_scale * g[rq]
+
+    K = np.zeros((keep.size, keep.size))
+    for c, j in enumerate(keep):
+        cols = []
+        for sign in (1, -1):
+            x = np.array(result.state, dtype=float)
+            x[j] += sign * step / problem.x_scale[j]
+            cols.append(forces(x))
+        K[:, c] = -(cols[0] - cols[1]) / (2 * step)
+    return K
+
+
+def resolved_sensitivity(data: dict, outputs, body: str, k: int, step: float) -> np.ndarray:
+    """``d outputs / d F_k`` of body ``body``'s applied force component ``k`` [per N] by
+    central differences of two fresh solves of the case (dictionary ``data``)."""
+    import copy
+
+    values = []
+    for sign in (1, -1):
+        moved = copy.deepcopy(data)
+        spec = next(b for b in moved["bodies"] if b["name"] == body)
+        force = list(spec["loads"]["force"])
+        force[k] += sign * step
+        spec["loads"]["force"] = force
+        r = moorsolve.solve(moorsolve.load_case(moved), tol=1e-12)
+        values.append(np.array([_output(r, name) for name in outputs]))
+    return (values[0] - values[1]) / (2 * step)
+
+
+def _output(result, name: str) -> float:
+    if name.startswith("bodies["):
+        body, field = name[len("bodies["):].split("].")
+        return next(b for b in result.bodies if b["name"] == body)[field]
+    leg, field = name[len("legs["):].split("].")
+    return getattr(result.leg(leg), field)
+
+
+def homogenised_eigenvalues(K, dofs, arm: float) -> np.ndarray:
+    """Eigenvalues [N/m] of ``K`` with rotations measured as arc length at ``arm`` [m] (the
+    stability check's homogenisation), sorted by real part."""
+    h = np.array([arm if d.split(".")[-1] in ("roll", "pitch", "yaw") else 1.0
+                  for d in dofs])
+    values = np.linalg.eigvals(np.asarray(K) / np.outer(h, h))
+    return np.sort_complex(values)

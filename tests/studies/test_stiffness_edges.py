@@ -1,0 +1,122 @@
+"""Derivatives at the non-smooth points of the line model: an exactly vertical weighted
+line, a weightless tether hanging straight, touchdown exactly at the anchor.
+
+A line hanging straight down pulls sideways with ``H(X) e`` where ``X = |offset|`` has a
+kink at 0 but ``H(X) e = (H/X) offset`` does not: the lateral stiffness is the limit
+``dH/dX`` from the taut side, which for the elastic catenary with end tensions ``V`` (top)
+and ``V_A = V - w L`` (bottom) is ``1 / (ln(V/V_A)/w + L/EA)`` (Merkin 1980, the suspended
+span ``X = (H/w)[asinh(V/H) - asinh(V_A/H)] + H L/EA`` differentiated at ``H -> 0+``; for
+``w -> 0`` it is ``T / (L (1 + T/EA))``, the taut string). Everything the stiffness feeds
+(per-body and coupled stiffness, stability eigenvalues, natural periods, sensitivities) is
+checked against central differences of re-solved cases (tests/studies/resolved.py), to
+1e-3 relative or better.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.linalg import eigh
+
+import moorsolve
+from moorsolve.solve.cache import get_problem
+from moorsolve.studies.stiffness import body_natural_periods, rigid_body_mass
+
+from edge_scenes import tlp, touchdown_at_anchor, vertical_chain_buoy
+from resolved import (assert_matrix_close, homogenised_eigenvalues, resolved_coupled,
+                      resolved_sensitivity, resolved_stiffness)
+
+
+def pendulum_stiffness(leg, w: float, length: float, ea: float) -> float:
+    """``dH/dX`` at ``X = 0+`` of an elastic catenary hanging straight [N/m]."""
+    V, VA = leg.fairlead_tension_N, leg.anchor_tension_N
+    compliance = length / ea
+    if w > 0:
+        compliance += math.log(V / VA) / w
+    else:
+        compliance += length / V
+    return 1.0 / compliance
+
+
+def check_derivatives(data: dict, body: str, force_step: float, outputs) -> dict:
+    """Every derivative of the scene against its re-solved reference; returns the figures."""
+    result = moorsolve.solve(moorsolve.load_case(data), tol=1e-12)
+    assert result.converged
+    K = moorsolve.stiffness(result, body=body)
+    K_ref = resolved_stiffness(result, body)
+    assert_matrix_close(K, K_ref, label=f"{body} mooring")
+    C, dofs = moorsolve.coupled_stiffness(result)
+    C_ref = resolved_coupled(result)
+    assert_matrix_close(C, C_ref, label="coupled")
+    problem = get_problem(result.case)
+    arm = problem.moment_scale / problem.force_scale
+    stab = result.stability
+    assert stab.stable and not stab.neutral_dofs
+    got = np.sort_complex(np.asarray(stab.eigenvalues, dtype=complex))
+    ref = homogenised_eigenvalues(C_ref, dofs, arm)
+    np.testing.assert_allclose(got.real, ref.real, rtol=1e-3)
+    spec = result.case.body_named(body)
+    periods = body_natural_periods(result, body)
+    own = [i for i, d in enumerate(dofs) if d.startswith(body + ".")]
+    M = rigid_body_mass(spec.mass, spec.centre_of_gravity, spec.inertia or (0.0, 0.0, 0.0))
+    idx = [moorsolve.model.DOFS.index(dofs[i].split(".", 1)[1]) for i in own]
+    Ks = C_ref[np.ix_(own, own)]
+    w2 = eigh(0.5 * (Ks + Ks.T), M[np.ix_(idx, idx)], eigvals_only=True)
+    assert np.all(w2 > 0) and np.all(np.isfinite(periods.periods_s))
+    np.testing.assert_allclose(np.sort(periods.periods_s), np.sort(2 * np.pi / np.sqrt(w2)),
+                               rtol=1e-3)
+    s = moorsolve.sensitivity(result, outputs, [f"bodies[{body}].loads.force[0]"])
+    s_ref = resolved_sensitivity(data, outputs, body, 0, force_step)
+    scale = np.abs(s_ref).max()
+    np.testing.assert_allclose(s.matrix[:, 0], s_ref, rtol=1e-3, atol=1e-3 * scale)
+    return dict(result=result, K=K, K_ref=K_ref, C=C, C_ref=C_ref, periods=periods,
+                sens=s.matrix[:, 0], sens_ref=s_ref)
+
+
+def test_tlp_on_four_vertical_weighted_tendons():
+    """Before: K11 6.3e3 N/m against 1.76e5 re-solved, coupled K11 ~1e-7, zero
+    eigenvalues called stable, an infinite surge period, dx/dFx off by 2."""
+    data = tlp()
+    out = check_derivatives(data, "tlp", 1.0e4, ["bodies[tlp].x_m", "bodies[tlp].z_m",
+                                                 "legs[T1].fairlead_tension_N"])
+    result, K = out["result"], out["K"]
+    k = sum(pendulum_stiffness(leg, 3000.0, 178.0, 8.0e9) for leg in result.legs)
+    assert K[0, 0] == pytest.approx(k, rel=1e-6)
+    assert K[1, 1] == pytest.approx(k, rel=1e-6)
+    # Yaw: each tendon's lateral stiffness at its arm (25 m, 25 m from the centre).
+    assert K[5, 5] == pytest.approx(k * 1250.0, rel=1e-6)
+    # The platform sways as an inverted pendulum: roughly 50 s, nowhere near infinite.
+    assert 30.0 < max(out["periods"].periods_s) < 80.0
+
+
+def test_buoy_on_one_vertical_chain():
+    """Before: K11 967 N/m against 14,316 re-solved (here 2.8e4 for this chain)."""
+    data = vertical_chain_buoy()
+    out = check_derivatives(data, "buoy", 500.0, ["bodies[buoy].x_m",
+                                                  "legs[chain].fairlead_tension_N"])
+    leg = out["result"].leg("chain")
+    k = pendulum_stiffness(leg, 400.0, 50.0, 5.0e8)
+    assert out["K"][0, 0] == pytest.approx(k, rel=1e-6)
+
+
+def test_buoy_on_a_vertical_weightless_tether():
+    """The weightless limit: the taut string's ``T / L_stretched``."""
+    data = vertical_chain_buoy(chain_weight=0.0)
+    out = check_derivatives(data, "buoy", 500.0, ["bodies[buoy].x_m"])
+    leg = out["result"].leg("chain")
+    T = leg.fairlead_tension_N
+    assert out["K"][0, 0] == pytest.approx(T / (50.0 * (1 + T / 5.0e8)), rel=1e-6)
+
+
+def test_touchdown_exactly_at_the_anchor():
+    """Suspended and touchdown branches meet with equal first derivatives (the spans and
+    their derivatives by ``H`` and ``V`` agree at ``V_A = 0``): the stiffness of the held
+    body is the one re-solved poses give on both sides."""
+    result = moorsolve.solve(moorsolve.load_case(touchdown_at_anchor()), tol=1e-12)
+    leg = result.leg("leg")
+    assert leg.anchor_vertical_N == pytest.approx(0.0, abs=1e-3)
+    assert leg.grounded_length_m == pytest.approx(0.0, abs=1e-6)
+    K = moorsolve.stiffness(result, body="hull")
+    assert_matrix_close(K, resolved_stiffness(result, "hull"), label="touchdown")
