@@ -33,7 +33,7 @@ def held_wrench(case, poses: dict, name: str) -> np.ndarray:
     """The lines' force and moment on body ``name`` [N, N m] with every body held at
     ``poses`` and the lines and free points re-solved."""
     held = posed_case(case, poses)
-    result = moorsolve.solve(held, allow_overload=True, stability=False, tol=1e-12)
+    result = moorsolve.solve(held, allow_overload=True, stability=False, tol=1e-10)
     problem = get_problem(held)
     w = np.asarray(problem.report(result.state, result_parameters(problem, result))[5]).ravel()
     i = [b.name for b in case.bodies].index(name)
