@@ -288,7 +288,7 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None,
     else:
         k = L * (1 / T + (ea_inv if elastic else 0))
     return dict(rX=H * k - X, rZ=V * k - Z, H=H, VF=V, HA=H, VA=V, grounded=0 * H,
-                suspended_x=X, descent_x=0 * H)
+                suspended_x=X, descent_x=0 * H, lateral=1 / k)
 
 
 @lru_cache(maxsize=None)
@@ -317,6 +317,6 @@ def straight_segment_function(elastic: bool,
     names, args, law = law_inputs(model if elastic else None, STRAIGHT_INPUTS)
     out = straight_segment_equations(elastic, *args[:len(STRAIGHT_INPUTS)], model=model,
                                      law=law)
+    outputs = SEGMENT_OUTPUTS + ("lateral",)
     return ca.Function(f"segment_straight_{law_tag(elastic, model)}", args,
-                       shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
-                       list(SEGMENT_OUTPUTS))
+                       shared([out[k] for k in outputs], law), names, list(outputs))

@@ -73,6 +73,8 @@ _X_FLOOR = 1e-12
 #: ``H e`` (``e = d/X``, ``d`` the horizontal offset of its ends) is written ``(dH/dX) d``:
 #: its limit at ``X -> 0``, where ``H/X`` is ``0/0`` (see :func:`horizontal_pull`).
 _NEAR_VERTICAL = 1e-6
+#: [N/m] below which a segment's H/X counts as zero in the series sum (a slack segment).
+_LATERAL_FLOOR = 1e-12
 
 @dataclass
 class LineBlock:
@@ -228,7 +230,7 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
     laws = list(problem.line_laws[i])
     if kind.flipped:
         seg, clump, laws = seg[::-1], clump[::-1], laws[::-1]
-    ux, uy, X, Z = plane_geometry(lower, upper)
+    _, _, X, Z = plane_geometry(lower, upper)
     u, V_top = x[iu], x[iu + 1]
     xi = [x[iu + 2 + 2 * j] for j in range(nj)]
     sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
@@ -319,8 +321,17 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
             o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
             joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k],
             o.get("floating", 0 * u)))
-    on_upper = ca.vertcat(-top["H"] * ux, -top["H"] * uy, -top["VF"])
-    on_lower = ca.vertcat(bottom["HA"] * ux, bottom["HA"] * uy, bottom["VA"])
+    # Hanging straight, the segments' spans add up as springs in series: H/X of the line
+    # is 1 / sum(1 / (H/X_k)) when every segment's block gives its own.
+    lateral = None
+    if all("lateral" in o for o, _, _, _ in outs):
+        lateral = 1 / sum((1 / ca.fmax(o["lateral"], _LATERAL_FLOOR) for o, _, _, _ in outs),
+                          0 * u)
+    offset = ca.vertcat(upper[0] - lower[0], upper[1] - lower[1])
+    near = X < _NEAR_VERTICAL * sum((s["length"] for s in seg), 0 * u)
+    on_upper = ca.vertcat(-horizontal_pull(top["H"], X, offset, near, lateral), -top["VF"])
+    on_lower = ca.vertcat(horizontal_pull(bottom["HA"], X, offset, near, lateral),
+                          bottom["VA"])
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(res, force_a, force_b, worst, row, rows, [])
 

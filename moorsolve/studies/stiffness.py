@@ -134,7 +134,19 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     adds the non-symmetric geometric part.
     """
     result = as_result(result_or_case, solver)
-    case = result.case
+    from .one_sided import lines_at_slack_point, warn_one_sided, with_lines
+    at_point = lines_at_slack_point(result)
+    if at_point:
+        # Neither side's derivative is that of the scene as solved: give the taut side's
+        # and say so (moorsolve.one_sided_stiffness gives both).
+        warn_one_sided(at_point)
+        return held_stiffness(with_lines(result.case, at_point, taut=True), result, body)
+    return held_stiffness(result.case, result, body)
+
+
+def held_stiffness(case: Case, result: Result, body: Optional[str]) -> np.ndarray:
+    """:func:`stiffness` of ``case`` (``result.case`` or a variant of it with the same bodies
+    and points) about the poses and free points of ``result``."""
     if not case.bodies:
         case = _virtual_body_case(case)
         poses = {"frame": np.zeros(6)}

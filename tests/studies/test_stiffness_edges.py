@@ -120,3 +120,79 @@ def test_touchdown_exactly_at_the_anchor():
     assert leg.grounded_length_m == pytest.approx(0.0, abs=1e-6)
     K = moorsolve.stiffness(result, body="hull")
     assert_matrix_close(K, resolved_stiffness(result, "hull"), label="touchdown")
+
+
+def quay_hawsers(length: float) -> dict:
+    """A held body on two parallel horizontal 2e7 N hawsers to bollards 30 m away along -x,
+    ``length`` [m] unstretched (30: exactly at their slack point)."""
+    lines, points = [], []
+    for k, y in enumerate((5.0, -5.0)):
+        points.append({"name": f"P{k}", "position": [-30.0, y, 2.0]})
+        lines.append({"name": f"H{k}", "from": f"P{k}", "to": {"body": "b", "at": [0.0, y, 2.0]},
+                      "segments": [{"type": "hawser", "length": length}]})
+    return {"name": "hawsers at their slack point", "environment": {"depth": 20.0},
+            "line_types": {"hawser": {"weight_in_water": 0, "ea": 2.0e7, "mbl": 1e7}},
+            "bodies": [{"name": "b", "free": []}], "points": points, "lines": lines}
+
+
+def test_hawsers_exactly_at_their_slack_point_give_both_sides():
+    """At the slack point the force is continuous but its derivative is not: pulling the body
+    away stretches both hawsers (``2 EA/L`` along x), pushing it closer leaves them slack
+    (nothing). Both one-sided limits against one-sided differences of re-solved poses, and
+    ``stiffness`` gives the taut side with a warning instead of the solver's corner."""
+    from resolved import held_wrench, displaced
+    from moorsolve.studies.stiffness import _solved_poses
+
+    result = moorsolve.solve(moorsolve.load_case(quay_hawsers(30.0)))
+    pair = moorsolve.one_sided_stiffness(result)
+    assert pair.lines == ("H0", "H1")
+    poses, case, h = _solved_poses(result), result.case, 1e-4
+    at_rest = held_wrench(case, poses, "b")
+    for side, K in ((1, pair.taut), (-1, pair.slack)):
+        moved = held_wrench(case, displaced(poses, "b", 0, side * h), "b")
+        column = -(moved - at_rest) / (side * h)
+        np.testing.assert_allclose(K[:, 0], column, rtol=1e-3, atol=1e-3 * 2 * 2.0e7 / 30)
+    assert pair.taut[0, 0] == pytest.approx(2 * 2.0e7 / 30.0, rel=1e-5)
+    assert np.all(pair.slack == 0)
+    with pytest.warns(moorsolve.MoorsolveWarning, match="slack point"):
+        K = moorsolve.stiffness(result)
+    np.testing.assert_array_equal(K, pair.taut)
+    # Off the point by far more than AT_SLACK_POINT: one matrix, no pair.
+    assert moorsolve.one_sided_stiffness(moorsolve.solve(moorsolve.load_case(
+        quay_hawsers(30.5)))) is None
+
+
+def test_cli_prints_both_sides(tmp_path, capsys):
+    import json
+
+    import yaml
+    from moorsolve.cli import main
+
+    path = tmp_path / "hawsers.yaml"
+    path.write_text(yaml.safe_dump(quay_hawsers(30.0)))
+    assert main(["stiffness", str(path), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["one_sided"]["lines"] == ["H0", "H1"]
+    assert out["matrix"] == out["one_sided"]["taut"]
+    assert np.all(np.asarray(out["one_sided"]["slack"]) == 0)
+    assert main(["stiffness", str(path)]) == 0
+    assert "exactly at their slack point" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("top", [{"weight_in_water": 50.0, "ea": 3.0e8},
+                                 {"weight_in_water": 0.0, "ea": 3.0e8}])
+def test_multi_segment_line_hanging_straight(top):
+    """Chain below, wire (or weightless rope) above, hanging straight: the segments' spans
+    add as springs in series, ``1/k = sum(ln(V_k/V_Ak)/w_k + L_k/EA_k)``."""
+    data = vertical_chain_buoy()
+    data["line_types"]["top"] = dict(top, mbl=5e6)
+    data["lines"][0]["segments"] = [{"type": "chain", "length": 20.0},
+                                    {"type": "top", "length": 30.0}]
+    out = check_derivatives(data, "buoy", 500.0, ["bodies[buoy].x_m"])
+    leg = out["result"].leg("chain")
+    V = leg.fairlead_tension_N
+    V_joint = V - top["weight_in_water"] * 30.0
+    compliance = 20.0 / 5.0e8 + math.log(V_joint / leg.anchor_tension_N) / 400.0 \
+        + 30.0 / top["ea"] + (math.log(V / V_joint) / top["weight_in_water"]
+                              if top["weight_in_water"] else 30.0 / V)
+    assert out["K"][0, 0] == pytest.approx(1 / compliance, rel=1e-5)
