@@ -190,7 +190,7 @@ def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
                                  between_joints=between_joints, model=model, law=law)
     return dict(rX=m["rX"], rZ=-m["rZ"], H=m["H"], VF=-m["VF"], HA=m["HA"], VA=-m["VA"],
                 grounded=0 * m["H"], floating=m["grounded"], suspended_x=m["suspended_x"],
-                descent_x=m["descent_x"])
+                descent_x=m["descent_x"], lateral=m["lateral"])
 
 
 SURFACE_INPUTS = LEG_INPUTS + ("d",)
@@ -222,13 +222,13 @@ def surface_leg_equations(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, 
                                       law=law)
         return dict(rX=o["rX"], rZ=o["rZ"], H=o["H"], VF=o["VF"], HA=o["HA"], VA=o["VA"],
                     grounded=o["grounded"], suspended_x=X - o["descent_x"],
-                    floating=o["floating"], touchup_x=o["descent_x"])
+                    floating=o["floating"], touchup_x=o["descent_x"], lateral=o["lateral"])
     o = surface_segment_equations(elastic, X, -Z, d, u, V, L, w, ea_inv, model=model, law=law)
     # Back to the leg's orientation: the fairlead holds the block's lower end, the anchor
     # its upper end.
     return dict(rX=o["rX"], rZ=-o["rZ"], H=o["H"], VF=-o["VA"], HA=o["HA"], VA=-o["VF"],
                 grounded=o["grounded"], suspended_x=X - o["suspended_x"],
-                floating=o["floating"], touchup_x=o["suspended_x"])
+                floating=o["floating"], touchup_x=o["suspended_x"], lateral=o["lateral"])
 
 
 @lru_cache(maxsize=None)
@@ -241,9 +241,9 @@ def surface_leg_function(elastic: bool, from_fairlead: bool,
     out = surface_leg_equations(elastic, from_fairlead, *args[:len(SURFACE_INPUTS)],
                                 model=model, law=law)
     tag = law_tag(elastic, model) + ("_from_fairlead" if from_fairlead else "")
-    return ca.Function(f"leg_surface_{tag}", args,
-                       shared([out[k] for k in SURFACE_OUTPUTS], law), names,
-                       list(SURFACE_OUTPUTS))
+    outputs = SURFACE_OUTPUTS + ("lateral",)
+    return ca.Function(f"leg_surface_{tag}", args, shared([out[k] for k in outputs], law),
+                       names, list(outputs))
 
 
 @lru_cache(maxsize=None)
@@ -256,7 +256,7 @@ def surface_segment_function(elastic: bool, between_joints: bool = False,
     X, Z, h, u, V, L, w, ea_inv, _ = args[:len(LIFTED_INPUTS)]
     out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv, between_joints,
                                     model=model, law=law)
-    names = SEGMENT_OUTPUTS + ("floating",)
+    names = SEGMENT_OUTPUTS + ("floating", "lateral")
     tag = law_tag(elastic, model) + ("_joints" if between_joints else "")
     return ca.Function(f"segment_surface_{tag}", args, shared([out[k] for k in names], law),
                        names_in, list(names))

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import moorsolve
@@ -30,18 +30,19 @@ CASES = Path(__file__).resolve().parents[2] / "cases"
 SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True)
 
 
-def hanging_line(span, weight, ea, strain, free, top_weight=0.0) -> dict:
-    """A body exactly above its anchor on one line of ``span`` [m] stretched by ``strain``
-    (so that the top tension is ``strain EA + w L / 2`` and the bottom one
-    ``strain EA - w L / 2``); ``free`` its free DOFs (held in the rest)."""
+def hanging_line(span, weight, ea, strain, free, lift=0.0) -> dict:
+    """A body at the surface exactly above its anchor on one line of ``span`` [m] stretched
+    by ``strain`` (so that the top tension is ``strain EA + w L / 2`` and the bottom one
+    ``strain EA - w L / 2``), the anchor ``lift`` [m] above the seabed; ``free`` the body's
+    free DOFs (held in the rest)."""
     length = span / (1 + strain)
     return {
         "name": "body on a hanging line",
-        "environment": {"depth": span + 10.0},
+        "environment": {"depth": span + lift},
         "line_types": {"line": {"weight_in_water": weight, "ea": ea, "mbl": 1e12}},
         "bodies": [{"name": "b", "free": list(free), "mass": 1.0e5,
-                    "loads": {"force": [0.0, 0.0, top_weight]}}],
-        "lines": [{"name": "L", "from": [0.0, 0.0, -span - 10.0],
+                    "loads": {"force": [0.0, 0.0, 0.0]}}],
+        "lines": [{"name": "L", "from": [0.0, 0.0, -span],
                    "to": {"body": "b", "at": [0.0, 0.0, 0.0]},
                    "segments": [{"type": "line", "length": length}]}],
     }
@@ -50,29 +51,34 @@ def hanging_line(span, weight, ea, strain, free, top_weight=0.0) -> dict:
 @st.composite
 def hanging_lines(draw):
     span = draw(st.floats(20.0, 400.0))
-    weight = draw(st.sampled_from([0.0, 1.0, 50.0, 400.0, 3000.0]))
+    weight = draw(st.sampled_from([-50.0, 0.0, 1.0, 50.0, 400.0, 3000.0]))
     ea = draw(st.floats(1e7, 1e10))
-    length = span
-    # Suspended all the way: the bottom tension at least half the line's weight.
-    least = max(1e-5, weight * length / ea)
+    # Taut all the way: both end tensions at least half the line's weight.
+    least = max(1e-5, abs(weight) * span / ea)
     strain = draw(st.floats(least, max(2 * least, 0.01)))
-    return span, weight, ea, strain
+    # The anchor on the seabed (leg blocks; a buoyant line rising to the surface: the
+    # surface block) or lifted above it (the lifted block).
+    lift = draw(st.sampled_from([0.0, 15.0]))
+    return span, weight, ea, strain, lift
 
 
-@settings(max_examples=examples(6), **SETTINGS)
+@settings(max_examples=examples(10), **SETTINGS)
 @given(hanging_lines(), st.sampled_from([("surge", "sway"), ()]))
+@example((120.0, -50.0, 1e8, 1e-3, 0.0), ("surge", "sway"))     # buoyant, to the surface
+@example((80.0, 3000.0, 5e9, 1e-3, 15.0), ("surge", "sway"))    # heavy, anchor lifted
+@example((60.0, 0.0, 1e8, 1e-4, 15.0), ())                      # weightless tether
 def test_line_hanging_straight(line, free):
     """Per-body stiffness (and, free, the coupled stiffness and stability eigenvalues) of a
     body on a line hanging straight down equal the re-solved ones, and the lateral entry is
     the closed-form ``1 / (ln(V/V_A)/w + L/EA)`` (``L/V + L/EA`` weightless)."""
-    span, weight, ea, strain = line
-    data = hanging_line(span, weight, ea, strain, free)
+    span, weight, ea, strain, lift = line
+    data = hanging_line(span, weight, ea, strain, free, lift)
     result = moorsolve.solve(moorsolve.load_case(data), tol=1e-12)
     K = moorsolve.stiffness(result, body="b")
     assert_matrix_close(K, resolved_stiffness(result, "b"), label="hanging")
     leg = result.leg("L")
     V, VA, L = leg.fairlead_tension_N, leg.anchor_tension_N, span / (1 + strain)
-    compliance = L / ea + (math.log(V / VA) / weight if weight > 0 else L / V)
+    compliance = L / ea + (math.log(V / VA) / weight if weight else L / V)
     assert K[0, 0] == pytest.approx(1 / compliance, rel=1e-6)
     assert K[1, 1] == pytest.approx(1 / compliance, rel=1e-6)
     if free:
