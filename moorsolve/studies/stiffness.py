@@ -14,10 +14,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from typing import Optional, Sequence
 
 import numpy as np
 
+from ..errors import MoorsolveWarning
 from ..model import DOFS, Body, BodyLoads, Case, Contacts, End
 from ..model.build_network import rotation
 from ..solve.bathymetry import result_parameters
@@ -131,7 +133,11 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     line pulls its ends with a force depending on their positions only, so the mooring
     force has a potential where every line end is on the body and K is symmetric; a net
     moment of the lines about the origin (a body not in balance under its lines alone)
-    adds the non-symmetric geometric part.
+    adds the non-symmetric geometric part. At the line model's non-smooth points K is the
+    limit from the physical side (a line hanging straight down: its pendulum stiffness);
+    where a weightless line is exactly at its slack point the two sides differ: K is then
+    the taut side's, with a :class:`~moorsolve.MoorsolveWarning`
+    (:func:`moorsolve.one_sided_stiffness` gives both).
     """
     result = as_result(result_or_case, solver)
     from .one_sided import lines_at_slack_point, warn_one_sided, with_lines
@@ -209,6 +215,14 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
     condensed out), with ``dofs`` labels ``"body.surge"`` ... [SI; rotations are the
     bodies' own angles]."""
     result = as_result(result_or_case, solver)
+    from .one_sided import lines_at_slack_point
+    at_point = lines_at_slack_point(result)
+    if at_point:
+        warnings.warn(
+            f"line(s) {', '.join(at_point)} at their slack point (chord = unstretched "
+            "length): the coupled stiffness differs on the two sides and this matrix is "
+            "neither's (moorsolve.one_sided_stiffness gives each body's mooring stiffness "
+            "on both sides)", MoorsolveWarning, stacklevel=2)
     problem = get_problem(result.case)
     K, keep = condensed_stiffness(problem, result.state, result_parameters(problem, result))
     dofs = [f"{result.case.bodies[problem.nodes[j][1]].name}.{problem.nodes[j][2]}"

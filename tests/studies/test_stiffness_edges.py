@@ -157,6 +157,12 @@ def test_hawsers_exactly_at_their_slack_point_give_both_sides():
     with pytest.warns(moorsolve.MoorsolveWarning, match="slack point"):
         K = moorsolve.stiffness(result)
     np.testing.assert_array_equal(K, pair.taut)
+    # The coupled matrix at the point is not either side's: said.
+    data = quay_hawsers(30.0)
+    data["bodies"][0].update(free=["surge", "sway", "yaw"], stiffness=[
+        [1e5 if i == j else 0 for j in range(6)] for i in range(6)])
+    with pytest.warns(moorsolve.MoorsolveWarning, match="neither"):
+        moorsolve.coupled_stiffness(moorsolve.solve(moorsolve.load_case(data)))
     # Off the point by far more than AT_SLACK_POINT: one matrix, no pair.
     assert moorsolve.one_sided_stiffness(moorsolve.solve(moorsolve.load_case(
         quay_hawsers(30.5)))) is None
