@@ -64,9 +64,6 @@ from .stretch import StretchModel
 
 #: Horizontal tension [N] below which asinh arguments are capped; H itself stays exact.
 _H_FLOOR = 1e-9
-#: Span [m] below which ``H / span`` is not divided by the span itself (a line on the seabed
-#: or slack near a span of zero: its H is zero or the quotient unused).
-_X_TINY = 1e-12
 
 
 @dataclass(frozen=True)
@@ -190,19 +187,24 @@ def _suspended_spans(H, Hg, V, VA, w, L, c):
     return Xs, Zs
 
 
-def lateral_stiffness(taut_suspended, compliance, H, span):
-    """``H / X`` [N/m] of a line on its own span: the coefficient of its horizontal pull
-    ``H e = (H/X) offset`` (``offset`` the horizontal vector between its ends).
+def lateral_stiffness(taut_suspended, V, VA, w, L, c, stretch=0):
+    """``H / X`` [N/m] of a line hanging straight down: the coefficient of its horizontal
+    pull ``H e = (H/X) offset`` (``offset`` the horizontal vector between its ends) near
+    ``X = 0``, where ``H/X`` itself is ``0/0``.
 
     A suspended taut catenary has ``X = H G(H, V)`` with ``G = [asinh(V/H) -
-    asinh(V_A/H)]/w + L/EA`` (``compliance``), so ``H/X = 1/G`` with no ``0/0`` as the line
-    hangs straight down (``H, X -> 0``): there it is ``1 / (ln(V/V_A)/w + L/EA)``, the
-    lateral stiffness of the hanging line (for ``w -> 0``, ``T/L``). Elsewhere
-    (``taut_suspended`` false: on the seabed, slack) ``H / span``, ``span`` the block's
-    own horizontal extent [m].
+    asinh(V_A/H)]/w + L/EA``, smooth and even in ``H``; as the line hangs straight down
+    (``H, X -> 0``) ``H/X -> 1/G(0, V) = 1 / (ln(V/V_A)/w + L/EA)`` (written
+    ``log1p(w L/V_A)/w``: for ``w -> 0`` it is ``L/T``, the taut string). Within the range
+    the caller uses it (``X`` below 1e-6 of the length) ``G(H, V)`` and ``G(0, V)`` differ
+    by ``O((H/V)^2)``, and ``G(0, V)`` has no derivative by ``H`` (so it adds little to the
+    Jacobian). ``stretch``: a stretch law's own term ``[Psi(V) - Psi(V_A)]/w``. A line that is
+    not ``taut_suspended`` hangs straight only slack, or with all its length but a
+    vanishing part lifted off the boundary: ``H/X`` tends to 0 there.
     """
-    G = ca.if_else(compliance > 0, compliance, 1)
-    return ca.if_else(taut_suspended, 1 / G, H / ca.fmax(span, _X_TINY))
+    ratio = w * L / ca.if_else(VA != 0, VA, 1)
+    G = ca.log1p(ca.if_else(ratio > -1, ratio, 0)) / w + L * c + stretch
+    return ca.if_else(taut_suspended, 1 / ca.if_else(G > 0, G, 1), 0)
 
 
 def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
@@ -271,11 +273,11 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     c = ea_inv if kind.elastic and bound is None else 0
     stretch = H * L * c
     Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
-    compliance = _span_factor(Hg, V, VA, w, L) / w + L * c
+    stretch_term = 0
     if bound is not None:
         psi_V, psi_VA = bound.horizontal(Hg, V, VA)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
-        compliance = compliance + (psi_V - psi_VA) / w
+        stretch_term = (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
 
     if not kind.contact:
@@ -286,7 +288,7 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
         loose = loose_part(u) / ca.fabs(w)
         return dict(rX=Xs - X - loose, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
                     grounded=0 * H, suspended_x=Xs,
-                    lateral=lateral_stiffness(u >= 0, compliance, H, Xs - loose))
+                    lateral=lateral_stiffness(u >= 0, V, VA, w, L, c, stretch_term))
 
     loose = loose_part(u) / w
     LB = L - V / w
@@ -325,8 +327,8 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
         VA=ca.fmax(VA, 0),
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, Xsusp_t),
-        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), compliance, H,
-                                  ca.if_else(suspended, Xs, Xt) - loose),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), V, VA, w, L, c,
+                                  stretch_term),
     )
 
 

@@ -17,7 +17,7 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, ground_stretch, law_inputs, law_tag, shared
-from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, _span_factor, _suspended_spans,
+from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, _suspended_spans,
                        lateral_stiffness, loose_part, taut_part)
 from .stretch import StretchModel
 
@@ -108,7 +108,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     VA = V - w * L
     V1 = descent_force(H, h, w, c, bound)
     Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
-    compliance = _span_factor(Hg, V, VA, w, L) / w + L * c
+    stretch_term = 0
     s1 = -V1 / w
     x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
     LB = L - s1 - V / w
@@ -118,7 +118,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     if bound is not None:
         psi_V, psi_VA, psi_1 = bound.horizontal(Hg, V, VA, -V1)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
-        compliance = compliance + (psi_V - psi_VA) / w
+        stretch_term = (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
         x1 = x1 + (H / w) * psi_1
         x_rise = x_rise + (H / w) * psi_V
@@ -152,8 +152,8 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, x_rise),
         descent_x=ca.if_else(suspended, 0, x1),
-        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), compliance, H,
-                                  ca.if_else(suspended, Xs, Xt) - loose),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), V, VA, w, L, c,
+                                  stretch_term),
     )
 
 

@@ -15,8 +15,8 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, law_inputs, law_tag, shared
-from .catenary import (_H_FLOOR, LATERAL_OUTPUTS, LEG_INPUTS, _hyp, _span_factor,
-                       lateral_stiffness, loose_part, taut_part)
+from .catenary import (_H_FLOOR, LATERAL_OUTPUTS, LEG_INPUTS, _hyp, lateral_stiffness,
+                       loose_part, taut_part)
 from .stretch import StretchModel
 
 __all__ = ["SLOPED_INPUTS", "sloped_leg_equations", "sloped_leg_function"]
@@ -70,7 +70,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     cos_t, sin_t = 1 / sec, t / sec
     VA = V - w * L
     Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
-    compliance = _span_factor(Hg, V, VA, w, L) / w + L * c
+    stretch_term = 0
     Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
 
     Vtd = H * t
@@ -87,7 +87,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     else:
         psi_V, psi_VA, psi_td = bound.horizontal(Hg, V, VA, Vtd)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
-        compliance = compliance + (psi_V - psi_VA) / w
+        stretch_term = (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
         x_susp = x_susp + (H / w) * (psi_V - psi_td)
         rise = (_hyp(H, V) - _hyp(H, Vtd)) / w * (1 + bound.mean(_hyp(H, Vtd), _hyp(H, V)))
@@ -122,8 +122,8 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
         VA=ca.if_else(suspended, VA, TA * sin_t),
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, x_susp),
-        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), compliance, H,
-                                  ca.if_else(suspended, Xs, Xt)),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), V, VA, w, L, c,
+                                  stretch_term),
     )
 
 
