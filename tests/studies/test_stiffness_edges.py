@@ -202,3 +202,28 @@ def test_multi_segment_line_hanging_straight(top):
         + 30.0 / top["ea"] + (math.log(V / V_joint) / top["weight_in_water"]
                               if top["weight_in_water"] else 30.0 / V)
     assert out["K"][0, 0] == pytest.approx(1 / compliance, rel=1e-5)
+
+
+def test_horizontal_tension_of_a_straight_line_is_a_kink_and_said():
+    """The horizontal tension of a tendon hanging straight grows as the offset's size on
+    every side: re-solved with the load +-dF it rises both ways (one-sided slopes of
+    opposite sign), so no derivative exists and ``sensitivity`` says so; the pose's
+    derivative, smooth, comes without a word."""
+    import warnings
+
+    data = tlp()
+    result = moorsolve.solve(moorsolve.load_case(data), tol=1e-12)
+    plus = moorsolve.solve(moorsolve.load_case(tlp(force=(1e4, 0, 0))), tol=1e-12)
+    minus = moorsolve.solve(moorsolve.load_case(tlp(force=(-1e4, 0, 0))), tol=1e-12)
+    # Each tendon takes about a quarter of the load on either side: slopes +-1/4.
+    right = plus.leg("T1").horizontal_tension_N / 1e4
+    left = -minus.leg("T1").horizontal_tension_N / 1e4
+    assert right == pytest.approx(0.25, rel=0.02) and left == pytest.approx(-0.25, rel=0.02)
+    central = resolved_sensitivity(data, ["legs[T1].horizontal_tension_N"], "tlp", 0, 1e4)[0]
+    assert abs(central) < 1e-3 * right           # the kink averaged away
+    with pytest.warns(moorsolve.MoorsolveWarning, match="kink"):
+        moorsolve.sensitivity(result, ["legs[T1].horizontal_tension_N"],
+                              ["bodies[tlp].loads.force[0]"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        moorsolve.sensitivity(result, ["bodies[tlp].x_m"], ["bodies[tlp].loads.force[0]"])
