@@ -83,6 +83,26 @@ def with_lines(case: Case, names, *, taut: bool) -> Case:
     return dataclasses.replace(case, lines=tuple(lines))
 
 
+def contacts_at_first_contact(result) -> tuple:
+    """Names of the fenders and guide pads of ``result`` exactly at first contact: touching
+    (opening within :data:`AT_SLACK_POINT` of the scene's length scale) with no reaction
+    (within that fraction of its force scale). Closing them adds their stiffness, opening
+    them nothing: the tangent stiffness differs on the two sides there."""
+    from ..solve.bathymetry import result_parameters
+    from ..solve.cache import get_problem
+    from ..solve.contact import CONTACT_COLUMNS
+
+    problem = get_problem(result.case)
+    if not getattr(problem, "contacts", None):
+        return ()
+    table = np.atleast_2d(np.asarray(problem.contact_report(
+        result.state, result_parameters(problem, result)), dtype=float))
+    opening, reaction = CONTACT_COLUMNS.index("opening"), CONTACT_COLUMNS.index("reaction")
+    return tuple(point.name for point, row in zip(problem.contacts, table)
+                 if abs(row[opening]) <= AT_SLACK_POINT * problem.length_scale
+                 and abs(row[reaction]) <= AT_SLACK_POINT * problem.force_scale)
+
+
 def warn_one_sided(names) -> None:
     warnings.warn(
         f"line(s) {', '.join(names)} at their slack point (chord = unstretched length): "

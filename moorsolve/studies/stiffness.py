@@ -215,7 +215,7 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
     condensed out), with ``dofs`` labels ``"body.surge"`` ... [SI; rotations are the
     bodies' own angles]."""
     result = as_result(result_or_case, solver)
-    from .one_sided import lines_at_slack_point
+    from .one_sided import contacts_at_first_contact, lines_at_slack_point
     at_point = lines_at_slack_point(result)
     if at_point:
         warnings.warn(
@@ -223,6 +223,12 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
             "length): the coupled stiffness differs on the two sides and this matrix is "
             "neither's (moorsolve.one_sided_stiffness gives each body's mooring stiffness "
             "on both sides)", MoorsolveWarning, stacklevel=2)
+    touching = contacts_at_first_contact(result)
+    if touching:
+        warnings.warn(
+            f"{', '.join(touching)} exactly at first contact (touching, no reaction): the "
+            "coupled stiffness differs on the two sides (closing adds their stiffness, "
+            "opening nothing) and this matrix is one side's", MoorsolveWarning, stacklevel=2)
     problem = get_problem(result.case)
     K, keep = condensed_stiffness(problem, result.state, result_parameters(problem, result))
     dofs = [f"{result.case.bodies[problem.nodes[j][1]].name}.{problem.nodes[j][2]}"

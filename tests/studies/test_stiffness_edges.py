@@ -227,3 +227,38 @@ def test_horizontal_tension_of_a_straight_line_is_a_kink_and_said():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         moorsolve.sensitivity(result, ["bodies[tlp].x_m"], ["bodies[tlp].loads.force[0]"])
+
+
+def fendered(load_x: float) -> dict:
+    """A body on a yaw and surge spring with two 2e6 N/m fenders touching a quay wall at
+    rest (x = 0, outward normal +x), pushed onto it by ``-load_x`` [N]."""
+    def fender(name, y):
+        return {"name": name, "body": "b", "at": [0, y, 0], "wall": "quay",
+                "reaction": {"stiffness": 2.0e6}, "rated_deflection": 0.5}
+    return {
+        "name": "fenders at first contact", "environment": {"depth": 15.0},
+        "line_types": {"hawser": {"weight_in_water": 0, "ea": 2.0e7}},
+        "bodies": [{"name": "b", "free": ["surge", "yaw"], "loads": {"force": [load_x, 0, 0]},
+                    "stiffness": [[1e5 if i == j else 0 for j in range(6)]
+                                  for i in range(6)]}],
+        "lines": [{"name": "idle", "from": [60.0, 0.0, 0.0],
+                   "to": {"body": "b", "at": [20, 0, 0]},
+                   "segments": [{"type": "hawser", "length": 45.0}]}],
+        "walls": [{"name": "quay", "point": [0, 0, 0], "normal": [1, 0, 0]}],
+        "fenders": [fender("F1", 10.0), fender("F2", -10.0)],
+    }
+
+
+def test_fenders_exactly_at_first_contact_are_said():
+    """Touching with no reaction, closing adds 2 x 2e6 N/m and opening nothing: the coupled
+    stiffness is one side's and says so; pressed on, it is one matrix and silent."""
+    import warnings
+
+    result = moorsolve.solve(moorsolve.load_case(fendered(0.0)))
+    with pytest.warns(moorsolve.MoorsolveWarning, match="F1, F2 exactly at first contact"):
+        moorsolve.coupled_stiffness(result)
+    pressed = moorsolve.solve(moorsolve.load_case(fendered(-1.0e5)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        C, _ = moorsolve.coupled_stiffness(pressed)
+    assert C[0, 0] == pytest.approx(1e5 + 2 * 2.0e6, rel=1e-6)
