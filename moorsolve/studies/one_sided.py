@@ -52,12 +52,15 @@ class OneSidedStiffness:
 
 
 def lines_at_slack_point(result) -> tuple:
-    """Names of the one-segment weightless elastic lines of ``result`` at their slack point
-    (chord and unstretched length equal to :data:`AT_SLACK_POINT` of the length)."""
+    """Names of the one-segment weightless elastic lines of ``result`` (Hooke or another
+    stretch law) at their slack point (chord and unstretched length equal to
+    :data:`AT_SLACK_POINT` of the length). An inextensible one is a constraint when taut,
+    not a spring: it is not among them."""
     names = []
     for line, leg in zip(result.case.lines, result.legs):
-        if line.multi_segment or line.line_type.weight_in_water != 0 \
-                or line.line_type.ea is None:
+        kind = line.line_type
+        if line.multi_segment or kind.weight_in_water != 0 \
+                or (kind.ea is None and kind.stretch is None):
             continue
         chord = float(np.linalg.norm(np.subtract(leg.fairlead, leg.anchor)))
         if abs(chord - line.length) <= AT_SLACK_POINT * line.length:
