@@ -33,7 +33,7 @@ _NAMES = {
     "sensitivity": ".studies.sensitivity",
     "stiffness": ".studies.stiffness", "coupled_stiffness": ".studies.stiffness",
     "body_natural_periods": ".studies.stiffness", "restoring_curve": ".studies.stiffness",
-    "natural_periods": ".studies.stiffness",
+    "natural_periods": ".studies.stiffness", "one_sided_stiffness": ".studies.one_sided",
     "stiffness_bounds": ".studies.bounds",
     "motions": ".dynamics.motions",
 }
@@ -103,8 +103,9 @@ def optimise(case, study, **options):
 
 
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
-           "offset_envelope", "stiffness", "coupled_stiffness", "body_natural_periods",
-           "restoring_curve", "natural_periods", "motions", "sensitivity", "optimise", "stiffness_bounds",
+           "offset_envelope", "stiffness", "one_sided_stiffness", "coupled_stiffness",
+           "body_natural_periods", "restoring_curve", "natural_periods", "motions",
+           "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
            "MoorsolveError", "CaseError", "ConvergenceError", "MoorsolveWarning",

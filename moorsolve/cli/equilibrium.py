@@ -81,6 +81,7 @@ def run_stiffness(args) -> int:
     from ..model import DOFS
     from ..report.matrix import stiffness_table
     from ..report.text import format_stiffness
+    from ..studies.one_sided import one_sided_stiffness
     from ..studies.stiffness import stiffness
     case = load_case(args.case)
     names = [b.name for b in case.bodies]
@@ -91,15 +92,28 @@ def run_stiffness(args) -> int:
         raise CaseError("--body", f"the case has {len(names)} bodies "
                                   f"({', '.join(names)}); name one")
     result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
-    K = stiffness(result, args.body)
+    # Weightless lines exactly at their slack point: the two sides differ; both are given
+    # (the matrix is the taut side's).
+    pair = one_sided_stiffness(result, args.body)
+    K = pair.taut if pair else stiffness(result, args.body)
     body = args.body or (names[0] if names else None)
+    held = [n for n in names if n != body]
     if args.json:
         table = stiffness_table(K, DOFS)
-        print_text(json.dumps({"body": body, "dofs": list(DOFS), "matrix": K.tolist(),
-                               "rows": list(table.rows), "columns": list(table.columns)},
-                              indent=2))
+        out = {"body": body, "held_bodies": held, "about": "solved poses", "dofs": list(DOFS),
+               "matrix": K.tolist(), "rows": list(table.rows), "columns": list(table.columns)}
+        if pair:
+            out["one_sided"] = {"lines": list(pair.lines), "taut": pair.taut.tolist(),
+                                "slack": pair.slack.tolist()}
+        print_text(json.dumps(out, indent=2))
     else:
-        print_text(format_stiffness(K, body, case.name))
+        text = format_stiffness(K, body, case.name, held)
+        if pair:
+            text += (f"\n{', '.join(pair.lines)} exactly at their slack point: the matrix "
+                     "above is the taut side's (displacements that stretch them); the slack "
+                     f"side's (displacements that slacken them):\n"
+                     f"{stiffness_table(pair.slack, DOFS)!r}")
+        print_text(text)
     return EXIT_OK
 
 

@@ -145,9 +145,36 @@ class LegKind:
         return "_".join(parts)
 
 
+def taut_part(u):
+    """``max(u, 0)``: the horizontal tension carried by the signed unknown ``u`` [N].
+
+    Written so that its derivative at ``u = 0`` is the taut side's (1), not an average of
+    the two branches: ``u = 0`` with the line's span still positive is reached only from
+    the taut side (a line hanging straight down, X -> 0+), and where a line genuinely
+    turns slack there (touchdown branch) the taut side's derivative of ``H(X)`` tends to 0
+    as the slack side's does.
+    """
+    return ca.if_else(u >= 0, u, 0)
+
+
+def loose_part(u):
+    """``max(-u, 0)``: the slack measure of ``u`` [N], zero derivative at ``u = 0`` (the taut
+    side, as :func:`taut_part`)."""
+    return ca.if_else(u >= 0, 0, -u)
+
+
 def _hyp(a, b):
     """``sqrt(a^2 + b^2)`` floored by 1e-9 N so that its derivative exists at (0, 0)."""
     return ca.sqrt(a**2 + b**2 + _H_FLOOR**2)
+
+
+def _span_factor(Hg, V, VA, w, L):
+    """``asinh(V/H) - asinh(V_A/H)`` free of cancellation (see :func:`_suspended_spans`)."""
+    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
+    same_side = V * VA > 0
+    return ca.if_else(same_side,
+                      ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
+                      ca.asinh(V / Hg) - ca.asinh(VA / Hg))
 
 
 def _suspended_spans(H, Hg, V, VA, w, L, c):
@@ -160,14 +187,29 @@ def _suspended_spans(H, Hg, V, VA, w, L, c):
     (the denominator is at least ``|w| L``). Square roots carry a 1e-9 N floor so that
     derivatives exist at ``H = V = 0``; it cancels exactly from the difference.
     """
-    TF, TA = ca.sqrt(Hg**2 + V**2), ca.sqrt(Hg**2 + VA**2)
-    same_side = V * VA > 0
-    dasinh = ca.if_else(same_side,
-                        ca.asinh(w * L * (V + VA) / ca.if_else(same_side, V * TA + VA * TF, 1)),
-                        ca.asinh(V / Hg) - ca.asinh(VA / Hg))
-    Xs = (H / w) * dasinh + H * L * c
+    Xs = (H / w) * _span_factor(Hg, V, VA, w, L) + H * L * c
     Zs = L * (V + VA) / (_hyp(H, V) + _hyp(H, VA)) + L * c * (V - w * L / 2)
     return Xs, Zs
+
+
+def lateral_stiffness(taut_suspended, V, VA, w, L, c, stretch=0):
+    """``H / X`` [N/m] of a line hanging straight down: the coefficient of its horizontal
+    pull ``H e = (H/X) offset`` (``offset`` the horizontal vector between its ends) near
+    ``X = 0``, where ``H/X`` itself is ``0/0``.
+
+    A suspended taut catenary has ``X = H G(H, V)`` with ``G = [asinh(V/H) -
+    asinh(V_A/H)]/w + L/EA``, smooth and even in ``H``; as the line hangs straight down
+    (``H, X -> 0``) ``H/X -> 1/G(0, V) = 1 / (ln(V/V_A)/w + L/EA)`` (written
+    ``log1p(w L/V_A)/w``: for ``w -> 0`` it is ``L/T``, the taut string). Within the range
+    the caller uses it (``X`` below 1e-6 of the length) ``G(H, V)`` and ``G(0, V)`` differ
+    by ``O((H/V)^2)``, and ``G(0, V)`` has no derivative by ``H`` (so it adds little to the
+    Jacobian). ``stretch``: a stretch law's own term ``[Psi(V) - Psi(V_A)]/w``. A line that is
+    not ``taut_suspended`` hangs straight only slack, or with all its length but a
+    vanishing part lifted off the boundary: ``H/X`` tends to 0 there.
+    """
+    ratio = w * L / ca.if_else(VA != 0, VA, 1)
+    G = ca.log1p(ca.if_else(ratio > -1, ratio, 0)) / w + L * c + stretch
+    return ca.if_else(taut_suspended, 1 / ca.if_else(G > 0, G, 1), 0)
 
 
 def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
@@ -226,7 +268,7 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     the suspended part by ``(H/w) Psi(V)`` and ``Z_0 mean_strain(H, T_F)``
     (:mod:`moorsolve.physics.stretch`).
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     bound = bind(kind.law, law)
     if kind.neutral:
         return _neutral_equations(kind, X, Z, u, V, L, ea_inv, bound=bound)
@@ -236,9 +278,11 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
     c = ea_inv if kind.elastic and bound is None else 0
     stretch = H * L * c
     Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
+    stretch_term = 0
     if bound is not None:
         psi_V, psi_VA = bound.horizontal(Hg, V, VA)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
+        stretch_term = (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
 
     if not kind.contact:
@@ -246,11 +290,12 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
         # physical state of a line with nothing to lie on) continues the span monotonically,
         # so that a line folded straight down (H = 0, X = 0) is an interior root, not a
         # bound the solver must reach.
-        loose = ca.fmax(-u, 0) / ca.fabs(w)
+        loose = loose_part(u) / ca.fabs(w)
         return dict(rX=Xs - X - loose, rZ=Zs - Z, H=H, VF=V, HA=H, VA=VA,
-                    grounded=0 * H, suspended_x=Xs)
+                    grounded=0 * H, suspended_x=Xs,
+                    lateral=lateral_stiffness(u >= 0, V, VA, w, L, c, stretch_term))
 
-    loose = ca.fmax(-u, 0) / w
+    loose = loose_part(u) / w
     LB = L - V / w
     Xsusp_t = (H / w) * ca.asinh(V / Hg)
     Xt = LB + Xsusp_t + stretch
@@ -287,6 +332,8 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
         VA=ca.fmax(VA, 0),
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, Xsusp_t),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), V, VA, w, L, c,
+                                  stretch_term),
     )
 
 
@@ -316,10 +363,12 @@ def _neutral_equations(kind, X, Z, u, V, L, ea_inv, stiffness=1.0, smoothing=0.0
     H = T * X / ca.fmax(D, _H_FLOOR)
     rX = fischer_burmeister(T / stiffness, opening, smoothing)
     return dict(rX=rX, rZ=(V * D - T * Z) / stiffness, H=H, VF=V, HA=H, VA=V, grounded=0 * T,
-                suspended_x=X)
+                suspended_x=X, lateral=T / ca.fmax(D, _H_FLOOR))
 
 
 LEG_OUTPUTS = ("rX", "rZ", "H", "VF", "HA", "VA", "grounded", "suspended_x")
+#: The leg and weightless blocks add ``lateral`` (:func:`lateral_stiffness`) [N/m].
+LATERAL_OUTPUTS = LEG_OUTPUTS + ("lateral",)
 LEG_INPUTS = ("X", "Z", "u", "V", "L", "w", "ea_inv", "mu")
 
 
@@ -333,8 +382,8 @@ def leg_function(kind: LegKind) -> ca.Function:
     """
     names, args, law = law_inputs(kind.law, LEG_INPUTS)
     out = leg_equations(kind, *args[:len(LEG_INPUTS)], law=law)
-    return ca.Function(f"leg_{kind.tag}", args, shared([out[k] for k in LEG_OUTPUTS], law),
-                       names, list(LEG_OUTPUTS))
+    return ca.Function(f"leg_{kind.tag}", args, shared([out[k] for k in LATERAL_OUTPUTS], law),
+                       names, list(LATERAL_OUTPUTS))
 
 
 def evaluate_leg(kind: LegKind, X, Z, u, V, L, w, ea_inv=0.0, mu=0.0, law=None) -> dict:
@@ -360,7 +409,8 @@ def weightless_line_function(elastic: bool,
     out = _neutral_equations(LegKind(elastic, contact=False, neutral=True), X, Z, u, V, L,
                              ea_inv, k, eps, bound=bind(model, law))
     return ca.Function(f"weightless_{law_tag(elastic, model)}", args,
-                       shared([out[n] for n in LEG_OUTPUTS], law), names, list(LEG_OUTPUTS))
+                       shared([out[n] for n in LATERAL_OUTPUTS], law), names,
+                       list(LATERAL_OUTPUTS))
 
 
 # ---- a line end above the water -------------------------------------------------------

@@ -17,7 +17,8 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, ground_stretch, law_inputs, law_tag, shared
-from .catenary import _H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, _suspended_spans
+from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp, _suspended_spans,
+                       lateral_stiffness, loose_part, taut_part)
 from .stretch import StretchModel
 
 
@@ -100,13 +101,14 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         on the lower end [N]; ``grounded`` [m]; ``suspended_x`` horizontal extent of the part
         rising to the upper end [m]; ``descent_x`` horizontal extent of the descent [m].
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     Hg = ca.fmax(H, _H_FLOOR)
     bound = bind(model, law) if elastic else None
     c = ea_inv if elastic and bound is None else 0
     VA = V - w * L
     V1 = descent_force(H, h, w, c, bound)
     Xs, Zs = _suspended_spans(H, Hg, V, VA, w, L, c)
+    stretch_term = 0
     s1 = -V1 / w
     x1 = (H / w) * ca.asinh(-V1 / Hg) + H * s1 * c
     LB = L - s1 - V / w
@@ -116,6 +118,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     if bound is not None:
         psi_V, psi_VA, psi_1 = bound.horizontal(Hg, V, VA, -V1)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
+        stretch_term = (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
         x1 = x1 + (H / w) * psi_1
         x_rise = x_rise + (H / w) * psi_V
@@ -129,7 +132,7 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
     if bound is not None:
         Xt = x1 + LB + ground_stretch(bound, H, LB, HA_t, mu * w if friction else None) \
             + x_rise
-    loose = ca.fmax(-u, 0) / w
+    loose = loose_part(u) / w
     if between_joints:
         # Between two free joints the span may be negative: loose line is then only where
         # the line lies, and at most all of that, or a slack segment folded back past its
@@ -149,6 +152,8 @@ def lifted_segment_equations(elastic: bool, X, Z, h, u, V, L, w, ea_inv, mu=0,
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, x_rise),
         descent_x=ca.if_else(suspended, 0, x1),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), V, VA, w, L, c,
+                                  stretch_term),
     )
 
 
@@ -185,7 +190,7 @@ def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
                                  between_joints=between_joints, model=model, law=law)
     return dict(rX=m["rX"], rZ=-m["rZ"], H=m["H"], VF=-m["VF"], HA=m["HA"], VA=-m["VA"],
                 grounded=0 * m["H"], floating=m["grounded"], suspended_x=m["suspended_x"],
-                descent_x=m["descent_x"])
+                descent_x=m["descent_x"], lateral=m["lateral"])
 
 
 SURFACE_INPUTS = LEG_INPUTS + ("d",)
@@ -217,13 +222,13 @@ def surface_leg_equations(elastic: bool, from_fairlead: bool, X, Z, u, V, L, w, 
                                       law=law)
         return dict(rX=o["rX"], rZ=o["rZ"], H=o["H"], VF=o["VF"], HA=o["HA"], VA=o["VA"],
                     grounded=o["grounded"], suspended_x=X - o["descent_x"],
-                    floating=o["floating"], touchup_x=o["descent_x"])
+                    floating=o["floating"], touchup_x=o["descent_x"], lateral=o["lateral"])
     o = surface_segment_equations(elastic, X, -Z, d, u, V, L, w, ea_inv, model=model, law=law)
     # Back to the leg's orientation: the fairlead holds the block's lower end, the anchor
     # its upper end.
     return dict(rX=o["rX"], rZ=-o["rZ"], H=o["H"], VF=-o["VA"], HA=o["HA"], VA=-o["VF"],
                 grounded=o["grounded"], suspended_x=X - o["suspended_x"],
-                floating=o["floating"], touchup_x=o["suspended_x"])
+                floating=o["floating"], touchup_x=o["suspended_x"], lateral=o["lateral"])
 
 
 @lru_cache(maxsize=None)
@@ -236,9 +241,9 @@ def surface_leg_function(elastic: bool, from_fairlead: bool,
     out = surface_leg_equations(elastic, from_fairlead, *args[:len(SURFACE_INPUTS)],
                                 model=model, law=law)
     tag = law_tag(elastic, model) + ("_from_fairlead" if from_fairlead else "")
-    return ca.Function(f"leg_surface_{tag}", args,
-                       shared([out[k] for k in SURFACE_OUTPUTS], law), names,
-                       list(SURFACE_OUTPUTS))
+    outputs = SURFACE_OUTPUTS + ("lateral",)
+    return ca.Function(f"leg_surface_{tag}", args, shared([out[k] for k in outputs], law),
+                       names, list(outputs))
 
 
 @lru_cache(maxsize=None)
@@ -251,7 +256,7 @@ def surface_segment_function(elastic: bool, between_joints: bool = False,
     X, Z, h, u, V, L, w, ea_inv, _ = args[:len(LIFTED_INPUTS)]
     out = surface_segment_equations(elastic, X, Z, h, u, V, L, w, ea_inv, between_joints,
                                     model=model, law=law)
-    names = SEGMENT_OUTPUTS + ("floating",)
+    names = SEGMENT_OUTPUTS + ("floating", "lateral")
     tag = law_tag(elastic, model) + ("_joints" if between_joints else "")
     return ca.Function(f"segment_surface_{tag}", args, shared([out[k] for k in names], law),
                        names_in, list(names))
@@ -275,7 +280,7 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None,
     hangs vertical under the joint loads. (A weightless segment with no tension at all has
     no definite shape; the model does not represent it.)
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     T = ca.sqrt(H**2 + V**2 + _H_FLOOR**2)
     bound = bind(model, law) if elastic else None
     if bound is not None:
@@ -283,7 +288,7 @@ def straight_segment_equations(elastic: bool, X, Z, u, V, L, ea_inv, model=None,
     else:
         k = L * (1 / T + (ea_inv if elastic else 0))
     return dict(rX=H * k - X, rZ=V * k - Z, H=H, VF=V, HA=H, VA=V, grounded=0 * H,
-                suspended_x=X, descent_x=0 * H)
+                suspended_x=X, descent_x=0 * H, lateral=1 / k)
 
 
 @lru_cache(maxsize=None)
@@ -297,9 +302,9 @@ def lifted_segment_function(elastic: bool, friction: bool = False,
                                    between_joints=between_joints, model=model, law=law)
     tag = (law_tag(elastic, model) + ("_friction" if friction else "")
            + ("_joints" if between_joints else ""))
+    outputs = SEGMENT_OUTPUTS + ("lateral",)
     return ca.Function(f"segment_lifted_{tag}", args,
-                       shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
-                       list(SEGMENT_OUTPUTS))
+                       shared([out[k] for k in outputs], law), names, list(outputs))
 
 
 STRAIGHT_INPUTS = ("X", "Z", "u", "V", "L", "ea_inv")
@@ -312,6 +317,6 @@ def straight_segment_function(elastic: bool,
     names, args, law = law_inputs(model if elastic else None, STRAIGHT_INPUTS)
     out = straight_segment_equations(elastic, *args[:len(STRAIGHT_INPUTS)], model=model,
                                      law=law)
+    outputs = SEGMENT_OUTPUTS + ("lateral",)
     return ca.Function(f"segment_straight_{law_tag(elastic, model)}", args,
-                       shared([out[k] for k in SEGMENT_OUTPUTS], law), names,
-                       list(SEGMENT_OUTPUTS))
+                       shared([out[k] for k in outputs], law), names, list(outputs))

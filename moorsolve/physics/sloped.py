@@ -15,7 +15,8 @@ from typing import Optional
 import casadi as ca
 
 from .block_laws import bind, law_inputs, law_tag, shared
-from .catenary import (_H_FLOOR, LEG_INPUTS, LEG_OUTPUTS, _hyp)
+from .catenary import (_H_FLOOR, LATERAL_OUTPUTS, LEG_INPUTS, _hyp, lateral_stiffness,
+                       loose_part, taut_part)
 from .stretch import StretchModel
 
 __all__ = ["SLOPED_INPUTS", "sloped_leg_equations", "sloped_leg_function"]
@@ -61,7 +62,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     The cross-slope component of the seabed's reaction (when the seabed's gradient is not in
     the leg's plane) is assumed taken by the soil; it does not enter the leg's plane.
     """
-    H = ca.fmax(u, 0)
+    H = taut_part(u)
     Hg = ca.fmax(H, _H_FLOOR)
     bound = bind(model, law) if elastic else None
     c = ea_inv if elastic and bound is None else 0
@@ -69,10 +70,11 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     cos_t, sin_t = 1 / sec, t / sec
     VA = V - w * L
     Xs = (H / w) * (ca.asinh(V / Hg) - ca.asinh(VA / Hg)) + H * L * c
+    stretch_term = 0
     Zs = (_hyp(H, V) - _hyp(H, VA)) / w + L * c * (V - w * L / 2)
 
     Vtd = H * t
-    loose = ca.fmax(-u, 0) / w
+    loose = loose_part(u) / w
     LB = L - (V - Vtd) / w
     Ls = L - LB
     x_susp = (H / w) * (ca.asinh(V / Hg) - ca.asinh(t)) + H * Ls * c
@@ -85,6 +87,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
     else:
         psi_V, psi_VA, psi_td = bound.horizontal(Hg, V, VA, Vtd)
         Xs = Xs + (H / w) * (psi_V - psi_VA)
+        stretch_term = (psi_V - psi_VA) / w
         Zs = Zs * (1 + bound.mean(_hyp(H, VA), _hyp(H, V)))
         x_susp = x_susp + (H / w) * (psi_V - psi_td)
         rise = (_hyp(H, V) - _hyp(H, Vtd)) / w * (1 + bound.mean(_hyp(H, Vtd), _hyp(H, V)))
@@ -119,6 +122,8 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
         VA=ca.if_else(suspended, VA, TA * sin_t),
         grounded=ca.if_else(suspended, 0, LB),
         suspended_x=ca.if_else(suspended, Xs, x_susp),
+        lateral=lateral_stiffness(ca.logic_and(suspended, u >= 0), V, VA, w, L, c,
+                                  stretch_term),
     )
 
 
@@ -131,5 +136,6 @@ def sloped_leg_function(elastic: bool, friction: bool,
     out = sloped_leg_equations(elastic, friction, *args[:len(SLOPED_INPUTS)], model=model,
                                law=law)
     tag = law_tag(elastic, model) + ("_friction" if friction else "")
-    return ca.Function(f"leg_sloped_{tag}", args, shared([out[k] for k in LEG_OUTPUTS], law),
-                       names, list(LEG_OUTPUTS))
+    return ca.Function(f"leg_sloped_{tag}", args,
+                       shared([out[k] for k in LATERAL_OUTPUTS], law), names,
+                       list(LATERAL_OUTPUTS))

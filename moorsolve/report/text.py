@@ -120,11 +120,14 @@ def leg_rows(legs) -> list[dict]:
     return rows
 
 
-def format_stiffness(K, body, case_name: str = "") -> str:
+def format_stiffness(K, body, case_name: str = "", held=()) -> str:
     """The 6x6 stiffness as a labelled table (:func:`moorsolve.report.matrix.stiffness_table`:
     rows the forces Fx ... Mz, columns the displacements surge ... yaw, each with its unit;
-    an entry's unit is its row's over its column's: N/m, N/rad, N m/m, N m/rad)."""
+    an entry's unit is its row's over its column's: N/m, N/rad, N m/m, N m/rad). ``held``:
+    the other bodies, held at their solved poses while this one moves."""
     from .matrix import stiffness_table
     table = stiffness_table(K, ("surge", "sway", "heave", "roll", "pitch", "yaw"))
+    others = (f"; {', '.join(held)} held at their solved poses, free points and lines "
+              "re-equilibrating" if held else "")
     return (f"{case_name}: mooring stiffness of {body or 'the fairlead frame'} about its "
-            f"solved position (K = -dF/dq, global axes)\n{table!r}")
+            f"solved position (K = -dF/dq, global axes{others})\n{table!r}")

@@ -70,6 +70,12 @@ __all__ = ["LineBlock", "closing_force", "plane_geometry", "single_block", "mult
 
 #: Keeps derivatives finite for a vertical line (X = 0); moves X by less than 1e-18 m.
 _X_FLOOR = 1e-12
+#: Below this horizontal span [fraction of the line's length] a line's horizontal pull
+#: ``H e`` (``e = d/X``, ``d`` the horizontal offset of its ends) is written ``(dH/dX) d``:
+#: its limit at ``X -> 0``, where ``H/X`` is ``0/0`` (see :func:`horizontal_pull`).
+_NEAR_VERTICAL = 1e-6
+#: [N/m] below which a segment's H/X counts as zero in the series sum (a slack segment).
+_LATERAL_FLOOR = 1e-12
 
 @dataclass
 class LineBlock:
@@ -166,8 +172,13 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
         # The part in air depends on (u, V) too: the derivative through it.
         J = ca.jacobian(ca.vertcat(out["rX"], out["rZ"]),
                         ca.vertcat(xs[iu], xs[iu + 1])) / problem.force_scale
-    on_upper = ca.vertcat(-out["H"] * ux, -out["H"] * uy, -out["VF"])
-    on_lower = ca.vertcat(out["HA"] * ux, out["HA"] * uy, out["VA"])
+    # A block that knows H/X on its own span without 0/0 (a line hanging straight down)
+    # says so; the part in air shifts the water block's span, so not there.
+    lateral = out.get("lateral") if air is None else None
+    offset = ca.vertcat(upper[0] - lower[0], upper[1] - lower[1])
+    near = X < _NEAR_VERTICAL * P["length"]
+    on_upper = ca.vertcat(-horizontal_pull(out["H"], X, offset, near, lateral), -out["VF"])
+    on_lower = ca.vertcat(horizontal_pull(out["HA"], X, offset, near, lateral), out["VA"])
     row = dict(out, J=ca.reshape(J, 4, 1), X=X, Z=Z)
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(residuals, force_a, force_b, closing_force(J, out["rX"], out["rZ"]),
@@ -190,6 +201,25 @@ def _air_line_block(problem, kind, xs, iu, P, args, law, ux, uy, upper) -> LineB
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock([out["rX"] * scale, out["rZ"] * scale], force_a, force_b,
                      closing_force(J, out["rX"], out["rZ"]), row, [], [])
+
+
+def horizontal_pull(H, X, offset, near, lateral=None):
+    """The horizontal force ``H e`` [N] of a line along its plane's direction ``e =
+    offset / X`` (``offset`` the horizontal vector from its lower to its upper end [m]).
+
+    ``H(X)`` vanishes with the span (a line hanging straight down pulls straight down), so
+    ``H e = (H/X) offset`` is smooth in ``offset`` at ``X = 0`` although ``X = |offset|`` is
+    not: its derivative there is ``(dH/dX) I``, the lateral stiffness of the hanging line.
+    Written as ``H e`` at the floored span its derivative is ``H/X`` = 0/0 (whatever the
+    solve left in ``H``). Within ``near`` (``X`` below :data:`_NEAR_VERTICAL` of the length)
+    the block's own ``lateral`` (``H/X`` on its span, which it evaluates without 0/0:
+    :func:`~moorsolve.physics.catenary.lateral_stiffness`) is used instead; at an
+    equilibrium the two are equal. Both ends of a line hanging straight are suspended, so
+    the lower end's ``H_A = H`` shares it.
+    """
+    if lateral is None:
+        return (H / X) * offset
+    return ca.if_else(near, lateral, H / X) * offset
 
 
 @lru_cache(maxsize=None)
@@ -221,7 +251,7 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
     laws = list(problem.line_laws[i])
     if kind.flipped:
         seg, clump, laws = seg[::-1], clump[::-1], laws[::-1]
-    ux, uy, X, Z = plane_geometry(lower, upper)
+    _, _, X, Z = plane_geometry(lower, upper)
     u, V_top = x[iu], x[iu + 1]
     xi = [x[iu + 2 + 2 * j] for j in range(nj)]
     sigma = [x[iu + 3 + 2 * j] for j in range(nj)]
@@ -312,8 +342,17 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
             o["descent_x"], o["rX"], o["rZ"], Xk, Zk, h, node_xi[k], node_z[k],
             joint_force[k] if k < nj else 0, N[k] if k < nj else 0, mismatch[k],
             o.get("floating", 0 * u)))
-    on_upper = ca.vertcat(-top["H"] * ux, -top["H"] * uy, -top["VF"])
-    on_lower = ca.vertcat(bottom["HA"] * ux, bottom["HA"] * uy, bottom["VA"])
+    # Hanging straight, the segments' spans add up as springs in series: H/X of the line
+    # is 1 / sum(1 / (H/X_k)) when every segment's block gives its own.
+    lateral = None
+    if all("lateral" in o for o, _, _, _ in outs):
+        lateral = 1 / sum((1 / ca.fmax(o["lateral"], _LATERAL_FLOOR) for o, _, _, _ in outs),
+                          0 * u)
+    offset = ca.vertcat(upper[0] - lower[0], upper[1] - lower[1])
+    near = X < _NEAR_VERTICAL * sum((s["length"] for s in seg), 0 * u)
+    on_upper = ca.vertcat(-horizontal_pull(top["H"], X, offset, near, lateral), -top["VF"])
+    on_lower = ca.vertcat(horizontal_pull(bottom["HA"], X, offset, near, lateral),
+                          bottom["VA"])
     force_a, force_b = (on_upper, on_lower) if kind.flipped else (on_lower, on_upper)
     return LineBlock(res, force_a, force_b, worst, row, rows, [])
 

@@ -19,10 +19,12 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+import warnings
 
 import casadi as ca
 import numpy as np
 
+from ..errors import MoorsolveWarning
 from ..model import Case
 from ..solve.bathymetry import result_parameters
 from ..solve.cache import get_problem
@@ -358,7 +360,9 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
     onto the parameter vector by the chain rule (``ea`` enters as ``1/ea``: ``-1/ea^2``;
     headings in radians: ``pi/180``); an anchor on the seabed moves along it. At a regime
     boundary (touchdown exactly at the anchor, a leg going slack) the derivative is the one
-    of the regime the solution is in.
+    of the regime the solution is in. The horizontal tension of a line hanging straight
+    down has a kink (it grows as the size of the offset on every side): asked for, it comes
+    with a :class:`~moorsolve.MoorsolveWarning`.
     """
     result = as_result(result)
     case = result.case
@@ -373,4 +377,28 @@ def sensitivity(result: Result, outputs, parameters) -> Sensitivity:
                                                          result_parameters(problem, result)))
     dx = -np.linalg.solve(G_x, G_p @ C)
     dy = Y_x[rows] @ dx + Y_p[rows] @ C
+    _warn_straight_lines(result, outputs)
     return Sensitivity(outputs=outputs, parameters=parameters, matrix=dy)
+
+
+#: A line whose ends are within this fraction of its length of one vertical hangs straight.
+_STRAIGHT = 1e-6
+
+
+def _warn_straight_lines(result: Result, outputs) -> None:
+    """Say so where an output is the horizontal tension of a line hanging straight down:
+    it grows as ``|offset|`` whichever way its end moves (a kink, not a derivative), so the
+    derivative given (0) is neither side's; the one-sided ones are ``+-`` the line's
+    lateral stiffness times the rate of the offset."""
+    for name in outputs:
+        m = _LEG_PATH.match(name)
+        if not m or m.group(2) not in ("horizontal_tension_N", "anchor_horizontal_N"):
+            continue
+        leg = result.leg(m.group(1))
+        line = next(ln for ln in result.case.lines if ln.name == leg.name)
+        span = math.hypot(leg.fairlead[0] - leg.anchor[0], leg.fairlead[1] - leg.anchor[1])
+        if span <= _STRAIGHT * line.length:
+            warnings.warn(f"{name}: the line hangs straight down, where its horizontal tension "
+                          "has a kink (it grows as the offset's size on every side): the "
+                          "derivative given is neither side's", MoorsolveWarning,
+                          stacklevel=3)

@@ -14,10 +14,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from typing import Optional, Sequence
 
 import numpy as np
 
+from ..errors import MoorsolveWarning
 from ..model import DOFS, Body, BodyLoads, Case, Contacts, End
 from ..model.build_network import rotation
 from ..solve.bathymetry import result_parameters
@@ -111,8 +113,11 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     result_or_case : Result or Case
         A solved equilibrium, or a case to solve first (with ``solver``).
     body : str, optional
-        The body's name; default the only body. A case without bodies: the lines' fixed
-        upper ends move as one rigid frame about the global origin.
+        The body's name; default the only body (a case of several bodies must name one).
+        The other bodies are held at their solved poses while it moves; free points and
+        lines re-equilibrate (lines shared with the others are stretched against them).
+        A case without bodies: the lines' fixed upper ends move as one rigid frame about
+        the global origin.
 
     Returns
     -------
@@ -131,10 +136,26 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     line pulls its ends with a force depending on their positions only, so the mooring
     force has a potential where every line end is on the body and K is symmetric; a net
     moment of the lines about the origin (a body not in balance under its lines alone)
-    adds the non-symmetric geometric part.
+    adds the non-symmetric geometric part. At the line model's non-smooth points K is the
+    limit from the physical side (a line hanging straight down: its pendulum stiffness);
+    where a weightless line is exactly at its slack point the two sides differ: K is then
+    the taut side's, with a :class:`~moorsolve.MoorsolveWarning`
+    (:func:`moorsolve.one_sided_stiffness` gives both).
     """
     result = as_result(result_or_case, solver)
-    case = result.case
+    from .one_sided import lines_at_slack_point, warn_one_sided, with_lines
+    at_point = lines_at_slack_point(result)
+    if at_point:
+        # Neither side's derivative is that of the scene as solved: give the taut side's
+        # and say so (moorsolve.one_sided_stiffness gives both).
+        warn_one_sided(at_point)
+        return held_stiffness(with_lines(result.case, at_point, taut=True), result, body)
+    return held_stiffness(result.case, result, body)
+
+
+def held_stiffness(case: Case, result: Result, body: Optional[str]) -> np.ndarray:
+    """:func:`stiffness` of ``case`` (``result.case`` or a variant of it with the same bodies
+    and points) about the poses and free points of ``result``."""
     if not case.bodies:
         case = _virtual_body_case(case)
         poses = {"frame": np.zeros(6)}
@@ -159,23 +180,26 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     x = np.concatenate([np.concatenate([poses[name][:3], np.zeros(3)])
                         / problem.x_scale[:6], held_result.state])
     p = result_parameters(problem, held_result, free)
-    return _condensed_wrench_stiffness(problem, x, p)
+    index = [b.name for b in free.bodies].index(name)
+    return _condensed_wrench_stiffness(problem, x, p, index)
 
 
-def _condensed_wrench_stiffness(problem, x, p) -> np.ndarray:
-    """``-dW/dq`` of the first body's six unknowns, the rest condensed out."""
+def _condensed_wrench_stiffness(problem, x, p, index: int) -> np.ndarray:
+    """``-dW/dq`` of the wrench on body ``index`` (in the case's order) against the six
+    unknowns of the one free body (the problem's first six), the rest condensed out."""
     import casadi as ca
 
+    key = f"_wrench_jacobian_{index}"
     with problem.lock:
-        f = problem.__dict__.get("_wrench_jacobian")
+        f = problem.__dict__.get(key)
         if f is None:
             xs = ca.SX.sym("x", problem.n_x)
             ps = ca.SX.sym("p", problem.n_p)
-            W = problem.report(xs, ps)[5][:6]
+            W = problem.report(xs, ps)[5][6 * index: 6 * index + 6]
             g = problem.residual(xs, ps)
             f = ca.Function("wrench_jacobian", [xs, ps], [ca.jacobian(W, xs),
                                                           ca.jacobian(g, xs)])
-            problem.__dict__["_wrench_jacobian"] = f
+            problem.__dict__[key] = f
         W_x, G_x = (np.asarray(v) for v in f(x, p))
     q = np.arange(6)
     rest = np.arange(6, problem.n_x)
@@ -194,6 +218,20 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
     condensed out), with ``dofs`` labels ``"body.surge"`` ... [SI; rotations are the
     bodies' own angles]."""
     result = as_result(result_or_case, solver)
+    from .one_sided import contacts_at_first_contact, lines_at_slack_point
+    at_point = lines_at_slack_point(result)
+    if at_point:
+        warnings.warn(
+            f"line(s) {', '.join(at_point)} at their slack point (chord = unstretched "
+            "length): the coupled stiffness differs on the two sides and this matrix is "
+            "neither's (moorsolve.one_sided_stiffness gives each body's mooring stiffness "
+            "on both sides)", MoorsolveWarning, stacklevel=2)
+    touching = contacts_at_first_contact(result)
+    if touching:
+        warnings.warn(
+            f"{', '.join(touching)} exactly at first contact (touching, no reaction): the "
+            "coupled stiffness differs on the two sides (closing adds their stiffness, "
+            "opening nothing) and this matrix is one side's", MoorsolveWarning, stacklevel=2)
     problem = get_problem(result.case)
     K, keep = condensed_stiffness(problem, result.state, result_parameters(problem, result))
     dofs = [f"{result.case.bodies[problem.nodes[j][1]].name}.{problem.nodes[j][2]}"
