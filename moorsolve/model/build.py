@@ -316,6 +316,32 @@ _BERTH = ("walls", "piles", "fenders", "guides")
 MAX_TIDE = 100.0
 
 
+def check_tide_on_lines(environment, lines) -> None:
+    """Refuse a tide (``water_level`` other than 0) where a line meets the free surface.
+
+    The lines' own free surface (a buoyant segment or float held up by it, the part of a
+    line in air weighed by ``weight_in_air``) is modelled at the datum z = 0; floating
+    bodies and the hydrostatics follow the tide, these lines would not. Refused rather than
+    answered at the wrong surface, with the equivalent scene to give instead.
+    """
+    if environment.water_level == 0.0:
+        return
+    for i, line in enumerate(lines):
+        types = [seg.line_type for seg in line.segments]
+        floats = [c for c in line.joint_clumps if c is not None and c.weight < 0]
+        meets = ("a buoyant segment" if any(lt.weight_in_water < 0 for lt in types)
+                 else "a float" if floats
+                 else "a weight in air" if any(lt.weight_in_air is not None for lt in types)
+                 else None)
+        if meets:
+            raise CaseError(
+                "environment.water_level",
+                f"{environment.water_level:g} m with line {line.name!r}, which has {meets}: "
+                "a line's own free surface is modelled at the datum only; give the same "
+                "scene on a datum at the still water (depth increased by the water level, "
+                "fixed points and anchors lowered by it, water_level 0)")
+
+
 def build_case(data, default_name: str = "case") -> Case:
     """The validated :class:`Case` of plain case-file data (see the module notes).
 
@@ -367,6 +393,7 @@ def build_case(data, default_name: str = "case") -> Case:
         lines = _legs(m["legs"], "legs", environment, line_types, body is not None)
         bodies, points = (() if body is None else (body,)), ()
     check_bathymetry(environment, lines, points, contacts, network)
+    check_tide_on_lines(environment, lines)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
     checks = None if m.get("checks") is None else _checks(m["checks"], "checks", lines)
     moordyn = (None if m.get("moordyn") is None
