@@ -20,7 +20,7 @@ import moorsolve
 from moorsolve import ConvergenceError, load_case, solve
 from moorsolve.cli import main
 from moorsolve.report.text import format_table
-from moorsolve.solve import outcome
+from moorsolve.solve import leg_results
 from moorsolve.audit import AuditFailure, audit
 from moorsolve.solve.profile_batch import ProfileBatch
 from conftest import ROOT
@@ -140,12 +140,12 @@ def test_an_unbalanced_body_fails():
 
 def test_solve_raises_when_the_reported_profile_is_wrong(monkeypatch):
     """An audit failure inside ``solve`` is a ConvergenceError with the reason."""
-    real = outcome.leg_profile
+    real = leg_results.leg_profile
 
     def broken(*args, **kwargs):
         prof = real(*args, **kwargs)
         return dict(prof, z=prof["z"] + 1.0)
-    monkeypatch.setattr(outcome, "leg_profile", broken)
+    monkeypatch.setattr(leg_results, "leg_profile", broken)
     # Each line drawn by its own (broken) drawing, not with the others (profile_batch).
     monkeypatch.setattr(ProfileBatch, "add", lambda self, params, fallback, finish: fallback)
     case = one_leg(100.0, [0, 0], [80.0, 0, 0.0], 100.0)

@@ -213,14 +213,18 @@ def test_calm_tanker_takes_a_stable_heading_under_crossed_flows(wind, current):
                                                      (200.0, 300.0, -116.33),
                                                      (160.0, 45.0, 110.812)])
 def test_calm_tanker_formerly_unstable_now_on_the_stable_branch(wind, current, before):
-    """Before the walk: returned at ``before`` deg, unstable. Now: the stable heading the
-    body swings to, with a note saying so."""
+    """Before the walk: returned at ``before`` deg, unstable. Now a stable heading (which
+    one: test_calm_tanker_takes_a_stable_heading_under_crossed_flows, against the scan);
+    where the walk found it, a note says so. The first solve may itself end stable: since the
+    derivatives at the lines' kinks changed, Newton's IPOPT fallback reaches a stable heading
+    on two of these three without walking."""
     data = calm_case(wind, current)
     result = solve(load_case(data), solver="newton")
     yaw = result.bodies[1]["yaw_deg"]
     assert angle_between(yaw, before) > 90.0
-    assert result.stability.stable and walked(result)
-    assert any("other stable headings may exist" in n for n in result.notes)
+    check_stable_equilibrium(result, data, "tanker")
+    if walked(result):
+        assert any("other stable headings may exist" in n for n in result.notes)
 
 
 # ---- the turret ship with a crossed current ---------------------------------------------------
