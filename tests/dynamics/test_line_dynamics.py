@@ -1,0 +1,95 @@
+"""Dynamic line tension in the frequency domain (moorsolve.dynamics.line_dynamics).
+
+Every figure is compared with an independent number: the long-period limit with central
+differences of the static solution re-solved with the fairlead moved (the certified
+catenary, not the lumped-mass model), the time domain with MoorDyn and the frequency
+domain with MoorPy (tests/dynamics/test_line_dynamics_peers.py).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import moorsolve
+from moorsolve.dynamics.line_dynamics import line_response
+from moorsolve.dynamics.line_model import line_model
+from moorsolve.errors import CaseError
+
+DEPTH = 50.0
+FAIRLEAD = np.array([0.0, 0.0, -5.0])
+AZIMUTH = math.radians(30.0)          # the line off the axes: every component couples
+
+
+def chain_case(fairlead, *, span=300.0, length=320.0):
+    """One studless chain (81 mm, 1300 N/m submerged, EA 5.6e8 N) from an anchor ``span``
+    metres from the fairlead's rest position, with a fixed fairlead at ``fairlead``."""
+    anchor = [-span * math.cos(AZIMUTH), -span * math.sin(AZIMUTH)]
+    return {"environment": {"depth": DEPTH},
+            "line_types": {"chain": {"weight_in_water": 1300.0, "ea": 5.6e8,
+                                     "diameter": 0.081}},
+            "legs": [{"name": "L1", "anchor": anchor, "fairlead": [float(v) for v in fairlead],
+                      "segments": [{"type": "chain", "length": length}]}]}
+
+
+def _tensions(fairlead, **kw):
+    leg = moorsolve.solve(moorsolve.load_case(chain_case(fairlead, **kw))).legs[0]
+    return np.array([leg.anchor_tension_N, leg.fairlead_tension_N])
+
+
+def static_stiffness(h=0.01, **kw):
+    """d(anchor, fairlead tension)/d(fairlead x, y, z) [N/m] by central differences of the
+    re-solved static catenary: rows x, y, z; columns anchor, fairlead."""
+    rows = []
+    for k in range(3):
+        step = np.zeros(3)
+        step[k] = h
+        rows.append((_tensions(FAIRLEAD + step, **kw) - _tensions(FAIRLEAD - step, **kw))
+                    / (2 * h))
+    return np.array(rows)
+
+
+@pytest.mark.parametrize("span, length, grounded", [(300.0, 320.0, True),
+                                                     (310.0, 316.0, True)])
+def test_long_period_limit_is_the_static_stiffness(span, length, grounded):
+    """At omega -> 0 the tension change per metre of fairlead motion, in each direction and
+    at both ends, equals central differences of the re-solved static line to 1e-3."""
+    case = moorsolve.load_case(chain_case(FAIRLEAD, span=span, length=length))
+    result = moorsolve.solve(case)
+    model = line_model(case, result, "L1", n_elements=120)
+    assert bool(model.grounded[1:-1].any()) == grounded
+    reference = static_stiffness(span=span, length=length)
+    got = np.empty((3, 2))
+    for k in range(3):
+        drive = np.zeros((3, 1), complex)
+        drive[k] = 1.0
+        r = line_response(model, [0.0], drive)
+        got[k] = [r.tension_a[0].real, r.tension_b[0].real]
+    np.testing.assert_allclose(got, reference, rtol=1e-3, atol=0)
+
+
+def test_long_period_limit_converges_with_the_elements():
+    """The end tension's error against the static stiffness falls about as the square of
+    the element length (the model, not the tolerance, carries the agreement)."""
+    case = moorsolve.load_case(chain_case(FAIRLEAD, span=310.0, length=316.0))
+    result = moorsolve.solve(case)
+    reference = static_stiffness(span=310.0, length=316.0)[0, 1]
+    drive = np.array([[1.0], [0.0], [0.0]], complex)
+    errors = [abs(line_response(line_model(case, result, "L1", n_elements=n), [0.0], drive)
+                  .tension_b[0].real / reference - 1) for n in (30, 60)]
+    assert errors[1] < errors[0] / 3
+
+
+def test_bad_drive_and_frequencies_are_named():
+    case = moorsolve.load_case(chain_case(FAIRLEAD))
+    model = line_model(case, moorsolve.solve(case), "L1", n_elements=20)
+    with pytest.raises(CaseError, match="motion"):
+        line_response(model, [0.5, 1.0], np.zeros((2, 3)))
+    with pytest.raises(CaseError, match="omega"):
+        line_response(model, [-1.0], np.zeros((3, 1)))
+    with pytest.raises(CaseError, match="spectrum"):
+        line_response(model, [0.5, 1.0], np.zeros((3, 2)), linearisation="spectral")
+    with pytest.raises(CaseError, match="line"):
+        line_model(case, moorsolve.solve(case), "nope")
