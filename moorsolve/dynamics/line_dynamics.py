@@ -114,24 +114,44 @@ class _System:
         fixed[-3:] = True                                          # end B, prescribed
         if model.seabed_spring is None:
             fixed[3 * np.flatnonzero(model.grounded) + 2] = True   # held on the seabed
-        self.free = np.flatnonzero(~fixed)
+        self.free = f = np.flatnonzero(~fixed)
         self.end_b = np.arange(ndof - 3, ndof)
         self.n_nodes = n + 1
         self.ndof = ndof
+        # The free-free matrices are banded (a node couples only with its neighbours):
+        # each frequency is a banded solve, O(n) instead of the O(n^3) of a dense one.
+        nf = len(f)
+        where = -np.ones(ndof, int)
+        where[f] = np.arange(nf)
+        Kff, Mff = self.K[np.ix_(f, f)], self.M[np.ix_(f, f)]
+        i, j = np.nonzero((Kff != 0) | (Mff != 0))
+        bi, bj = where[self.rows], where[self.cols]
+        self.b_keep = (bi >= 0) & (bj >= 0)
+        bi, bj = bi[self.b_keep], bj[self.b_keep]
+        self.band = band = int(max(np.max(np.abs(i - j), initial=0),
+                                   np.max(np.abs(bi - bj), initial=0)))
+        i, j = np.nonzero(np.abs(np.subtract.outer(np.arange(nf), np.arange(nf))) <= band)
+        self.ab_index = (band + i - j, j)
+        self.K_band, self.M_band = Kff[i, j], Mff[i, j]
+        self.b_index = (band + bi - bj, bj)
+        self.K_fb = self.K[np.ix_(f, self.end_b)]
 
     def solve(self, omega, u_b, bn, bt):
         """Node displacements ``(n_omega, n_nodes, 3)`` for drive ``u_b`` ``(n_omega, 3)``
         and drag coefficients per node ``bn``, ``bt`` ``(n_omega, n_nodes)``."""
-        nw = len(omega)
+        from scipy.linalg import solve_banded
+
+        nw, band, nf = len(omega), self.band, len(self.free)
         B_blocks = bn[:, :, None, None] * self.Pn + bt[:, :, None, None] * self.Pt
-        A = np.broadcast_to((self.K - 0.0j), (nw, self.ndof, self.ndof)).copy()
-        A -= (omega ** 2)[:, None, None] * self.M
-        A[:, self.rows, self.cols] += 1j * omega[:, None] * B_blocks.reshape(nw, -1)
-        f = self.free
-        Aff = A[:, f[:, None], f[None, :]]
-        rhs = -np.einsum("ij,wj->wi", self.K[np.ix_(f, self.end_b)], u_b)
+        ab = np.zeros((nw, 2 * band + 1, nf), complex)
+        ab[:, self.ab_index[0], self.ab_index[1]] = (
+            self.K_band[None, :] - (omega ** 2)[:, None] * self.M_band[None, :])
+        ab[:, self.b_index[0], self.b_index[1]] += (
+            1j * omega[:, None] * B_blocks.reshape(nw, -1)[:, self.b_keep])
+        rhs = -(u_b @ self.K_fb.T)
         u = np.zeros((nw, self.ndof), complex)
-        u[:, f] = np.linalg.solve(Aff, rhs[..., None])[..., 0]
+        u[:, self.free] = [solve_banded((band, band), ab[w], rhs[w], check_finite=False)
+                           for w in range(nw)]
         u[:, self.end_b] = u_b
         return u.reshape(nw, self.n_nodes, 3)
 
