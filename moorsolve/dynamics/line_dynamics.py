@@ -28,7 +28,9 @@ replaced by ``b v`` with ``b`` chosen on the response and iterated to convergenc
 at each node, its components' magnitudes added in quadrature: exact for motion along one
 direction (the in-plane motion that dominates a catenary), and an upper bound otherwise.
 The water is still: waves and current acting on the line itself are not modelled, only the
-motion of its ends.
+motion of its ends. Seabed friction is not modelled dynamically: a grounded run slides
+freely along the seabed, except where the static solution left it without tension (friction
+used it up toward the anchor), which is held where it lies.
 
 At ``omega -> 0`` the tension change per unit fairlead displacement is the line's
 quasi-static (tangent) stiffness, the same the static solution has: the tests check it
@@ -114,6 +116,14 @@ class _System:
         fixed[-3:] = True                                          # end B, prescribed
         if model.seabed_spring is None:
             fixed[3 * np.flatnonzero(model.grounded) + 2] = True   # held on the seabed
+        # A grounded node between two elements without tension (friction has used the
+        # tension up, or the run lies slack) has no stiffness along the seabed: it is held
+        # where it lies, as the friction holding it would.
+        T = np.concatenate([[0.0], model.tension, [0.0]])
+        loose = 1e-9 * max(float(np.max(np.abs(model.tension))), 1.0)
+        held = model.grounded & (T[:-1] <= loose) & (T[1:] <= loose)
+        for k in range(2):
+            fixed[3 * np.flatnonzero(held) + k] = True
         self.free = f = np.flatnonzero(~fixed)
         self.end_b = np.arange(ndof - 3, ndof)
         self.n_nodes = n + 1

@@ -27,6 +27,9 @@ length (MoorDyn's contact law, Hall & Goupee 2015); it slides freely along the s
 linear model: that is how the linearisation carries the line lifting off (or laying down)
 near the touchdown to first order.
 
+A clump weight or buoy at a joint adds its mass (its weight over g when no mass is given)
+and the added mass of a sphere of its volume to the joint's node.
+
 Mass per unit length: the weight in air over g when the line type gives it (the displaced
 area is then the weight difference over rho g). Without it a line is taken as steel
 (7850 kg/m^3: chain, wire) or, for a fibre rope, as filling its outer diameter; pass
@@ -313,6 +316,16 @@ def line_model(case, result, name: str, *, added_mass: float = DEFAULT_ADDED_MAS
         return out
 
     mass = to_nodes(m_l * l0)
+    # A clump weight or buoy at a joint: its mass (its weight over g when no mass is
+    # given) and the added mass of a sphere of its volume, 0.5 rho V (DNV-RP-C205 (2010)
+    # Table D-2), all directions.
+    joints = np.cumsum([seg.length for seg in line.segments])[:-1]
+    for s_joint, clump in zip(joints, line.joint_clumps):
+        if clump is None:
+            continue
+        node = int(np.argmin(np.abs(s - s_joint)))
+        body = clump.mass if clump.mass is not None else max(clump.weight / g, 0.0)
+        mass[node] += body + 0.5 * rho * (clump.volume or 0.0)
     added = to_nodes(added_mass * rho * A_l * chord)
     qn = to_nodes(0.5 * rho * cdn_l * d_l * chord)
     qt = to_nodes(0.5 * rho * cdt_l * d_l * chord)
