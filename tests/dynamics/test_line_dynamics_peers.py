@@ -14,7 +14,9 @@ suspended), MoorDyn's amplitude at 10 s is 486 N for 0.1 m of motion and the lin
 343 N (-30 %), near the suspended span's first transverse mode, although MoorDyn itself
 scales linearly with the amplitude there (4.8 kN at 1 m): the line lifting off and landing
 on the seabed at every cycle is what a bilateral seabed support cannot carry. MoorPy's
-linearisation, built on the same assumptions, agrees with this model's to 0.2 % there.
+linearisation, built on the same assumptions, agrees with this model for the taut-ish chain
+(transfer functions within 1.2 % at every frequency) but not for the slacker one, where its
+long-period limit falls 40 % under the static stiffness (see the test).
 """
 
 from __future__ import annotations
@@ -138,14 +140,23 @@ def _pierson_moskowitz(omega, hs=2.0, tp=10.0):
     return 5 / 16 * hs ** 2 * wp ** 4 / omega ** 5 * np.exp(-1.25 * (wp / omega) ** 4)
 
 
-@pytest.mark.parametrize("span, length", [(300.0, 320.0), (310.0, 316.0)])
-def test_fairlead_tension_sigma_against_moorpy(span, length):
+def test_tension_transfer_functions_against_moorpy():
     """MoorPy 1.3's frequency-domain line dynamics (Line.dynamicSolve: lumped masses,
-    stochastic drag linearisation, seabed spring kbot) for the same chain, driven by 0.5 m
-    of outward fairlead motion per metre of wave amplitude in a Pierson-Moskowitz sea
-    (Hs 2 m, Tp 10 s): the standard deviation of the fairlead tension agrees to 2 % (seen:
-    0.2 % and 0.5 %)."""
+    stochastic drag linearisation, seabed spring kbot) for the taut-ish chain, driven by
+    0.5 m of outward fairlead motion per metre of wave amplitude in a Pierson-Moskowitz sea
+    (Hs 2 m, Tp 10 s): the tension transfer functions at both ends agree within 3 % at every
+    frequency from 0.25 to 1.6 rad/s (seen: 1.2 %), and the fairlead tension's standard
+    deviation within 2 % (seen: 0.5 %).
+
+    For the slacker chain (300 m span, 320 m of chain) the two part: MoorPy's transfer
+    function at 0.15 rad/s is 1963 N/m, 40 % under the static stiffness (0.5 x 6452 N/m
+    from re-solved statics), where this model gives 3147 N/m and MoorDyn's time domain
+    agrees with it at long periods (6422 N against 6374 N for 1 m at 60 s). Their
+    standard deviations over the sea happen to agree (936 N and 935 N) although the
+    transfer functions differ: no assertion is made on that case.
+    """
     mp = pytest.importorskip("moorpy")
+    span, length = 310.0, 316.0
     ax, ay = _anchor(span)
     system = mp.System(depth=DEPTH, rho=RHO, g=G)
     system.setLineType(name="chain", lineType=dict(
@@ -158,13 +169,22 @@ def test_fairlead_tension_sigma_against_moorpy(span, length):
     system.pointList[1].attachLine(1, 1)
     system.initialize()
     system.solveEquilibrium()
-    omega = np.linspace(0.2, 1.6, 57)
+    omega = np.linspace(0.25, 1.6, 28)
     S = _pierson_moskowitz(omega)
     rao = np.outer(np.ones(len(omega)), 0.5 * OUTWARD)
-    out = system.lineList[0].dynamicSolve(omega, S, np.zeros_like(rao), rao, DEPTH,
-                                          kbot=3e6, cbot=3e5, tol=1e-4, iters=200)
-    sigma_moorpy = out[2][-1]
+    amplitude, _, sigma_nodes = system.lineList[0].dynamicSolve(
+        omega, S, np.zeros_like(rao), rao, DEPTH, kbot=3e6, cbot=3e5, tol=1e-4,
+        iters=200)[:3]
+    # MoorPy's amplitudes are per wave component of amplitude sqrt(2 S d omega).
+    d_omega = np.gradient(omega)
+    d_omega[[0, -1]] = omega[1] - omega[0]
+    wave = np.sqrt(2 * S * d_omega)
     case = moorsolve.load_case(chain_case(FAIRLEAD, span=span, length=length))
     model = line_model(case, moorsolve.solve(case), "L1", n_elements=40)
     stats = tension_statistics(model, omega, rao.T + 0j, S)
-    assert stats.fairlead.sigma_N == pytest.approx(sigma_moorpy, rel=0.02)
+    r = stats.response
+    np.testing.assert_allclose(np.abs(r.tension_b), np.abs(amplitude[:, -1]) / wave,
+                               rtol=0.03)
+    np.testing.assert_allclose(np.abs(r.tension_a), np.abs(amplitude[:, 0]) / wave,
+                               rtol=0.03)
+    assert stats.fairlead.sigma_N == pytest.approx(sigma_nodes[-1], rel=0.02)
