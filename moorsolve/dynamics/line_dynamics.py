@@ -1,11 +1,12 @@
 """Dynamic line tension in the frequency domain: one line driven at its fairlead.
 
 The lumped-mass line of :mod:`.line_model` moves about its static profile with complex
-amplitudes ``u`` (``x(t) = Re[u e^{i omega t}]``). End A (the anchor) is fixed, end B (the
-fairlead) follows a prescribed motion ``u_B(omega)``; the free nodes obey, at every
-frequency (Hall & Goupee 2015, *Ocean Engineering* 104, linearised about the static state)::
+amplitudes ``u`` (``x(t) = Re[u e^{i omega t}]``). End B (the fairlead) follows a prescribed
+motion ``u_B(omega)``; end A (the anchor) is fixed or, for a line between two bodies,
+follows ``u_A(omega)``. The free nodes obey, at every frequency (Hall & Goupee 2015,
+*Ocean Engineering* 104, linearised about the static state)::
 
-    [K_ff - omega^2 (M + M_a)_ff + i omega B_ff] u_f = -K_fB u_B
+    [K_ff - omega^2 (M + M_a)_ff + i omega B_ff] u_f = -K_fB u_B - K_fA u_A
 
 with ``K`` the axial plus geometric stiffness, ``M_a`` the normal added mass and ``B`` the
 linearised drag. The tension change of element ``e`` is ``(EA_t/l_0) t_e . (u_{e+1} -
@@ -144,11 +145,14 @@ class _System:
         self.ab_index = (band + i - j, j)
         self.K_band, self.M_band = Kff[i, j], Mff[i, j]
         self.b_index = (band + bi - bj, bj)
+        self.end_a = np.arange(3)
         self.K_fb = self.K[np.ix_(f, self.end_b)]
+        self.K_fa = self.K[np.ix_(f, self.end_a)]
 
-    def solve(self, omega, u_b, bn, bt):
-        """Node displacements ``(n_omega, n_nodes, 3)`` for drive ``u_b`` ``(n_omega, 3)``
-        and drag coefficients per node ``bn``, ``bt`` ``(n_omega, n_nodes)``."""
+    def solve(self, omega, u_a, u_b, bn, bt):
+        """Node displacements ``(n_omega, n_nodes, 3)`` for end motions ``u_a``, ``u_b``
+        ``(n_omega, 3)`` and drag coefficients per node ``bn``, ``bt``
+        ``(n_omega, n_nodes)``."""
         from scipy.linalg import solve_banded
 
         nw, band, nf = len(omega), self.band, len(self.free)
@@ -158,11 +162,12 @@ class _System:
             self.K_band[None, :] - (omega ** 2)[:, None] * self.M_band[None, :])
         ab[:, self.b_index[0], self.b_index[1]] += (
             1j * omega[:, None] * B_blocks.reshape(nw, -1)[:, self.b_keep])
-        rhs = -(u_b @ self.K_fb.T)
+        rhs = -(u_b @ self.K_fb.T) - (u_a @ self.K_fa.T)
         u = np.zeros((nw, self.ndof), complex)
         u[:, self.free] = [solve_banded((band, band), ab[w], rhs[w], check_finite=False)
                            for w in range(nw)]
         u[:, self.end_b] = u_b
+        u[:, self.end_a] = u_a
         return u.reshape(nw, self.n_nodes, 3)
 
     def split_velocity(self, v):
@@ -173,16 +178,16 @@ class _System:
         return np.sqrt(np.sum(np.abs(vn) ** 2, -1)), np.sqrt(np.sum(np.abs(vt) ** 2, -1))
 
 
-def _drive(motion, omega) -> np.ndarray:
-    u_b = np.asarray(motion, complex)
-    if u_b.ndim != 2 or u_b.shape != (3, len(omega)):
-        raise CaseError("motion", f"the fairlead motion must be 3 x n_omega "
-                        f"(3 x {len(omega)}), got {u_b.shape}")
-    return u_b.T
+def _drive(motion, omega, field="motion") -> np.ndarray:
+    u = np.asarray(motion, complex)
+    if u.ndim != 2 or u.shape != (3, len(omega)) or not np.all(np.isfinite(u)):
+        raise CaseError(field, f"an end motion must be 3 x n_omega (3 x {len(omega)}) "
+                        f"finite values, got {u.shape}")
+    return u.T
 
 
 def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMONIC,
-                  spectrum=None, tolerance: float = 1e-4, max_iterations: int = 200,
+                  spectrum=None, motion_a=None, tolerance: float = 1e-4, max_iterations: int = 200,
                   relaxation: float = 0.5) -> LineResponse:
     """Tension transfer functions of one line driven at its fairlead.
 
@@ -198,6 +203,9 @@ def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMO
     linearisation : {"harmonic", "spectral"}
         How drag is linearised (module notes). ``harmonic`` treats each frequency as a
         sinusoid of its own, linearised on its own response.
+    motion_a : array_like (3, n_omega) complex, optional
+        Motion of end A in the same units (a line between two bodies, a shared line);
+        None: end A is fixed (an anchor).
     spectrum : array_like (n_omega,), optional
         Wave spectrum ``S(omega)`` [m^2 s/rad], required by ``spectral``; the variances are
         integrated by the trapezoidal rule over ``omega``.
@@ -221,6 +229,7 @@ def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMO
     if omega.size == 0 or np.any(omega < 0) or not np.all(np.isfinite(omega)):
         raise CaseError("omega", "frequencies must be finite and >= 0 rad/s")
     u_b = _drive(motion, omega)
+    u_a = np.zeros_like(u_b) if motion_a is None else _drive(motion_a, omega, "motion_a")
     if linearisation not in (HARMONIC, SPECTRAL):
         raise CaseError("linearisation", f"{linearisation!r}: use 'harmonic' or 'spectral'")
     if linearisation == SPECTRAL:
@@ -244,17 +253,17 @@ def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMO
         return (np.broadcast_to(_SPECTRAL_FACTOR * sn * qn, (nw, sys.n_nodes)),
                 np.broadcast_to(_SPECTRAL_FACTOR * st * qt, (nw, sys.n_nodes)))
 
-    # Start from the line moving as a straight rod pinned at the anchor.
+    # Start from the line moving as a straight rod between its ends.
     frac = (model.s / model.s[-1])[None, :, None]
-    bn, bt = coefficients(frac * u_b[:, None, :])
+    bn, bt = coefficients(u_a[:, None, :] + frac * (u_b - u_a)[:, None, :])
     for it in range(1, max_iterations + 1):
-        u = sys.solve(omega, u_b, bn, bt)
+        u = sys.solve(omega, u_a, u_b, bn, bt)
         bn_new, bt_new = coefficients(u)
         scale = max(float(np.max(bn_new)), float(np.max(bt_new)), 1e-300)
         change = max(float(np.max(np.abs(bn_new - bn))), float(np.max(np.abs(bt_new - bt))))
         if change <= tolerance * scale:
             bn, bt = bn_new, bt_new
-            u = sys.solve(omega, u_b, bn, bt)
+            u = sys.solve(omega, u_a, u_b, bn, bt)
             break
         bn = relaxation * bn_new + (1 - relaxation) * bn
         bt = relaxation * bt_new + (1 - relaxation) * bt

@@ -116,7 +116,7 @@ def _end(transfer, omega, S, duration) -> EndStatistics:
 
 
 def tension_statistics(model: LineModel, omega, fairlead_rao, spectrum, *,
-                       duration: float = STORM_DURATION_S,
+                       anchor_rao=None, duration: float = STORM_DURATION_S,
                        **solver) -> LineTensionStatistics:
     """Dynamic tension of one line in a sea state.
 
@@ -130,6 +130,9 @@ def tension_statistics(model: LineModel, omega, fairlead_rao, spectrum, *,
         Fairlead displacement per metre of wave amplitude [m/m], global x, y, z.
     spectrum : array_like (n_omega,)
         Wave spectrum ``S(omega)`` [m^2 s/rad].
+    anchor_rao : array_like (3, n_omega) complex, optional
+        Motion of end A per metre of wave amplitude (a line between two bodies); None:
+        end A is fixed.
     duration : float
         Duration of the sea state [s] for the characteristic maximum (3 h).
     **solver
@@ -141,7 +144,7 @@ def tension_statistics(model: LineModel, omega, fairlead_rao, spectrum, *,
     """
     S = np.asarray(spectrum, float).ravel()
     r = line_response(model, omega, fairlead_rao, linearisation=SPECTRAL, spectrum=S,
-                      **solver)
+                      motion_a=anchor_rao, **solver)
     return LineTensionStatistics(name=model.name, duration_s=float(duration),
                                  anchor=_end(r.tension_a, r.omega, S, duration),
                                  fairlead=_end(r.tension_b, r.omega, S, duration),

@@ -168,3 +168,21 @@ def test_a_slack_line_is_refused_with_its_name():
     case = moorsolve.load_case(data)
     with pytest.raises(CaseError, match="lines.L1.*slack"):
         line_model(case, moorsolve.solve(case), "L1")
+
+
+def test_moving_both_ends_together_is_a_rigid_translation():
+    """At omega -> 0 both ends moved by the same horizontal vector translate the line
+    rigidly along the flat seabed: no tension change; moving end A alone is moving end B
+    the other way, the static stiffness with its sign turned."""
+    case = moorsolve.load_case(chain_case(FAIRLEAD, span=310.0, length=316.0))
+    model = line_model(case, moorsolve.solve(case), "L1", n_elements=60)
+    horizontal = np.array([[0.3], [-0.2], [0.0]], complex)
+    both = line_response(model, [0.0], horizontal, motion_a=horizontal)
+    scale = abs(line_response(model, [0.0], horizontal).tension_b[0])
+    assert abs(both.tension_b[0]) < 1e-9 * scale
+    assert abs(both.tension_a[0]) < 1e-9 * scale
+    a_moved = line_response(model, [0.0], 0 * horizontal, motion_a=-horizontal)
+    b_moved = line_response(model, [0.0], horizontal)
+    assert a_moved.tension_b[0] == pytest.approx(b_moved.tension_b[0], rel=1e-9)
+    with pytest.raises(CaseError, match="motion_a"):
+        line_response(model, [0.0], horizontal, motion_a=np.zeros((3, 2)))
