@@ -10,10 +10,12 @@ to it so that ``Cd d`` is 2.4 x 81 mm; no axial drag or added mass.
 Where the linearisation holds (a taut-ish chain, touchdown a few metres from the anchor) the
 tension amplitude agrees with MoorDyn to 3 % at 10 s and 0.2 % at 20 s (asserted: 10 %). It
 stops holding when the touchdown sweeps: for the slacker chain (107 kN top tension, 74 m
-suspended), MoorDyn's amplitude at 10 s is 486 N for 0.1 m of motion and the linear model's
-343 N (-30 %), near the suspended span's first transverse mode, although MoorDyn itself
-scales linearly with the amplitude there (4.8 kN at 1 m): the line lifting off and landing
-on the seabed at every cycle is what a bilateral seabed support cannot carry. MoorPy's
+suspended, quasi-static 645 N for 0.1 m of motion), MoorDyn's top tension amplitude for
+0.1 m of motion is 697 N at 30 s, 663 N at 20 s and 486 N at 10 s, the linear model's
+611 N, 567 N and 343 N (-12 %, -15 %, -30 %; at 60 s and 1 m, 6422 N against 6374 N).
+MoorDyn's amplitude scales with the motion (4.8 kN at 1 m and 10 s) but a unilateral
+seabed contact does that without being linear: the line lifting off and landing on the
+seabed at every cycle is what the bilateral seabed support of a linear model cannot carry. MoorPy's
 linearisation, built on the same assumptions, agrees with this model for the taut-ish chain
 (transfer functions within 1.2 % at every frequency) but not for the slacker one, where its
 long-period limit falls 40 % under the static stiffness (see the test).
