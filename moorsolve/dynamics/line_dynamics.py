@@ -164,8 +164,14 @@ class _System:
             1j * omega[:, None] * B_blocks.reshape(nw, -1)[:, self.b_keep])
         rhs = -(u_b @ self.K_fb.T) - (u_a @ self.K_fa.T)
         u = np.zeros((nw, self.ndof), complex)
-        u[:, self.free] = [solve_banded((band, band), ab[w], rhs[w], check_finite=False)
-                           for w in range(nw)]
+        try:
+            u[:, self.free] = [solve_banded((band, band), ab[w], rhs[w], check_finite=False)
+                               for w in range(nw)]
+        except np.linalg.LinAlgError:
+            raise ConvergenceError(
+                "the line's dynamic stiffness is singular at one of the frequencies (a node "
+                "with neither tension nor mass to hold it, or omega = 0 on a line without "
+                "tension)") from None
         u[:, self.end_b] = u_b
         u[:, self.end_a] = u_a
         return u.reshape(nw, self.n_nodes, 3)
@@ -187,8 +193,8 @@ def _drive(motion, omega, field="motion") -> np.ndarray:
 
 
 def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMONIC,
-                  spectrum=None, motion_a=None, tolerance: float = 1e-4, max_iterations: int = 200,
-                  relaxation: float = 0.5) -> LineResponse:
+                  spectrum=None, motion_a=None, tolerance: float = 1e-4,
+                  max_iterations: int = 200, relaxation: float = 0.5) -> LineResponse:
     """Tension transfer functions of one line driven at its fairlead.
 
     Parameters

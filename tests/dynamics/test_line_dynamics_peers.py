@@ -48,7 +48,7 @@ def _anchor(span):
 
 def _moordyn_file(path, span, length, n_seg):
     ax, ay = _anchor(span)
-    path.write_text(f"""--------------------- MoorDyn Input File ------------------------------------
+    path.write_text(f"""------------------- MoorDyn Input File ----------------------------------
 one chain, fairlead moved sinusoidally
 ----------------------- LINE TYPES ------------------------------------------
 TypeName   Diam    Mass/m     EA     BA/-zeta    EI    Cd     Ca     CdAx    CaAx

@@ -3,7 +3,6 @@ the characteristic dynamic tension by hand, and the response against independent
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
