@@ -186,3 +186,49 @@ def test_moving_both_ends_together_is_a_rigid_translation():
     assert a_moved.tension_b[0] == pytest.approx(b_moved.tension_b[0], rel=1e-9)
     with pytest.raises(CaseError, match="motion_a"):
         line_response(model, [0.0], horizontal, motion_a=np.zeros((3, 2)))
+
+
+def _fibre_case(fairlead):
+    """A polyester rope with a tension-strain table (the working curve of
+    cases/fpu_polyester_table.yaml) between chain ends in 300 m of water, fairlead fixed."""
+    table = {"model": "table",
+             "strain": [0.005, 0.010, 0.015, 0.020, 0.025, 0.030, 0.035, 0.040],
+             "tension": ["197 kN", "473 kN", "868 kN", "1341 kN", "1894 kN", "2525 kN",
+                         "3156 kN", "3787 kN"]}
+    return {"environment": {"depth": 300.0},
+            "line_types": {
+                "chain84": {"weight_in_water": "122.7 kg/m", "ea": 6.0e8, "mbl": 6.5e6,
+                            "diameter": "84 mm"},
+                "polyester160": {"weight_in_water": "4.47 kg/m", "mbl": 7.89e6,
+                                 "diameter": "160 mm", "fibre": True, "stretch": table}},
+            "legs": [{"name": "L1", "anchor": [-1000.0 * math.cos(AZIMUTH),
+                                               -1000.0 * math.sin(AZIMUTH)],
+                      "fairlead": [float(v) for v in fairlead],
+                      "segments": [{"type": "chain84", "length": 200},
+                                   {"type": "polyester160", "length": 800},
+                                   {"type": "chain84", "length": 100}]}]}
+
+
+def test_long_period_limit_of_a_rope_with_a_tension_strain_table():
+    """The rope's axial stiffness is the table's tangent dT/d(strain) at each element's
+    static tension: the long-period limit at both ends matches central differences of the
+    re-solved static line (whose stretch is the table's) to 1e-3."""
+    fairlead = np.array([0.0, 0.0, -20.0])
+    case = moorsolve.load_case(_fibre_case(fairlead))
+    result = moorsolve.solve(case)
+    model = line_model(case, result, "L1", n_elements=120)
+
+    def tensions(at):
+        leg = moorsolve.solve(moorsolve.load_case(_fibre_case(at))).legs[0]
+        return np.array([leg.anchor_tension_N, leg.fairlead_tension_N])
+
+    h = 0.01
+    for k in (0, 2):
+        step = np.zeros(3)
+        step[k] = h
+        reference = (tensions(fairlead + step) - tensions(fairlead - step)) / (2 * h)
+        drive = np.zeros((3, 1), complex)
+        drive[k] = 1.0
+        r = line_response(model, [0.0], drive)
+        got = np.array([r.tension_a[0].real, r.tension_b[0].real])
+        np.testing.assert_allclose(got, reference, rtol=1e-3)
