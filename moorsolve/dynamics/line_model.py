@@ -12,7 +12,8 @@ mass line)::
     K_e = (EA_t / l_0) t t^T + (T / l) (I - t t^T)
 
 ``EA_t`` is the tangent axial stiffness at the static tension (``ea`` for Hooke, the
-stretch law's ``dT/d(strain)`` otherwise; an inextensible line gets an axial stiffness a
+stretch law's ``dT/d(strain)`` otherwise, or the rope's dynamic stiffness where the line
+type gives one; an inextensible line gets an axial stiffness a
 million times its largest tension, a strain of 1e-6 there). Half of each element's mass and
 hydrodynamic coefficients go to each of its nodes. Added mass acts normal to the line only
 (``Ca rho A`` per unit length, ``A`` the displaced area); drag has a normal part
@@ -225,8 +226,13 @@ def _resample(profile, line, env, n_elements: int) -> tuple:
     return np.concatenate(out_s), np.concatenate(out_xyz), np.concatenate(out_T)
 
 
-def _tangent_ea(lt, T: float) -> Optional[float]:
-    """``dT/d(strain)`` [N] at tension ``T`` (None when inextensible)."""
+def _tangent_ea(lt, T: float, dynamic: bool = False) -> Optional[float]:
+    """``dT/d(strain)`` [N] at tension ``T`` (None when inextensible); with ``dynamic``,
+    the line type's dynamic stiffness ``(alpha + beta L_m) MBL`` at mean load ``T`` where
+    it gives one (the upper stiffness bound of a fibre rope)."""
+    upper = lt.stiffness_bounds.upper if lt.stiffness_bounds is not None else None
+    if dynamic and hasattr(upper, "alpha") and lt.mbl:
+        return float(upper.ea(lt.mbl, T))
     if lt.stretch is not None:
         dT = max(1e-4 * abs(T), 1.0)
         lo = max(T - dT, 0.0)
@@ -239,7 +245,8 @@ def line_model(case, result, name: str, *, added_mass: float = DEFAULT_ADDED_MAS
                mass_per_length: Optional[float] = None,
                displaced_area: Optional[float] = None,
                seabed_stiffness: Optional[float] = None,
-               n_elements: int = DEFAULT_ELEMENTS) -> LineModel:
+               n_elements: int = DEFAULT_ELEMENTS,
+               dynamic_stiffness: bool = True) -> LineModel:
     """The lumped-mass model of line ``name`` about its solved static profile.
 
     Parameters
@@ -260,6 +267,12 @@ def line_model(case, result, name: str, *, added_mass: float = DEFAULT_ADDED_MAS
     seabed_stiffness : float, optional
         Vertical seabed stiffness [Pa] (MoorDyn's ``kbot``); None holds grounded nodes
         rigidly.
+    dynamic_stiffness : bool
+        Where a line type gives a dynamic stiffness (``stiffness_bounds.upper`` of the
+        form ``{model: dynamic, alpha, beta}``, a fibre rope's data sheet), its elements
+        take ``(alpha + beta L_m) MBL`` at their static tension ``L_m`` (wave-frequency
+        motion); False takes the quasi-static tangent stiffness of the stretch law
+        everywhere (low-frequency motion, and the long-period limit of the statics).
     n_elements : int
         About how many elements: spread evenly over the suspended arc length, with
         elements four times longer on the seabed (straight there); every touchdown and
@@ -305,7 +318,8 @@ def line_model(case, result, name: str, *, added_mass: float = DEFAULT_ADDED_MAS
     ea = np.empty(n)
     T_big = max(float(np.max(np.abs(T_el))), 1.0)
     for e in range(n):
-        ea_e = _tangent_ea(line.segments[seg_of[e]].line_type, max(T_el[e], 0.0))
+        ea_e = _tangent_ea(line.segments[seg_of[e]].line_type, max(T_el[e], 0.0),
+                           dynamic_stiffness)
         ea[e] = _RIGID_AXIAL * T_big if ea_e is None else ea_e
     axial = ea / l0
 

@@ -232,3 +232,26 @@ def test_long_period_limit_of_a_rope_with_a_tension_strain_table():
         r = line_response(model, [0.0], drive)
         got = np.array([r.tension_a[0].real, r.tension_b[0].real])
         np.testing.assert_allclose(got, reference, rtol=1e-3)
+
+
+def test_a_fibre_rope_takes_its_dynamic_stiffness_where_the_line_type_gives_one():
+    """With ``stiffness_bounds.upper: {model: dynamic, alpha: 11.615, beta: 0.396}`` each
+    rope element's axial spring is (11.615 + 0.396 x 100 T / MBL) MBL / l_0 at its static
+    tension T (by hand from the model's own T and l_0); the chain keeps its EA; without
+    ``dynamic_stiffness`` the rope's is the table's tangent again."""
+    data = _fibre_case([0.0, 0.0, -20.0])
+    rope = data["line_types"]["polyester160"]
+    rope["stiffness_bounds"] = {"lower": rope["stretch"],
+                                "upper": {"model": "dynamic", "alpha": 11.615, "beta": 0.396}}
+    case = moorsolve.load_case(data)
+    result = moorsolve.solve(case)
+    model = line_model(case, result, "L1", n_elements=60)
+    l0 = np.diff(model.s)
+    mid = 0.5 * (model.s[:-1] + model.s[1:])
+    on_rope = (mid > 200.0) & (mid < 1000.0)
+    mbl = 7.89e6
+    expected = (11.615 + 0.396 * 100.0 * model.tension / mbl) * mbl / l0
+    np.testing.assert_allclose(model.axial[on_rope], expected[on_rope], rtol=1e-12)
+    np.testing.assert_allclose(model.axial[~on_rope], 6.0e8 / l0[~on_rope], rtol=1e-12)
+    quasi_static = line_model(case, result, "L1", n_elements=60, dynamic_stiffness=False)
+    assert np.all(quasi_static.axial[on_rope] < 0.5 * model.axial[on_rope])
