@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 
 from .common import (EXIT_OK, YAML_EXTENSIONS, check_output, overload_option, solver_option,
-                     tolerance)
+                     tolerance_option)
 
 
 def add_commands(sub) -> None:
@@ -23,7 +23,7 @@ def add_commands(sub) -> None:
     p.add_argument("--equilibrium", action="store_true",
                    help="solve first and write the equilibrium positions of the fairleads "
                         "and free points")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     solver_option(p)
     overload_option(p)
     p.set_defaults(run=run_export)

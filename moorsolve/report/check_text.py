@@ -41,6 +41,11 @@ def summary_rows(report: CheckReport) -> list:
     return rows
 
 
+def _number(value, applies: bool = True) -> str:
+    """Two decimals, or "-" where the column does not apply (no mooring line: only hawsers)."""
+    return f"{value:.2f}" if applies and value is not None and math.isfinite(value) else "-"
+
+
 def mark(item) -> str:
     if item is None:
         return "-"
@@ -64,8 +69,9 @@ def format_check_table(report: CheckReport) -> str:
         uplift = row["anchor uplift"] or row["anchor uplift angle"]
         offset = "-" if row["offset"] is None else f"{row['offset']:.2f}"
         lines.append(
-            f"{row['condition']:<22}{offset:>9}{row['leg']:>6}{row['T'] / 1e3:10.1f}"
-            f"{row['mbl_over_T']:7.2f}{row['required']:6.2f}{row['tension_util']:6.2f}"
+            f"{row['condition']:<22}{offset:>9}{row['leg']:>6}{kN(row['T']):>10}"
+            f"{_number(row['mbl_over_T']):>7}{_number(row['required'], row['leg'] != '-'):>6}"
+            f"{_number(row['tension_util']):>6}"
             f"{mark(uplift):>8}{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
             f"  {'PASS' if row['passed'] else 'FAIL'}")
     lines += berth_check_lines(report)       # hawsers, fenders, guides (issue 15)
