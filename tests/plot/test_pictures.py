@@ -267,5 +267,8 @@ def test_nautical_case_speaks_in_bearings():
     text = repr(envelope)
     i = int(np.nanargmax(envelope.worst_tension_N))
     assert f"{envelope.flows[0]} from {envelope.file_heading(i):g} deg (compass)" in text
+    worst = envelope.worst()
+    assert f"worst {worst['worst_leg']} with" in text
+    assert worst["case_heading"]["deg"] == pytest.approx(envelope.file_heading(i))
     ax = plot_elevation(moorsolve.solve(case))
     assert "compass" in ax.get_title() and "compass" in ax.get_xlabel()
