@@ -5,11 +5,13 @@ Every plot function takes what it draws (a Result, a check report, an envelope, 
 an optional Axes, draws on it and returns it (a figure maker returns the Figure); none
 calls ``plt.show()``.
 
-- :mod:`.scene`: what a picture of an equilibrium shows, read from a Result.
+- :mod:`.scene`: what a picture of an equilibrium shows, read from a Result;
+  :mod:`.geometry`: the bodies' hulls and the berth's structures in it.
 - :mod:`.plan`, :mod:`.views`: plan, elevation, 3-D view, line profiles, the equilibrium
   figure (colours and styles shared through :mod:`.style`).
 - :mod:`.directions`: the direction conventions of a case file, drawn.
-- :mod:`.berth`: quay walls, piles, fenders and pile guides over the plan (issue 15).
+- :mod:`.berth`: quay walls, piles, fenders and pile guides in every view.
+- :mod:`.labels`: the plan's labels, placed so that none overlaps another.
 - :mod:`.studies`: check utilisation, accuracy ladder, envelopes, polar fields, design
   optimisation, restoring curves.
 """

@@ -50,10 +50,18 @@ def draw_bodies(ax, scene: Scene) -> list:
                 sources.append(shape.source)
         ax.plot(*body.origin[:2], "+", color="k", ms=9, zorder=5)
         ax.plot(body.fairleads[:, 0], body.fairleads[:, 1], "s", color="k", ms=3, zorder=4)
-    handles = [Patch(fc=BODY_FILL, ec="0.3", hatch="..." if "fairleads" in src else None,
-                     label=f"body, {src}") for src in sources]
+    points = all(len(shape.ring) <= 1 for b in scene.bodies for shape in b.shapes)
+    if points:              # lines meeting at each body's origin: drawn as a disc
+        handles = [Line2D([], [], marker="o", color="0.7", mec="0.3", ms=9, ls="",
+                          label="body at equilibrium (its lines meet at its origin)")]
+    else:
+        handles = [Patch(fc=BODY_FILL, ec="0.3", hatch="..." if "fairleads" in src else None,
+                         label=f"body, {src}") for src in sources]
     if scene.bodies:
-        handles += [Patch(fill=False, ec="0.5", ls="--", label="body at rest"),
+        rest = (Line2D([], [], marker="o", mfc="none", mec="0.5", ms=9, ls="",
+                       label="body at rest") if points
+                else Patch(fill=False, ec="0.5", ls="--", label="body at rest"))
+        handles += [rest,
                     Line2D([], [], marker="+", color="k", ls="", ms=8,
                            label="body origin; fairleads")]
     return handles
