@@ -272,3 +272,52 @@ def test_nautical_case_speaks_in_bearings():
     assert worst["case_heading"]["deg"] == pytest.approx(envelope.file_heading(i))
     ax = plot_elevation(moorsolve.solve(case))
     assert "compass" in ax.get_title() and "compass" in ax.get_xlabel()
+
+
+# ---- the interactive view (optional extra) ---------------------------------------------------
+
+
+def test_interactive_view_draws_the_scene():
+    """Every line from end to end, the box hull as a prism of the box's size, the quay wall
+    and the fenders, with the vertical exaggeration the title states."""
+    pytest.importorskip("plotly")
+    from moorsolve.plot import plot_3d_interactive
+    result = _solve("pontoon_piles.yaml")
+    scene = scene_of(result)
+    fig = plot_3d_interactive(result)
+    lines = {t.name.split()[0]: t for t in fig.data if t.type == "scatter3d"
+             and t.mode == "lines" and t.name.split()[0] in {l.name for l in scene.lines}}
+    for line in scene.lines:
+        t = lines[line.name]
+        np.testing.assert_allclose([t.x[0], t.y[0], t.z[0]], line.xyz[0])
+        np.testing.assert_allclose([t.x[-1], t.y[-1], t.z[-1]], line.xyz[-1])
+    (hull,) = [t for t in fig.data if t.type == "mesh3d" and "hull" in t.name]
+    (shape,) = scene.bodies[0].shapes
+    assert min(hull.z) == pytest.approx(shape.bottom) and max(hull.z) == pytest.approx(shape.top)
+    np.testing.assert_allclose(sorted(set(np.round(hull.x, 9))), sorted(set(np.round(
+        shape.ring[:, 0], 9))))
+    assert sum(t.type == "scatter3d" and t.name in ("P1", "P2") for t in fig.data) == 2
+    berth = plot_3d_interactive(_solve("ship_berth.yaml"))
+    names = [t.name for t in berth.data]
+    assert "quay (wall)" in names and "fenders" in names
+    # The box's proportions are the scene's, the vertical times the title's factor.
+    gain = float(berth.layout.title.text.split("vertical x")[1].split(";")[0])
+    ratio = berth.layout.scene.aspectratio
+    ship = scene_of(_solve("ship_berth.yaml"))
+    lo, hi = ship.extent()
+    width, depth_y = hi[0] - lo[0], hi[1] - lo[1]
+    pad = 0.04 * max(width, depth_y)
+    horizontal = max(width, depth_y) + 2 * pad
+    height = max(0.0, hi[2]) + ship.depth                  # flat seabed at -depth
+    assert ratio.x == pytest.approx((width + 2 * pad) / horizontal)
+    assert ratio.y == pytest.approx((depth_y + 2 * pad) / horizontal)
+    assert ratio.z == pytest.approx(gain * height / horizontal)
+
+
+def test_interactive_view_without_plotly_says_how_to_get_it(monkeypatch):
+    import sys
+    from moorsolve.plot import plot_3d_interactive
+    monkeypatch.setitem(sys.modules, "plotly", None)
+    monkeypatch.setitem(sys.modules, "plotly.graph_objects", None)
+    with pytest.raises(ImportError, match=r"moorsolve\[interactive\]"):
+        plot_3d_interactive(_solve("buoy_vida.yaml"))
