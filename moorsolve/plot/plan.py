@@ -80,9 +80,9 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
     ax : matplotlib Axes, optional
     colour_bar_ : bool
         Draw the colour bar beside the Axes.
-    legend : bool or "figure"
-        Draw the legend below the Axes (``"figure"``: the same, in two more columns, for
-        the wide plan of the equilibrium figure).
+    legend : bool, "figure" or "narrow"
+        Draw the legend below the Axes in three columns (``"figure"``: four, for the wide
+        plan of the equilibrium figure; ``"narrow"``: two, for a plan beside other views).
 
     Returns
     -------
@@ -205,7 +205,8 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
         from matplotlib.transforms import ScaledTranslation
         below = ScaledTranslation(0.0, -34 / 72, ax.figure.dpi_scale_trans)  # under x label
         ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-                  bbox_transform=ax.transAxes + below, ncol=3 if legend is True else 4,
+                  bbox_transform=ax.transAxes + below,
+                  ncol={"figure": 4, "narrow": 2}.get(legend, 3),
                   fontsize=7, frameon=False, handlelength=2.2, columnspacing=1.2)
     place_labels(ax, labels)
     return ax

@@ -363,7 +363,7 @@ def plot_equilibrium(result, depth=None, *, layout: str = "auto", removed_from=N
     plot_elevation(scene, axes["elev"])
     plot_3d(scene, axes["3d"])
     # Last: the plan places its labels once everything else is laid out.
-    plot_plan(scene, axes["plan"], legend="figure" if layout == "portrait" else True)
+    plot_plan(scene, axes["plan"], legend="figure" if layout == "portrait" else "narrow")
     fit_section(axes["elev"])
     _place_3d(axes["3d"], axes["elev"], layout)
     return fig
