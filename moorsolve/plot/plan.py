@@ -102,7 +102,7 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
     handles, labels = [], []
     if scene.sloped:
         gx = np.linspace(*xlim, 60)
-        gy = np.linspace(*ylim, 60)
+        gy = np.linspace(ylim[0], ylim[1] + 0.6 * span, 60)    # the inset may raise the top
         X, Y = np.meshgrid(gx, gy)
         depth = -scene.seabed_z(X, Y)
         filled = ax.contourf(X, Y, depth, levels=10, cmap="Blues", alpha=0.35, zorder=0)
