@@ -60,7 +60,7 @@ def run_check(args) -> int:
         write_html_report(report, case, args.report, case_file=args.case)
     print_text(check_json(report) if args.json else format_check_table(report))
     if args.report is not None and not args.json:
-        print(f"wrote {args.report}")
+        print_text(f"wrote {args.report}")
     return EXIT_OK if report.passed else EXIT_NO_EQUILIBRIUM
 
 

@@ -70,7 +70,7 @@ def run_plot(args) -> int:
     check_output(args.output, "--output", IMAGE_EXTENSIONS)
     result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), args.output)
-    print(f"wrote {args.output}")
+    print_text(f"wrote {args.output}")
     return EXIT_OK
 
 

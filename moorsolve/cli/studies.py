@@ -144,7 +144,7 @@ def run_envelope(args) -> int:
     print_text(json.dumps(envelope.to_dict(), indent=2) if args.json
            else format_envelope(envelope))
     if args.plot and not args.json:
-        print(f"wrote {args.plot}")
+        print_text(f"wrote {args.plot}")
     import numpy as np
 
     missing = ~np.isfinite(envelope.worst_tension_N)
@@ -186,6 +186,6 @@ def run_optimise(args) -> int:
             f"{opt.objective} {opt.objective_start:,.0f} -> {opt.objective_optimum:,.0f} "
             f"{opt.unit}"))
         if not args.json:
-            print(f"wrote {args.output}")
+            print_text(f"wrote {args.output}")
     return EXIT_OK
 

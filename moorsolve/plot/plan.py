@@ -194,8 +194,7 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
         if scene.berth.fenders and scene.colour_by == "utilisation":
             bar.set_label("utilisation: line tension / MBL;\nfender compression / rated "
                           "deflection")
-        elif scene.berth.fenders:
-            from .berth import fender_colour  # noqa: F401  (the fenders' own scale)
+        elif scene.berth.fenders:      # lines by tension: the fenders need their own scale
             import matplotlib as mpl
             ax.figure.colorbar(mpl.cm.ScalarMappable(cmap="RdYlGn_r",
                                                      norm=mpl.colors.Normalize(0, 1)),

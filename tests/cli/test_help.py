@@ -111,3 +111,14 @@ def test_utilisation_grid_has_hawser_columns():
     assert cells == [f"{i.utilisation:.2f}" for i in hawsers]
     assert all(math.isfinite(i.utilisation) for i in hawsers)
     plt.close(fig)
+
+
+def test_plot_into_a_closed_pipe_is_not_a_traceback(tmp_path):
+    """``moorsolve plot ... | head -0``: the reader went away; the picture is written and
+    no traceback is printed."""
+    case = ROOT / "cases" / "buoy_vida.yaml"
+    out = tmp_path / "vida.png"
+    proc = subprocess.run(f"{sys.executable} -m moorsolve.cli plot {case} -o {out} | head -c 0",
+                          shell=True, capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert "Traceback" not in proc.stderr, proc.stderr
+    assert out.read_bytes()[:4] == b"\x89PNG"
