@@ -42,8 +42,18 @@ def main(argv: list[str] | None = None) -> int:
     The library's log messages at INFO and above (e.g. the one-off compile of a Newton
     kernel) and its warnings (inputs no model uses) go to stderr as ``moorsolve: ...``
     lines, so stdout holds only the command's output.
+
+    Without a command (bare ``moorsolve``) the usage and the list of commands go to stderr
+    and the status is 2, as for any other missing argument.
     """
-    args = _parser().parse_args(argv)
+    parser = _parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if not argv:
+        parser.print_help(sys.stderr)
+        print("moorsolve: error: name a command (moorsolve COMMAND --help for its options)",
+              file=sys.stderr)
+        return EXIT_BAD_INPUT
+    args = parser.parse_args(argv)
     log = logging.getLogger("moorsolve")
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("moorsolve: %(message)s"))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from .common import EXIT_OK, print_text, solver_option, tolerance
+from .common import EXIT_OK, print_text, solver_option, tolerance_option
 
 
 def add_commands(sub) -> None:
@@ -13,7 +13,7 @@ def add_commands(sub) -> None:
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("--json", action="store_true", help="print both bounds as JSON")
     solver_option(p)
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     p.set_defaults(run=run_bounds)
 
 

@@ -7,7 +7,7 @@ import json
 
 from ..errors import CaseError
 from .common import (EXIT_NO_EQUILIBRIUM, EXIT_OK, bad_input, check_output, print_text,
-                     tolerance)
+                     tolerance_option)
 
 
 def add_commands(sub) -> None:
@@ -19,7 +19,7 @@ def add_commands(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the check as JSON")
     p.add_argument("--report", default=None, help="write a self-contained HTML report")
     p.add_argument("--no-damaged", action="store_true", help="intact condition only")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     p.set_defaults(run=run_check)
     inverse_help = {
         "anchor-distance": "least anchor distance with no anchor uplift (Hu & Tang Tables 1, 2, 4)",
@@ -60,7 +60,7 @@ def run_check(args) -> int:
         write_html_report(report, case, args.report, case_file=args.case)
     print_text(check_json(report) if args.json else format_check_table(report))
     if args.report is not None and not args.json:
-        print(f"wrote {args.report}")
+        print_text(f"wrote {args.report}")
     return EXIT_OK if report.passed else EXIT_NO_EQUILIBRIUM
 
 

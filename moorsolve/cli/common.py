@@ -52,13 +52,26 @@ def heading_step(text: str) -> float:
     return value
 
 
+#: Why two commands default to another solver, said in every ``--solver`` help.
+_SOLVER_DEFAULTS = ("Commands that solve once default to ipopt, the reference; sweep and "
+                    "envelope, which solve many warm-started points, default to newton for "
+                    "speed. Both certify the same residual (--tol).")
+
+
 def solver_option(p, default: str = "ipopt") -> None:
-    if default == "ipopt":
-        text = "ipopt (default, the reference) or newton (compiled fast path, falls back to ipopt)"
-    else:
-        text = ("newton (default: compiled fast path, IPOPT where it cannot certify) or ipopt "
-                "for every point")
-    p.add_argument("--solver", choices=("ipopt", "newton"), default=default, help=text)
+    """``--solver``: the same choices and the same explanation of the defaults everywhere."""
+    here = ("default here: ipopt" if default == "ipopt" else "default here: newton")
+    p.add_argument("--solver", choices=("ipopt", "newton"), default=default,
+                   help=f"ipopt (interior point, the reference) or newton (compiled fast "
+                        f"path; falls back to ipopt where it cannot certify); {here}. "
+                        + _SOLVER_DEFAULTS)
+
+
+def tolerance_option(p) -> None:
+    """``--tol``: one definition for every command that solves."""
+    p.add_argument("--tol", type=tolerance, default=None,
+                   help="certified force residual relative to the largest line tension, "
+                        "> 0 and < 1 (default 1e-9)")
 
 
 def overload_option(p) -> None:

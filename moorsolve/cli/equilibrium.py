@@ -8,7 +8,7 @@ import sys
 
 from ..errors import ConvergenceError
 from .common import (EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS, check_output,
-                     overload_option, print_text, save_figure, solver_option, tolerance,
+                     overload_option, print_text, save_figure, solver_option, tolerance_option,
                      whole_number)
 
 
@@ -16,8 +16,7 @@ def add_commands(sub) -> None:
     p = sub.add_parser("solve", help="solve a case and print the equilibrium")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
-    p.add_argument("--tol", type=tolerance, default=None,
-                   help="force residual relative to the largest tension (default 1e-9)")
+    tolerance_option(p)
     p.add_argument("--no-profiles", action="store_true",
                    help="leave the line profiles out of the JSON")
     solver_option(p)
@@ -26,7 +25,7 @@ def add_commands(sub) -> None:
     p = sub.add_parser("plot", help="plan, elevation and 3-D view of the equilibrium")
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("-o", "--output", required=True, help="image file to write (.png, .pdf, .svg)")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     solver_option(p)
     overload_option(p)
     p.set_defaults(run=run_plot)
@@ -35,7 +34,7 @@ def add_commands(sub) -> None:
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("--body", default=None, help="the body's name (default: the only body)")
     p.add_argument("--json", action="store_true", help="print the matrix as JSON")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     solver_option(p)
     overload_option(p)
     p.set_defaults(run=run_stiffness)
@@ -71,7 +70,7 @@ def run_plot(args) -> int:
     check_output(args.output, "--output", IMAGE_EXTENSIONS)
     result = solve(case, tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
     save_figure(lambda: plot_equilibrium(result, depth=case.environment.depth), args.output)
-    print(f"wrote {args.output}")
+    print_text(f"wrote {args.output}")
     return EXIT_OK
 
 

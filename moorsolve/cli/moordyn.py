@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import sys
 
-from .common import (EXIT_OK, YAML_EXTENSIONS, check_output, overload_option, solver_option,
-                     tolerance)
+from .common import (EXIT_OK, YAML_EXTENSIONS, check_output, overload_option, print_text,
+                     solver_option, tolerance_option)
 
 
 def add_commands(sub) -> None:
@@ -23,7 +23,7 @@ def add_commands(sub) -> None:
     p.add_argument("--equilibrium", action="store_true",
                    help="solve first and write the equilibrium positions of the fairleads "
                         "and free points")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     solver_option(p)
     overload_option(p)
     p.set_defaults(run=run_export)
@@ -49,7 +49,8 @@ def _import(read, source: str, args) -> int:
     imported = read(source)
     imported.write(args.output)
     print(imported.report.text(), end="")
-    print(f"wrote {args.output} ({imported.form} form; the report above heads it as a comment)")
+    print_text(f"wrote {args.output} ({imported.form} form; the report above heads it as a "
+               "comment)")
     if not args.no_solve:
         _check_at_rest(imported.data)
     return EXIT_OK
@@ -85,7 +86,7 @@ def run_export(args) -> int:
     from ..studies.moordyn_export import export_moordyn
     export_moordyn(args.case, args.output, version=args.version, equilibrium=args.equilibrium,
                    tol=args.tol, solver=args.solver, allow_overload=args.allow_overload)
-    print(f"wrote {args.output}")
+    print_text(f"wrote {args.output}")
     return EXIT_OK
 
 
@@ -98,5 +99,5 @@ def run_export_moorpy(args) -> int:
     from ..io import export_moorpy
     check_output(args.output, "--output", YAML_EXTENSIONS)
     export_moorpy(args.case, args.output)
-    print(f"wrote {args.output}")
+    print_text(f"wrote {args.output}")
     return EXIT_OK

@@ -9,7 +9,7 @@ import sys
 from ..errors import CaseError, ConvergenceError
 from .common import (EXIT_INTERRUPTED, EXIT_NO_EQUILIBRIUM, EXIT_OK, IMAGE_EXTENSIONS,
                      YAML_EXTENSIONS, bad_input, check_output, heading_step, overload_option,
-                     print_text, save_figure, solver_option, tolerance, whole_number)
+                     print_text, save_figure, solver_option, tolerance_option, whole_number)
 
 
 def add_commands(sub) -> None:
@@ -25,7 +25,7 @@ def add_commands(sub) -> None:
                         "('environment.wind.speed [kn]')")
     p.add_argument("-o", "--output", required=True, help="results file (.csv or .parquet)")
     solver_option(p, default="newton")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     p.add_argument("--workers", type=whole_number("--workers", 1, 1024), default=None,
                    help="local threads (default: the number of cores)")
     p.add_argument("--resume", action="store_true",
@@ -50,7 +50,7 @@ def add_commands(sub) -> None:
     p.add_argument("--body", default=None,
                    help="the body whose offset is reported (a case with several bodies)")
     solver_option(p, default="newton")
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     overload_option(p)
     p.set_defaults(run=run_envelope)
     p = sub.add_parser("optimise", help="least line mass or cost over a set of load cases "
@@ -150,7 +150,7 @@ def run_envelope(args) -> int:
     print_text(json.dumps(envelope.to_dict(), indent=2) if args.json
            else format_envelope(envelope))
     if args.plot and not args.json:
-        print(f"wrote {args.plot}")
+        print_text(f"wrote {args.plot}")
     import numpy as np
 
     missing = ~np.isfinite(envelope.worst_tension_N)
@@ -198,6 +198,6 @@ def run_optimise(args) -> int:
             f"{opt.objective} {opt.objective_start:,.0f} -> {opt.objective_optimum:,.0f} "
             f"{opt.unit}"))
         if not args.json:
-            print(f"wrote {args.output}")
+            print_text(f"wrote {args.output}")
     return EXIT_OK
 

@@ -17,10 +17,62 @@ __all__ = ["plot_plan"]
 # ---- plan -------------------------------------------------------------------------------
 
 
+#: Markers of the ends fixed in the scene.
+FIXED_STYLE = {"anchor": dict(marker="v", color="k", ms=6, label="anchor"),
+               "bollard": dict(marker="o", mfc="0.25", mec="w", color="0.25", ms=7,
+                               label="bollard (fixed above water)"),
+               "fixed": dict(marker="D", color="0.25", ms=5, label="fixed point")}
+BODY_FILL = "0.8"
+
+
+def draw_bodies(ax, scene: Scene) -> list:
+    """Each body's hull (:attr:`.scene.BodyView.shapes`) at rest (dashed) and at
+    equilibrium (filled), its origin and fairleads; returns the legend handles."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    sources = []
+    for body in scene.bodies:
+        for shape in body.shapes:
+            ring, rest = shape.ring, shape.ring_rest
+            if len(ring) > 2:
+                ax.fill(*rest.T, fill=False, ls="--", ec="0.5", lw=1, zorder=1)
+                ax.fill(*ring.T, color=BODY_FILL, alpha=0.9, ec="0.3", lw=1, zorder=1,
+                        hatch="..." if shape.kind == "fairleads" else None)
+            elif len(ring) == 2:        # a body on one line end: origin to fairlead
+                ax.plot(*rest.T, color="0.5", ls="--", lw=1, zorder=1)
+                ax.plot(*ring.T, color="0.6", lw=7, alpha=0.8, solid_capstyle="round",
+                        zorder=1)
+            else:                       # lines meeting at the origin: a point
+                ax.plot(*body.origin_rest[:2], "o", mfc="none", mec="0.5", ms=12, ls="",
+                        zorder=1)
+                ax.plot(*body.origin[:2], "o", color="0.7", mec="0.3", ms=12, zorder=1)
+            if shape.source not in sources:
+                sources.append(shape.source)
+        ax.plot(*body.origin[:2], "+", color="k", ms=9, zorder=5)
+        ax.plot(body.fairleads[:, 0], body.fairleads[:, 1], "s", color="k", ms=3, zorder=4)
+    points = all(len(shape.ring) <= 1 for b in scene.bodies for shape in b.shapes)
+    if points:              # lines meeting at each body's origin: drawn as a disc
+        handles = [Line2D([], [], marker="o", color="0.7", mec="0.3", ms=9, ls="",
+                          label="body at equilibrium (its lines meet at its origin)")]
+    else:
+        handles = [Patch(fc=BODY_FILL, ec="0.3", hatch="..." if "fairleads" in src else None,
+                         label=f"body, {src}") for src in sources]
+    if scene.bodies:
+        rest = (Line2D([], [], marker="o", mfc="none", mec="0.5", ms=9, ls="",
+                       label="body at rest") if points
+                else Patch(fill=False, ec="0.5", ls="--", label="body at rest"))
+        handles += [rest,
+                    Line2D([], [], marker="+", color="k", ls="", ms=8,
+                           label="body origin; fairleads")]
+    return handles
+
+
 def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
-    """Plan view: lines, anchors, touchdowns, clumps and buoys, bodies at rest and at
-    equilibrium, the offset and the body loads as arrows, the seabed depth (contours on a
-    sloped seabed), a legend, a scale bar and, for compass cases, north.
+    """Plan view: lines, anchors and bollards, touchdowns, clumps and buoys, bodies (their
+    hulls) at rest and at equilibrium, the berth (quay walls, piles, fenders, guides), the
+    offset and the body loads, the seabed depth (contours on a sloped seabed), a legend, a
+    scale bar and, for compass cases, north. Labels are placed so that none overlaps
+    another (:mod:`.labels`): draw anything else on the figure first.
 
     Parameters
     ----------
@@ -28,25 +80,29 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
     ax : matplotlib Axes, optional
     colour_bar_ : bool
         Draw the colour bar beside the Axes.
-    legend : bool or "figure"
-        Draw the legend below the Axes, or (``"figure"``) along the figure's bottom.
+    legend : bool, "figure" or "narrow"
+        Draw the legend below the Axes in three columns (``"figure"``: four, for the wide
+        plan of the equilibrium figure; ``"narrow"``: two, for a plan beside other views).
 
     Returns
     -------
     matplotlib Axes
     """
     from matplotlib.lines import Line2D
+
+    from .berth import draw_berth_plan
+    from .labels import LabelRequest, place_labels
     scene = as_scene(result)
     ax = new_axes(ax, figsize=(9, 8))
     colour, _, _ = line_colours(scene)
-    lo, hi = scene.extent()
+    lo, hi = scene.extent(min_ratio=0.2)
     span = float(max(hi[0] - lo[0], hi[1] - lo[1], 1.0))
-    xlim = (lo[0] - 0.08 * span, hi[0] + 0.08 * span)
-    ylim = (lo[1] - 0.14 * span, hi[1] + 0.08 * span)      # room for the scale bar
-    handles = []
+    xlim = (lo[0] - 0.06 * span, hi[0] + 0.06 * span)
+    ylim = (lo[1] - 0.10 * span, hi[1] + 0.06 * span)      # room for the scale bar
+    handles, labels = [], []
     if scene.sloped:
         gx = np.linspace(*xlim, 60)
-        gy = np.linspace(*ylim, 60)
+        gy = np.linspace(ylim[0], ylim[1] + 0.6 * span, 60)    # the inset may raise the top
         X, Y = np.meshgrid(gx, gy)
         depth = -scene.seabed_z(X, Y)
         filled = ax.contourf(X, Y, depth, levels=10, cmap="Blues", alpha=0.35, zorder=0)
@@ -54,41 +110,21 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
                            linewidths=0.5, zorder=0)
         ax.clabel(lines, fmt="%.1f m", fontsize=6)
         handles.append(Line2D([], [], color="0.45", lw=0.5, label="seabed depth contours"))
-    for body in scene.bodies:
-        if len(body.outline) > 2:
-            ax.fill(*body.outline_rest[:, :2].T, fill=False, ls="--", ec="0.5", lw=1,
-                    zorder=1)
-            ax.fill(*body.outline[:, :2].T, color="0.82", alpha=0.9, ec="0.3", lw=1, zorder=1)
-        elif len(body.outline) == 2:    # a body on one line end: origin to fairlead
-            ax.plot(*body.outline_rest[:, :2].T, color="0.5", ls="--", lw=1, zorder=1)
-            ax.plot(*body.outline[:, :2].T, color="0.6", lw=7, alpha=0.8,
-                    solid_capstyle="round", zorder=1)
-        else:                           # lines meeting at the origin: a point
-            ax.plot(*body.origin_rest[:2], "o", mfc="none", mec="0.5", ms=12, ls="",
-                    zorder=1)
-            ax.plot(*body.origin[:2], "o", color="0.7", mec="0.3", ms=12, zorder=1)
-        ax.plot(*body.origin[:2], "+", color="k", ms=9, zorder=5)
-    if any(len(b.outline) > 1 for b in scene.bodies):
-        handles += [Line2D([], [], color="0.3", lw=6, alpha=0.4,
-                           label="body at equilibrium (outline: fairleads and origin)"),
-                    Line2D([], [], color="0.5", ls="--", label="body at rest")]
-    elif scene.bodies:
-        handles += [Line2D([], [], marker="o", color="0.7", mec="0.3", ms=9, ls="",
-                           label="body at equilibrium"),
-                    Line2D([], [], marker="o", mfc="none", mec="0.5", ms=9, ls="",
-                           label="body at rest")]
+    handles += draw_bodies(ax, scene)
+    handles += draw_berth_plan(ax, scene.berth, labels)
     centre = (np.mean([line.fairlead[:2] for line in scene.lines], axis=0) if scene.lines
               else np.zeros(2))
     if len(scene.bodies) == 1:
         centre = scene.bodies[0].origin[:2]
     for line in scene.removed:
         ax.plot(*line.xyz[:, :2].T, color="0.55", lw=1.2, ls=(0, (4, 3)), zorder=2)
-        ax.annotate(f"{line.name}\nremoved", line.anchor[:2], xytext=(0, -14),
-                    textcoords="offset points", ha="center", va="center", fontsize=7,
-                    color="0.4")
+        labels.insert(0, LabelRequest(f"{line.name} removed", tuple(line.anchor[:2]),
+                                      tuple(line.anchor[:2] - centre), color="0.4"))
     if scene.removed:
         handles.append(Line2D([], [], color="0.55", lw=1.2, ls=(0, (4, 3)),
                               label="removed line (where it was)"))
+    fixed_kinds = []
+    line_labels = []
     for line in scene.lines:
         c = colour(line)
         xy = line.xyz[:, :2]
@@ -97,26 +133,25 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
             ax.plot(*ground.T, color=SEABED, lw=5, alpha=0.55, solid_capstyle="round",
                     zorder=2)
         ax.plot(*xy.T, color=c, lw=1.8, ls=":" if line.slack else "-", zorder=3)
-        if line.a_kind == "anchor":
-            ax.plot(*line.anchor[:2], "v", color="k", ms=6, zorder=4)
+        for kind, end in ((line.a_kind, line.xyz[0]), (line.b_kind, line.xyz[-1])):
+            if kind in FIXED_STYLE:
+                style = {k: v for k, v in FIXED_STYLE[kind].items() if k != "label"}
+                ax.plot(*end[:2], ls="", zorder=4, **style)
+                if kind not in fixed_kinds:
+                    fixed_kinds.append(kind)
         if line.touchdown is not None:
             ax.plot(*line.touchdown[:2], "o", mfc="white", mec=c, ms=5, zorder=4)
-        if line.a_kind == "anchor":        # labelled beyond its anchor
-            out = line.anchor[:2] - centre
-            out = out / (np.linalg.norm(out) or 1.0)
-            ax.annotate(line_label(line, scene), line.anchor[:2], xytext=12 * out,
-                        textcoords="offset points", ha="center", va="center", fontsize=7)
+        text = line_label(line, scene).replace("\n", " ")
+        if line.a_kind in FIXED_STYLE:      # labelled beyond its fixed end
+            line_labels.append(LabelRequest(text, tuple(line.anchor[:2]),
+                                            tuple(line.anchor[:2] - centre)))
         elif np.ptp(xy[:, 0]) + np.ptp(xy[:, 1]) > 0.08 * span:   # a shared line: middle
-            ax.annotate(line_label(line, scene).replace("\n", " "), xy[len(xy) // 2],
-                        xytext=(4, 4), textcoords="offset points", fontsize=6, color="0.25")
-    if scene.fixed_ends.size:
-        ax.plot(scene.fixed_ends[:, 0], scene.fixed_ends[:, 1], "s", color="k", ms=4,
-                zorder=4)
-        handles.append(Line2D([], [], marker="s", color="k", ls="", ms=4,
-                              label="fixed fairlead"))
-    for body in scene.bodies:
-        ax.plot(body.fairleads[:, 0], body.fairleads[:, 1], "s", color="k", ms=3, zorder=4)
-    handles += [Line2D([], [], marker="v", color="k", ls="", label="anchor")]
+            line_labels.append(LabelRequest(text, tuple(xy[len(xy) // 2]), None, fontsize=6,
+                                            color="0.25"))
+    labels[:0] = line_labels
+    for kind in fixed_kinds:
+        style = dict(FIXED_STYLE[kind])
+        handles.append(Line2D([], [], ls="", **style))
     if any(line.touchdown is not None for line in scene.lines):
         handles.append(Line2D([], [], marker="o", mfc="white", mec="k", ls="",
                               label="touchdown"))
@@ -156,13 +191,24 @@ def plot_plan(result, ax=None, *, colour_bar_: bool = True, legend=True):
                               label=f"flat seabed, depth {scene.depth:.2f} m"))
     ax.set_title(title, fontsize=9)
     if colour_bar_:
-        colour_bar(ax, scene, shrink=0.6, aspect=25)
-    if legend is True:
-        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1),
-                  ncol=3, fontsize=7, frameon=False)
-    elif legend == "figure":
-        ax.figure.legend(handles=handles, loc="outside lower left", ncol=4, fontsize=8,
-                         frameon=False)
+        bar = colour_bar(ax, scene, shrink=0.7, aspect=30, pad=0.01)
+        if scene.berth.fenders and scene.colour_by == "utilisation":
+            bar.set_label("utilisation: line tension / MBL;\nfender compression / rated "
+                          "deflection")
+        elif scene.berth.fenders:      # lines by tension: the fenders need their own scale
+            import matplotlib as mpl
+            ax.figure.colorbar(mpl.cm.ScalarMappable(cmap="RdYlGn_r",
+                                                     norm=mpl.colors.Normalize(0, 1)),
+                               ax=ax, label="fender compression / rated deflection",
+                               shrink=0.8, aspect=30, pad=0.01)
+    if legend:
+        from matplotlib.transforms import ScaledTranslation
+        below = ScaledTranslation(0.0, -34 / 72, ax.figure.dpi_scale_trans)  # under x label
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                  bbox_transform=ax.transAxes + below,
+                  ncol={"figure": 4, "narrow": 2}.get(legend, 3),
+                  fontsize=7, frameon=False, handlelength=2.2, columnspacing=1.2)
+    place_labels(ax, labels)
     return ax
 
 

@@ -5,27 +5,42 @@ from __future__ import annotations
 
 import numpy as np
 
+#: The checks drawn as columns of the utilisation grid.
+_TENSION_CHECKS = ("tension", "hawser tension")
+
+
+def _tension_legs(report) -> list:
+    legs = []
+    for c in report.conditions:
+        for item in c.items:
+            if item.check in _TENSION_CHECKS and item.leg not in legs:
+                legs.append(item.leg)
+    return legs
+
+
 def plot_utilisation(report, ax=None):
     """Tension utilisation per leg (columns) and condition (rows) of a check report.
 
     ``report`` is a :class:`moorsolve.checks.CheckReport`. Each cell is the line's tension
     over its allowed tension under the standard's factor (1 = at the limit); cells of the
-    removed leg are blank, a condition without equilibrium is hatched. Returns the Axes.
+    removed leg are blank, a condition without equilibrium is hatched. Hawsers (their
+    working load limit) are columns as mooring lines are. Returns the Axes.
     """
     import matplotlib.pyplot as plt
-    legs = []
-    for c in report.conditions:
-        for item in c.items:
-            if item.check == "tension" and item.leg not in legs:
-                legs.append(item.leg)
+    legs = _tension_legs(report)
     rows = [c.name for c in report.conditions]
     grid = np.full((len(rows), len(legs)), np.nan)
     for i, c in enumerate(report.conditions):
         for item in c.items:
-            if item.check == "tension":
+            if item.check in _TENSION_CHECKS:
                 grid[i, legs.index(item.leg)] = item.utilisation
     if ax is None:
         _, ax = plt.subplots(figsize=(1.0 + 0.6 * max(len(legs), 4), 1.0 + 0.35 * len(rows)))
+    if not legs:          # nothing under tension is checked: say so, draw no empty grid
+        ax.text(0.5, 0.5, "no line or hawser tension checked", ha="center", va="center",
+                transform=ax.transAxes, fontsize=8)
+        ax.set_axis_off()
+        return ax
     finite = grid[np.isfinite(grid)]
     vmax = max(1.2, float(finite.max()) if finite.size else 1.0)
     image = ax.imshow(np.ma.masked_invalid(grid), cmap="RdYlGn_r", vmin=0.0, vmax=vmax,
@@ -65,7 +80,7 @@ def figure_png(fig, dpi: int = 110) -> bytes:
 def utilisation_figure(report):
     """A figure holding :func:`plot_utilisation`; returns the Figure."""
     import matplotlib.pyplot as plt
-    legs = {i.leg for c in report.conditions for i in c.items if i.check == "tension"}
+    legs = _tension_legs(report)
     fig = plt.figure(figsize=(1.6 + 0.6 * max(len(legs), 4), 1.4 + 0.35 * len(report.conditions)),
                      layout="constrained")
     return plot_utilisation(report, fig.add_subplot()).figure

@@ -83,7 +83,8 @@ def format_check_table(report: CheckReport) -> str:
             lines.append(
                 f"{row['condition']:<{wide}}{offset:>9}{row['leg']:>{legs}}"
                 f"{_num(row['T'] / 1e3, 10, 1)}{_num(row['mbl_over_T'], 7, 2)}"
-                f"{row['required']:6.2f}{_num(row['tension_util'], 6, 2)}{mark(uplift):>8}"
+                f"{_num(row['required'] if row['leg'] != '-' else None, 6, 2)}"
+                f"{_num(row['tension_util'], 6, 2)}{mark(uplift):>8}"
                 f"{mark(row['grounded length']):>9}{mark(row['offset check']):>7}"
                 f"  {'PASS' if row['passed'] else 'FAIL'}")
         # A body lost in this condition, under its row where the eye is.

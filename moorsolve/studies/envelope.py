@@ -78,8 +78,13 @@ class Envelope:
 
     def __repr__(self) -> str:
         ok = np.isfinite(self.worst_tension_N)
-        worst = f", worst {self.worst()['worst_leg']} toward {self.worst()['heading_deg']:g} deg" \
-            if ok.any() else ""
+        worst = ""
+        if ok.any():        # the heading in the case file's words (a bearing when nautical)
+            i = int(np.argmax(np.where(ok, self.worst_tension_N, -np.inf)))
+            word = "from" if self.heading_key == "from_deg" else "toward"
+            scale = " (compass)" if self.compass.nautical else ""
+            worst = (f", worst {self.worst_leg[i]} with {self.flows[0]} {word} "
+                     f"{self.file_heading(i):g} deg{scale}")
         return (f"<Envelope {self.case_name!r}: {len(self.heading_deg)} headings, "
                 f"{int(ok.sum())} solved{worst}>")
 

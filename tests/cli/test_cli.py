@@ -374,8 +374,8 @@ def test_no_equilibrium_plot_writes_nothing(tmp_path, capsys):
 # ---- 6. usage errors ------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("argv", [[], ["frobnicate"], ["solve"], ["plot", "x.yaml"]],
-                         ids=["no_args", "unknown_command", "solve_no_case", "plot_no_output"])
+@pytest.mark.parametrize("argv", [["frobnicate"], ["solve"], ["plot", "x.yaml"]],
+                         ids=["unknown_command", "solve_no_case", "plot_no_output"])
 def test_usage_errors(argv, capsys):
     status, out, err = run(argv, capsys)
     assert status == 2
@@ -383,7 +383,12 @@ def test_usage_errors(argv, capsys):
 
 
 def test_no_arguments_process():
+    """Bare ``moorsolve``: the usage and every command on stderr, status 2, nothing on stdout."""
     proc = run_process()
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
-    assert proc.stderr.strip()
+    assert proc.stdout == ""
+    assert proc.stderr.startswith("usage: moorsolve")
+    for command in ("solve", "plot", "check", "sweep", "envelope"):
+        assert f"\n    {command} " in proc.stderr
+    assert proc.stderr.rstrip().splitlines()[-1].startswith("moorsolve: error: name a command")
