@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from .common import (EXIT_OK, IMAGE_EXTENSIONS, check_output, print_text, save_figure,
-                     solver_option, tolerance)
+                     solver_option, tolerance_option)
 
 
 def add_commands(sub) -> None:
@@ -16,7 +16,7 @@ def add_commands(sub) -> None:
     p.add_argument("--plot", metavar="FILE", help="draw spectra, A(w), B(w), |X(w)| and RAOs "
                                                   "(.png, .pdf or .svg)")
     solver_option(p)
-    p.add_argument("--tol", type=tolerance, default=None)
+    tolerance_option(p)
     p.set_defaults(run=run_motions)
 
 
