@@ -2,7 +2,7 @@
 
     PYTHONBREAKPOINT=0 python benchmarks/network.py [--quick] [--out FILE.json]
 
-Needs the ``bench`` extra (MoorPy 1.3.0). Scenes (issue 14's speed targets):
+Needs the ``bench`` extra (MoorPy 1.3.0). Scenes:
 
 * ``oc3_spar``: the OC3 Hywind spar on its three lines, free in six DOFs (the crow's-foot yaw
   spring dropped: MoorPy has no body spring), under random constant thrust, side force and

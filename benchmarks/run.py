@@ -95,7 +95,7 @@ def _polar(force, toward_deg, moment=0.0):
 #: chain of nominal diameter about 35.7 mm (19.9 d^2 kg/m, d in mm), EA = 0.854e11 d^2 N
 #: (the stiffness rule floating_dock.yaml uses) = 1.09e8 N. MoorPy has no inextensible
 #: line: with the converter's near-rigid stand-in, its step-size test stops with residuals
-#: up to ~1e10 N once a chain is pulled nearly straight (see the note of issue 3), which
+#: up to ~1e10 N once a chain is pulled nearly straight , which
 #: would time a different, failing problem.
 VIDA_CHAIN_EA = 0.854e11 * 0.0357**2
 

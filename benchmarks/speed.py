@@ -1,4 +1,4 @@
-"""Speed where users feel it (issue 16), beside MoorPy in the same run, as ratios.
+"""Speed where users feel it, beside MoorPy in the same run, as ratios.
 
     PYTHONBREAKPOINT=0 python benchmarks/speed.py [--quick] [--skip dask scaling]
         [--out benchmarks/speed_results.json]

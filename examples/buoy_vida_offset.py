@@ -1,4 +1,4 @@
-"""Buoy Vida (Malacic, seed 002): offset and chain tensions against wind speed and direction.
+"""Buoy Vida (Malacic): offset and chain tensions against wind speed and direction.
 
 Run:  python examples/buoy_vida_offset.py [--out FOLDER]
 One sweep covers every wind direction (toward 0, 15, ..., 345 deg) at speeds 0 to 40 m/s.

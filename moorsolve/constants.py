@@ -11,7 +11,7 @@ HULL_STIFFNESS = 1.0e9              # [N/m] the hull bearing on a wall or pile t
                                     # for any berth's purpose whose share among several
                                     # bearing points is still determinate
 
-# Hu & Tang (2004, seed 001 section 3) write densities in the technical unit kgf s^2/m^4
+# Hu & Tang (2004) write densities in the technical unit kgf s^2/m^4
 # and give results in kN; their empirical formulas keep these numbers inside them.
 HU_TANG_AIR_DENSITY_TECH = 0.124    # [kgf s^2/m^4]
 HU_TANG_WATER_DENSITY_TECH = 104.61  # [kgf s^2/m^4]

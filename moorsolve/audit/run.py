@@ -36,7 +36,7 @@ A scene of one-segment lines is first screened at half that margin, compiled wit
 line checks (:mod:`.closed_form`); only a failed screen runs the plain balance.
 
 Warnings (:func:`result_warnings`) are facts that do not make a result wrong but that no
-engineer may miss: compression in a sealed line's wall (Sukhanov, REFERENCE.md section 2),
+engineer may miss: compression in a sealed line's wall (Sukhanov),
 line floating on the surface, an end above the water (the line there is taken with its
 weight in water unless the line type gives its weight in air).
 """

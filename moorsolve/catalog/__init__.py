@@ -33,7 +33,7 @@ A corrosion and wear allowance reduces the diameter used for the breaking load o
 usual practice for strength checks of a corroded line (DNV-OS-E301 Ch.2 Sec.2: the
 strength check uses the corroded diameter).
 
-Hu & Tang (2004, seed 001, section 3) check their AM2 (grade U2) 48 mm chain with a
+Hu & Tang (2004, section 3) check their AM2 (grade U2) 48 mm chain with a
 breaking load of 1270 kN: ``0.01373 * 48^2 * (44 - 0.08*48) = 1270.4 kN``, which confirms
 the IACS grade-2 coefficient.
 """

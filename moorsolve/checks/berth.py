@@ -1,4 +1,4 @@
-"""Berth checks (issue 15): hawsers against the working load limit industry guidance sets for
+"""Berth checks: hawsers against the working load limit industry guidance sets for
 ships' mooring lines, fenders against their rated deflection, pile guides against the top of
 their pile. The criteria are data (``berth_criteria.csv``) with their sources.
 

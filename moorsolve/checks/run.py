@@ -17,7 +17,7 @@ Per leg and condition:
   that must not go slack: :mod:`moorsolve.checks.fibre`);
 
 and per condition the horizontal offset of the body origin against the offset limit. At a
-berth (issue 15, :mod:`.berth`) a hawser's tension is checked against the working load
+berth (:mod:`.berth`) a hawser's tension is checked against the working load
 limit of OCIMF MEG4 instead of the standard's factor, each fender's compression against its
 rated deflection and each pile guide's height against its pile's top.
 """

@@ -1,7 +1,7 @@
 """The ``moorsolve`` command.
 
 Exit status: 0 solved, 1 no equilibrium (reason and best residual on stderr), 2 bad input
-(one message naming the field; no traceback), per CONTRACT.md. Each module here owns a
+(one message naming the field; no traceback). Each module here owns a
 group of commands: ``add_commands(sub)`` declares them and binds each to its ``run``.
 """
 

@@ -14,7 +14,7 @@ The mapping chooses one of two case forms:
   leg named ``L<id>`` after the MoorDyn line at its anchor; a joint's mass and volume become
   a clump. The ``moordyn`` block maps
   every leg back to its MoorDyn lines and points.
-- **network** (``bodies``, ``points``, ``lines``; CONTRACT.md, "The scene as a network"):
+- **network** (``bodies``, ``points``, ``lines``):
   everything else (bridles and hubs, lines ending at free points, several carriers or none,
   Free and CoupledPinned bodies, rods with lines): every MoorDyn line becomes ``line<N>`` with
   end A at its AttachA. See :mod:`.moordyn_network`.

@@ -1,8 +1,7 @@
 """Rigid bodies and connection points of a scene.
 
 A body's pose is ``(x, y, z, roll, pitch, yaw)``: the position of its body-frame origin in the
-scene and its orientation, with ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (REFERENCE.md section 7;
-the z-y-x convention of MoorPy, MoorDyn and OpenFAST). ``free`` names the degrees of freedom
+scene and its orientation, with ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (the z-y-x convention of MoorPy, MoorDyn and OpenFAST). ``free`` names the degrees of freedom
 the solver finds; the others are held at the case-file pose.
 
 Hydrostatics: the linear model MoorPy and MoorDyn use (:class:`Hydrostatics`), or the exact
@@ -30,7 +29,7 @@ FIXED_TO = ("water", "seabed")
 
 @dataclass(frozen=True)
 class Hydrostatics:
-    """The linear hydrostatic model of a floating body (CONTRACT.md, REFERENCE.md section 7).
+    """The linear hydrostatic model of a floating body.
 
     Buoyancy ``rho g V`` acts upward at the ``metacentre`` (body frame, rotates with the
     body); the heave restoring force is ``-rho g A_wp z`` with z the height of the body-frame

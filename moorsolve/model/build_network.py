@@ -1,6 +1,6 @@
 """The network form of a case file: ``bodies``, ``points`` and ``lines`` between any two ends.
 
-Schema (SI units; see CONTRACT.md "The scene as a network")::
+Schema (SI units; see "The scene as a network")::
 
     bodies:                                   optional list
       - name: str                             required, unique among bodies

@@ -1,5 +1,5 @@
 """Berth structures and the contacts of bodies with them: quay walls, piles (dolphins and
-guide piles), fenders and pile guides (issue 15).
+guide piles), fenders and pile guides.
 
 A contact joins a point and a surface, one of them on a body; the law (one-sided, with a
 rigid, linear or tabulated compliance and Coulomb friction) is

@@ -1,7 +1,7 @@
 """Directions of wind, current and waves as a case file may give them.
 
 Inside moorsolve a flow's direction is always ``toward_deg``: where it travels toward,
-counter-clockwise from +x (CONTRACT.md). A case file may instead say where it comes from,
+counter-clockwise from +x. A case file may instead say where it comes from,
 and may measure angles as a compass does:
 
 ``toward_deg``

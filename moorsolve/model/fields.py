@@ -24,7 +24,7 @@ MAX_DEPTH = 12_000.0
 MAX_LINE_LENGTH = 100_000.0
 
 #: Plausibility limits: values outside them are unit slips or nonsense, and would only
-#: reach the solver as overflow or underflow (issue 7's fuzzing found NaN solves).
+#: reach the solver as overflow or underflow.
 MIN_DEPTH = 0.01                 # [m]
 MIN_LINE_LENGTH = 1e-3           # [m]; shorter than a millimetre is a unit mistake
 MAX_WEIGHT = 1e6                 # [N/m] (100 t/m; the heaviest chain is about 0.3 t/m)

@@ -9,7 +9,7 @@ from .stretch import StiffnessBounds, StretchLaw
 
 @dataclass(frozen=True)
 class LineDrag:
-    """Hydrodynamic coefficients of a line in a current (REFERENCE.md section 5).
+    """Hydrodynamic coefficients of a line in a current.
 
     Per unit stretched length, with ``q = rho d / 2``, ``U_n`` and ``U_t`` the flow's
     components normal and tangential to the line and ``chi`` the angle of attack:
@@ -45,7 +45,7 @@ class LineType:
     sealed : bool
         True for a line whose wall keeps water out of its cross-section (cable, pipe,
         sheathed rope). Its wall tension differs from the effective tension by the
-        hydrostatic pressure on the outer area (REFERENCE.md section 2); a chain is not sealed.
+        hydrostatic pressure on the outer area; a chain is not sealed.
     catalog : str or None
         The line-catalogue entry the properties came from (``moorsolve.catalog``), if any.
     corrosion_allowance : float

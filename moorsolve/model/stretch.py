@@ -1,6 +1,6 @@
 """How a line type stretches: the ``stretch`` and ``stiffness_bounds`` keys of a line type.
 
-Case-file forms (CONTRACT.md, "Nonlinear line stiffness")::
+Case-file forms::
 
     stretch: {model: hooke, ea: 5.6e8}              same as ``ea: 5.6e8``
     stretch: {model: baranov, n: 2.0e-4}            strain n sqrt(T), n in N^-1/2

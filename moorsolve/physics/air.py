@@ -3,7 +3,7 @@
 Above the still-water level (``z = 0``) a line weighs ``w_air`` per unstretched metre, below
 it ``w`` (its weight in water). Along a catenary the vertical tension grows by the local
 weight per unstretched metre and, with the stretch law's ``E(T) = int_0^T eps``, the height
-by ``w dz = d[T + E(T)]`` (Merkin 1980, seed 004, sections 2.1 and 2.3: the elastic
+by ``w dz = d[T + E(T)]`` (Merkin 1980, sections 2.1 and 2.3: the elastic
 catenary in its end tensions), so the profile is piecewise catenary, continuous in force:
 a new piece starts wherever the line crosses the surface. A sinking line (``w > 0``) is
 convex, so the part below the water is one run in the middle of the line. Walking from the

@@ -8,7 +8,7 @@ lying loose on the seabed, so that ``H * loose = 0`` holds exactly and the slack
 the line hangs straight down from the fairlead and the rest lies on the seabed) is one
 branch of a single continuous model instead of a case the solver must guess.
 
-Every regime of REFERENCE.md section 1 is selected inside the symbolic graph with
+Every regime (suspended, touchdown, slack) is selected inside the symbolic graph with
 ``casadi.if_else``, never a Python ``if`` on a value, so one CasADi function serves every leg
 and every solve and evaluates on floats for post-processing.
 
@@ -23,8 +23,8 @@ opposite "as laid" assumption (no friction relief) is ``mu = 0``.
 
 The free surface
 ----------------
-The still-water level ``z = 0`` bounds a buoyant line as the seabed bounds a sinking one
-(REFERENCE.md section 7): where the catenary of a buoyant line would rise above the surface,
+The still-water level ``z = 0`` bounds a buoyant line as the seabed bounds a sinking one:
+where the catenary of a buoyant line would rise above the surface,
 the line reaches it tangentially (vertical tension zero: the vertex of the suspended part is
 at ``z = 0``), floats along it with constant tension (its buoyancy taken by the surface, no
 drag along it) and, if its far end is below the surface, leaves it tangentially again. That
@@ -247,8 +247,7 @@ def leg_equations(kind: LegKind, X, Z, u, V, L, w, ea_inv, mu, law=None):
 
     Notes
     -----
-    REFERENCE.md section 1 (after Merkin 1980, seed 004, sections 2.1 and 2.3; Malacic,
-    seed 002). Suspended (``V_A = V - w L >= 0``)::
+    After Merkin 1980, sections 2.1 and 2.3, and Malacic. Suspended (``V_A = V - w L >= 0``)::
 
         X = (H/w)[asinh(V/H) - asinh(V_A/H)] + H L/EA
         Z = [sqrt(H^2+V^2) - sqrt(H^2+V_A^2)]/w + (L/EA)(V - w L/2)
@@ -422,7 +421,7 @@ def air_part(H, V, z_top, w_air, ea_inv, law=None):
     Above the water the line weighs ``w_air`` per metre (no buoyancy). From the upper end's
     vertical tension ``V`` down to the crossing of the surface, the vertical tension falls
     by ``w_air`` per metre; the rise is ``f(T) - f(T_c) = w_air z_top`` with
-    ``f(T) = T + T^2/(2 EA)`` (the elastic catenary's height, Merkin 1980, seed 004, sections
+    ``f(T) = T + T^2/(2 EA)`` (the elastic catenary's height, Merkin 1980, sections
     2.1 and 2.3, written in the tensions ``T``, ``T_c`` at the two ends), so the tension at
     the crossing is closed form: ``T_c = 2 r / (1 + sqrt(1 + 2 r/EA))``, ``r = f(T) - w_air
     z_top``, and ``V_c = sqrt(T_c^2 - H^2)`` (continued as ``-sqrt(H^2 - T_c^2)`` where the

@@ -1,7 +1,7 @@
 """Starting states of a line: closed forms of the inextensible catenary.
 
 The solver starts every line from the state of the inextensible line between its ends
-(REFERENCE.md section 1: a start with every line slack gives a singular Jacobian, and the
+(a start with every line slack gives a singular Jacobian, and the
 pretensioned rest state keeps a body on the quasi-static branch). These are floats-only
 helpers, beside the equations of :mod:`moorsolve.physics.catenary` that they seed.
 """

@@ -7,7 +7,7 @@ signed distance of the point from the surface (positive: apart), and its *reacti
 [N] pushes the two apart along the surface's normal.
 
 A compliant contact (a fender) reacts to its compression by its maker's curve: the curve is
-the constitutive law (REFERENCE.md section 7), so ``lam = R(max(-g, 0))`` is an explicit
+the constitutive law, so ``lam = R(max(-g, 0))`` is an explicit
 function of the geometry (:func:`fender_reaction`, linear between the maker's rows), zero
 out of contact. A rigid contact (a rigid fender, a rubbing strip, a pile guide's pad on a
 rigid pile) needs the complementarity::
@@ -26,7 +26,7 @@ work for a support that is the only thing holding a body in some direction (a sh
 hawsers under an offshore wind): while the support is open the body's balance depends on
 none of the unknowns, the Jacobian has a zero row and every local method stops where it
 starts. Here the reaction itself is the one unknown of each complementarity, and the law is
-imposed by the Fischer-Burmeister function (REFERENCE.md section 7)::
+imposed by the Fischer-Burmeister function::
 
     phi(a, b) = a + b - sqrt(a^2 + b^2),    phi = 0  <=>  a >= 0, b >= 0, a b = 0
 
@@ -83,7 +83,7 @@ def fischer_burmeister(a, b, smoothing=0.0):
     Notes
     -----
     Zero exactly when ``a >= 0``, ``b >= 0`` and ``a b = 0`` (``eps = 0``); with ``eps > 0``
-    its zeros are ``a, b > 0`` with ``a b = eps^2`` (Fischer 1992; REFERENCE.md section 7).
+    its zeros are ``a, b > 0`` with ``a b = eps^2`` (Fischer 1992).
     """
     return a + b - ca.sqrt(a**2 + b**2 + 2 * smoothing**2 + _FLOOR)
 
@@ -131,7 +131,7 @@ def fender_reaction(compression, deflections, reactions, smoothing=0.0):
     Linear interpolation through ``(0, 0)`` and the rows, the last slope continued:
     ``R = sum_i (k_i - k_{i-1}) max(delta - d_{i-1}, 0)`` with ``k_i`` the slope of
     segment ``i`` (``k_{-1} = 0``, ``d_{-1} = 0``). Cell and cone fender makers publish such
-    curves (PIANC 2002 fender guidelines; the curve is the constitutive law, REFERENCE.md
+    curves (PIANC 2002 fender guidelines; the curve is the constitutive law
     section 7).
     """
     slopes = table_slopes(deflections, reactions)
@@ -188,7 +188,7 @@ def friction_force(slip, reaction, coefficient, mobilisation=None):
 
     Notes
     -----
-    Coulomb's law (REFERENCE.md section 7: ``|F_t| <= mu lam``, sliding opposite to the
+    Coulomb's law (``|F_t| <= mu lam``, sliding opposite to the
     slip) with the stick regularised as in the module notes.
     """
     delta = FRICTION_SLIP if mobilisation is None else mobilisation

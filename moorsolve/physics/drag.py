@@ -1,6 +1,6 @@
-"""Hydrodynamic force of a current on a length of line (REFERENCE.md section 5).
+"""Hydrodynamic force of a current on a length of line.
 
-After Alekseev (seed 003) and Merkin 1980 (seed 004, chapter 5): per unit length a line in a
+After Alekseev and Merkin 1980 (chapter 5): per unit length a line in a
 flow of speed ``v`` feels ``lambda = C rho v^2 d / 2`` times a shape function of the angle of
 attack ``chi`` between its tangent and the flow. Written with the flow's components normal
 (``U_n``) and tangential (``U_t``) to the line, ``|U_n| = v sin(chi)``, ``|U_t| = v cos(chi)``:

@@ -1,6 +1,6 @@
 """Hydrostatics of a floating body: the linear model and exact buoyancy of simple members.
 
-Linear model (the one MoorPy and MoorDyn use; REFERENCE.md section 7, CONTRACT.md): the
+Linear model (the one MoorPy and MoorDyn use): the
 weight ``m g`` acts down at the centre of gravity ``R r_G``; the buoyancy ``rho g V`` acts up
 at the metacentre ``R r_M``, a point fixed in the body frame; the heave restoring force is
 ``-rho g A_wp z`` with ``z`` the height of the body-frame origin. Its small-angle stiffness
@@ -62,7 +62,7 @@ def linear_buoyancy(position, R, *, displaced_volume, metacentre, waterplane_are
     Notes
     -----
     ``rho g V`` up at ``R r_M`` and ``-rho g A_wp z`` along the vertical through the origin
-    (so it adds no moment), as MoorPy and MoorDyn model it (REFERENCE.md section 7).
+    (so it adds no moment), as MoorPy and MoorDyn model it.
     """
     rho_g = water_density * gravity
     buoyant = ca.vertcat(0, 0, rho_g * displaced_volume)

@@ -2,7 +2,7 @@
 
 A body's pose is ``(x, y, z, roll, pitch, yaw)``; a point ``p`` fixed in the body frame sits
 at ``r + R p`` with ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (yaw applied first to the body; the
-z-y-x convention of MoorPy, MoorDyn and OpenFAST; REFERENCE.md section 7). Rotations are
+z-y-x convention of MoorPy, MoorDyn and OpenFAST). Rotations are
 finite everywhere (no small-angle shortcut); small angles appear only in linearised stiffness.
 
 Equilibrium in any subset of the six degrees of freedom is the vanishing of the generalized
@@ -26,7 +26,7 @@ def rotation_matrix(roll, pitch, yaw):
 
     Notes
     -----
-    Columns are the body axes in global coordinates (REFERENCE.md section 7).
+    Columns are the body axes in global coordinates.
     """
     cr, sr = ca.cos(roll), ca.sin(roll)
     cp, sp = ca.cos(pitch), ca.sin(pitch)

@@ -38,7 +38,7 @@ __all__ = [
 ]
 
 _N_PER_KN = 1.0e3               # Hu & Tang give their results in kN
-_CURRENT_EXPONENT = 1.83        # Hu & Tang (2004), seed 001 section 3: v^1.83
+_CURRENT_EXPONENT = 1.83        # Hu & Tang (2004): v^1.83
 _FULL_TURN_DEG = 360.0
 _DEG_PER_RAD = 180.0 / math.pi
 
@@ -65,7 +65,7 @@ def hu_tang_wind_kN(speed, superstructure_area, hull_area):
     Notes
     -----
     Hu Lingbin and Tang Jun, "Solution and application of the catenary equation", Ship &
-    Boat 2004 no. 1, section 3 (seed 001; REFERENCE.md section 3), with the paper's air
+    Boat 2004 no. 1, section 3, with the paper's air
     density ``rho_a = 0.124 kgf s^2/m^4`` (``constants.HU_TANG_AIR_DENSITY_TECH``) kept inside
     the empirical formula. Example 1 (V = 30 m/s, F' = 107 m^2, F = 61.6 m^2) gives
     84.4339 kN from the printed formula and inputs; the paper prints 83.93 kN (0.6 % lower;
@@ -94,7 +94,7 @@ def hu_tang_current_kN(speed, wetted_area, coefficient=0.18):
 
     Notes
     -----
-    Hu & Tang (2004), seed 001 section 3; REFERENCE.md section 3. The power is evaluated
+    Hu & Tang (2004). The power is evaluated
     as ``casadi.power(casadi.fabs(v), 1.83)``: exact for every v (bit for bit the printed
     ``v^1.83`` for v > 0), equal to 0 at v = 0 with a derivative ``1.83 |v|^0.83 sgn(v)``
     that is 0 (finite) there, and even in v like the ``V^2`` of the other drag forms.
@@ -126,7 +126,7 @@ def hu_tang_drift_kN(hs, beam, k=0.7, heading_rad=0.0):
 
     Notes
     -----
-    Hu & Tang (2004), seed 001 section 3 (and its conclusion, section 5, the "Dali"
+    Hu & Tang (2004) (and its conclusion, section 5, the "Dali"
     formula), with the paper's water density ``rho = 104.61 kgf s^2/m^4`` and
     ``g = 9.8 m/s^2`` (``constants.HU_TANG_WATER_DENSITY_TECH``, ``HU_TANG_GRAVITY``).
     Example 1 (Hs = 1.5 m, B = 15.8 m, alpha = 0) gives 11.9585 kN; printed 11.96 kN.
@@ -206,7 +206,7 @@ def table_coefficients(table, heading_rad, field="table"):
     + sum_i (s_i - s_(i-1)) max(t - h_i, 0)`` with ``s_i`` the slope of segment i: exact
     linear interpolation on ``[h0, h0 + 360]`` using only ``casadi.fmod``/``casadi.fmax``,
     so it holds for symbolic headings (no ``casadi.interpolant``). The table form follows
-    the ``DragLoad`` docstring in :mod:`moorsolve.model`; REFERENCE.md section 3.
+    the ``DragLoad`` docstring in :mod:`moorsolve.model`.
     """
     nodes = _table_nodes(table, field)
     h0 = nodes[0][0]
@@ -281,7 +281,7 @@ def drag_load_body(params, density, speed, heading_rad, field="drag"):
     ``Fy = q cy A_y sin(theta)|sin(theta)|``; a table gives ``Fx = q cx(theta) A_x``,
     ``Fy = q cy(theta) A_y`` and adds ``q cmz(theta) A_y length`` to the moment. The centre
     of pressure (cx_c, cy_c) adds ``cx_c Fy - cy_c Fx``. Definitions: ``DragLoad`` in
-    :mod:`moorsolve.model`; REFERENCE.md section 3.
+    :mod:`moorsolve.model`.
     """
     q = 0.5 * density * speed * speed
     if params["table"] is None:
@@ -327,7 +327,7 @@ def hu_tang_wind_body(params, speed, heading_rad, field="wind"):
     Frontal areas only (the paper's use): magnitude ``R1(F', F)`` along the wind,
     ``(R1 cos(theta), R1 sin(theta))``. With both lateral areas:
     ``Fx = R1(F', F) cos|cos|``, ``Fy = R1(F'_lat, F_lat) sin|sin|``. R1 from
-    :func:`hu_tang_wind_kN` (seed 001 section 3), converted to N.
+    :func:`hu_tang_wind_kN` (Hu & Tang 2004, section 3), converted to N.
     """
     frontal = _N_PER_KN * hu_tang_wind_kN(speed, params["superstructure_area"], params["hull_area"])
     lateral_given = (params["superstructure_area_lateral"] is not None,
@@ -367,7 +367,7 @@ def hu_tang_current_body(params, speed, heading_rad):
 
     Notes
     -----
-    Seed 001 section 3; ``HuTangCurrent`` in :mod:`moorsolve.model`.
+    Hu & Tang (2004), section 3; ``HuTangCurrent`` in :mod:`moorsolve.model`.
     """
     r2 = _N_PER_KN * hu_tang_current_kN(speed, params["wetted_area"], params["coefficient"])
     fx = r2 * casadi.cos(heading_rad)
@@ -395,7 +395,7 @@ def hu_tang_drift_body(params, hs, heading_rad):
 
     Notes
     -----
-    R3 from :func:`hu_tang_drift_kN` (seed 001 section 3), converted to N. The drift
+    R3 from :func:`hu_tang_drift_kN` (Hu & Tang 2004, section 3), converted to N. The drift
     pushes the body in the direction the waves travel.
     """
     fx = _N_PER_KN * hu_tang_drift_kN(hs, params["beam"], params["k"], heading_rad)
@@ -433,7 +433,7 @@ def drift_coefficient_body(params, water_density, gravity, hs, heading_rad):
     -----
     The component formulas of ``DriftCoefficient`` in :mod:`moorsolve.model` (no factor
     0.5; the docstring's title line mentions one, its formulas do not); the Hs/4 scaling
-    follows Hu & Tang (2004), seed 001 section 3.
+    follows Hu & Tang (2004).
     """
     amplitude = 0.25 * hs
     scale = water_density * gravity * amplitude * amplitude

@@ -10,7 +10,7 @@ or floating run is drawn exactly where it lies.
 
 With ``T_v(s)`` the vertical tension, a suspended part follows
 ``dx/ds = (1 + T/EA) H/T`` and ``dz/ds = (1 + T/EA) T_v/T``, integrated in closed form
-(Merkin 1980, seed 004, sections 2.1 and 2.3). At ``H = 0`` these stay valid (a vertical
+(Merkin 1980, sections 2.1 and 2.3). At ``H = 0`` these stay valid (a vertical
 line, folded where ``T_v`` changes sign): ``z = (|T_v| - |T_v0|)/w + (T_v0 s + w s^2/2)/EA``.
 Another stretch law (``law``, a :class:`~moorsolve.physics.stretch.NumericLaw`; ``ea`` is
 then unused) enters through the same integrals as in the blocks: ``(H/w)[Psi(T_v) -

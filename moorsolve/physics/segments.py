@@ -51,7 +51,7 @@ def descent_force(H, h, w, ea_inv, law=None):
     -----
     With ``d = w h (w h + 2 H)``, ``a = w h + H`` and ``c = 1/EA``:
     ``t = 2 d / (1 + a c + sqrt(1 + 2 a c + c^2 H^2))``, which is ``d`` when ``c = 0``
-    (Merkin 1980, seed 004, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
+    (Merkin 1980, section 2.1: ``z = (sqrt(H^2 + T_v^2) - H)/w`` from the vertex).
     With another stretch law (``law``, a bound :class:`~moorsolve.physics.stretch.Law`) the
     tension gain ``delta = T_1 - H`` solves ``delta (1 + mean_strain(H, H + delta)) = w h``
     (:meth:`~moorsolve.physics.stretch.Law.descent`) and ``t = delta (delta + 2 H)``.
@@ -182,7 +182,7 @@ def surface_segment_equations(elastic: bool, X, Z, d, u, V, L, w, ea_inv,
 
     Notes
     -----
-    REFERENCE.md section 7 ("Free surface": a buoyant line meets the surface as a chain
+    (A buoyant line meets the surface as a chain
     meets the seabed, mirrored). The surface carries the floating part's buoyancy as the
     seabed carries a grounded part's weight; no drag or friction acts along it.
     """

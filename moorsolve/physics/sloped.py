@@ -48,7 +48,7 @@ def sloped_leg_equations(elastic: bool, friction: bool, X, Z, u, V, L, w, ea_inv
 
     Notes
     -----
-    Suspended part from the touchdown (Merkin 1980, seed 004, sections 2.1, 2.3, integrated
+    Suspended part from the touchdown (Merkin 1980, sections 2.1, 2.3, integrated
     from the vertical tension ``H t`` instead of 0)::
 
         X_s = (H/w)[asinh(V/H) - asinh(t)] + H L_s/EA,   L_s = (V - H t)/w

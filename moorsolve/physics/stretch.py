@@ -4,7 +4,7 @@ A line element of unstretched length ``ds0`` under tension ``T`` has the stretch
 ``ds = (1 + eps(T)) ds0``. Three laws are modelled:
 
 - **Hooke** (steel chain and wire): ``eps = T / EA``, parameter the compliance ``1/EA``;
-- **Baranov** (plant-fibre ropes; Alekseev, seed 003, REFERENCE.md section 5):
+- **Baranov** (plant-fibre ropes; Alekseev):
   ``eps = n sqrt(T)``, parameter ``n`` [N^-1/2];
 - **table** (synthetic ropes: polyester, nylon, HMPE): the strain at ``rows`` tensions,
   interpolated by the monotone piecewise-cubic Hermite interpolant of Fritsch and Carlson

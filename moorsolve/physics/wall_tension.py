@@ -4,7 +4,7 @@ The catenary shape and the end reactions follow the *effective* tension, compute
 submerged weight. In a sealed line (cable, pipe, sheathed rope) the wall also carries the
 hydrostatic pressure acting on the cross-section, so the tension in the wall is lower by
 ``rho g A_o d`` at depth d and can turn compressive deep down while the effective tension is
-positive (Sukhanov, seed 000; REFERENCE.md section 2). A chain, wetted all round, has no
+positive (Sukhanov). A chain, wetted all round, has no
 such difference.
 """
 
@@ -48,7 +48,7 @@ def wall_tension(effective_tension, depth_below_surface, outer_diameter, water_d
 
     Notes
     -----
-    REFERENCE.md section 2; A. A. Sukhanov, "Catenary in water" (seed 000), eq. (25):
+    A. A. Sukhanov, "Catenary in water", eq. (25):
     ``T = q_c a ch(x/a) - q_h (h + a)`` with ``q_h = rho g A_o`` is this relation written for
     a catenary whose vertex is at depth h (see :func:`sukhanov_wall_tension`). The wall
     is taken to be at zero gauge pressure inside (a sealed, dry line).
@@ -83,8 +83,8 @@ def sukhanov_wall_tension(q_air, q_displaced, a, vertex_depth, x):
 
     Notes
     -----
-    A. A. Sukhanov, "Catenary in water" (seed 000), eq. (25). It equals
+    A. A. Sukhanov, "Catenary in water", eq. (25). It equals
     ``T_eff - q_h d`` with ``T_eff = (q_c - q_h) a ch(x/a)`` (eqs. (14), (24)) and the depth
-    ``d = h - a (ch(x/a) - 1)`` of the point (eq. (20)); REFERENCE.md section 2.
+    ``d = h - a (ch(x/a) - 1)`` of the point (eq. (20)).
     """
     return q_air * a * numpy.cosh(numpy.asarray(x) / a) - q_displaced * (vertex_depth + a)

@@ -5,7 +5,7 @@ profile, bodies with their pose at rest and at equilibrium, anchors, clumps, buo
 free points, the body loads, and the seabed as a function of (x, y). The views never look
 inside a leg's physics, so a scene of several bodies, free points and lines between any
 two points draws the same way once the result lists them (``Result.bodies`` and
-``Result.points``, when present, are read as the network form of CONTRACT.md).
+``Result.points``, when present, are read as the network form).
 """
 
 from __future__ import annotations

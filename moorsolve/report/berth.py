@@ -1,5 +1,4 @@
-"""The berth's rows of the text table: fenders, pile guides and the contacts' certificate
-(issue 15). Kept apart from :mod:`.text` so that the table's layout and the berth's rows
+"""The berth's rows of the text table: fenders, pile guides and the contacts' certificate. Kept apart from :mod:`.text` so that the table's layout and the berth's rows
 change independently."""
 
 from __future__ import annotations

@@ -89,7 +89,7 @@ def format_check_table(report: CheckReport) -> str:
                 f"  {'PASS' if row['passed'] else 'FAIL'}")
         # A body lost in this condition, under its row where the eye is.
         lines += [f"{'':<4}LOST: {d['message']}" for d in c.drifting]
-    lines += berth_check_lines(report, wide)  # hawsers, fenders, guides (issue 15)
+    lines += berth_check_lines(report, wide)  # hawsers, fenders, guides
     lines.append("")
     failures = report.failures
     lines.append(f"result       {'PASS' if report.passed else 'FAIL'}: "

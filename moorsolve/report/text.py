@@ -13,7 +13,7 @@ from .berth import berth_lines
 
 
 def to_json(result, profiles: bool = True) -> str:
-    """The result as JSON text (CONTRACT.md "Result"); non-finite numbers become null."""
+    """The result as JSON text (the ``solve --json`` document); non-finite numbers become null."""
     return json.dumps(_finite(result.to_dict(profiles=profiles)), indent=2)
 
 

@@ -90,8 +90,7 @@ def body_loads(loads: BodyLoads, environment: Environment, yaw, wind_speed, wind
     The heading relative to the body is ``theta = toward - yaw``; each model gives its
     body-frame force and moment (see the ``*_body`` functions), then the force is rotated
     by ``yaw`` (:func:`body_to_global`); the moment is the same in both frames. Load model
-    definitions: :mod:`moorsolve.model`; Hu & Tang forms: seed 001 section 3,
-    REFERENCE.md section 3. The Hu & Tang forms keep the paper's own constants (densities
+    definitions: :mod:`moorsolve.model`; Hu & Tang forms: Hu & Tang (2004), section 3. The Hu & Tang forms keep the paper's own constants (densities
     in kgf s^2/m^4, g = 9.8) and do not use ``environment``'s densities.
     """
     names = effect_names(loads, environment)

@@ -1,4 +1,4 @@
-"""Contacts in the problem: fenders on walls and piles, pile-guide pads (issue 15).
+"""Contacts in the problem: fenders on walls and piles, pile-guide pads.
 
 Every contact is one point against one surface (:mod:`moorsolve.physics.contact` gives the
 law and the geometry). A compliant fender's reaction is an explicit function of its

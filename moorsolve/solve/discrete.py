@@ -1,4 +1,4 @@
-"""A leg as a lumped-node line, for lines that feel the current (issue 4).
+"""A leg as a lumped-node line, for lines that feel the current.
 
 When a case has a current and a leg's line type gives drag data, the flow pushes the line
 itself sideways and the leg leaves its vertical plane; no closed form covers that. The leg
@@ -23,7 +23,7 @@ seabed pushes it along the plane's normal with ``max(-zeta, 0) force_scale / len
 [N]. The free surface bounds the node from above by the same unknown: its height above the
 seabed is capped at the local water depth ``D`` (``clip(zeta, 0, D)``) and the surface holds a
 node that would rise above it down with ``max(zeta - D, 0) force_scale / length_scale`` [N]
-(a buoyant line floats; REFERENCE.md section 7). A node on the seabed is frictionless
+(a buoyant line floats). A node on the seabed is frictionless
 (seabed friction acts only on analytic legs); on a sloped seabed a grounded node can slide
 down the plane. The fairlead node carries half of the top element's weight and flow force
 onto the body, the anchor node half of the first one's.

@@ -1,6 +1,6 @@
 """Run the equilibrium solve, certify it, check its stability, and return a :class:`Result`.
 
-Strategy, from REFERENCE.md section 1's measured pitfalls:
+Strategy, from the pitfalls measured on hard cases:
 
 1. Start every line from its inextensible closed-form state at the case-file pose and
    solve the unloaded (pretensioned rest) state first; a start with all lines slack would

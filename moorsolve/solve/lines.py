@@ -368,7 +368,7 @@ def _joint_split(kind: SegmentKind, sigma, u, L, w, c, h, d, law=None):
     the seabed, or ``d`` below the surface), reaches the boundary at all; otherwise ``V =
     sigma`` and no reaction. Without that condition a state with the segment's vertex at the
     joint, clear of the boundary, and a reaction holding the joint there would satisfy every
-    equation: a false root the solver can fall into (issue 20). ``law``: the segment's
+    equation: a false root the solver can fall into. ``law``: the segment's
     bound stretch law when it is not Hooke's.
     """
     if kind.block == "lifted":

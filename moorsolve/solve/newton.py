@@ -77,7 +77,7 @@ def newton_step_function(problem) -> ca.Function:
     g = ca.SX.sym("g", n)
     J = ca.SX.sym("J", sp)
     rows, cols = sp.get_triplet()
-    # Multi-segment legs (issue 4) have more unknowns per leg: no arrow structure then.
+    # Multi-segment legs have more unknowns per leg: no arrow structure then.
     # Complementarities (hawsers, contacts) take the regularised sparse QR step.
     arrow = (not problem.smoothed and problem.n_x == n_q + 2 * n_legs
              and n_q <= _ARROW_NODES and all(c < n_q or r >= 2 * n_legs

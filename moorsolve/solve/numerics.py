@@ -130,7 +130,7 @@ class SolverAccess:
         # No bound on a line's u: every block continues its spans monotonically for u < 0
         # (loose line on a boundary, or, for a line with nothing to lie on, no root there),
         # so H = max(u, 0) = 0 is an interior root, not a bound IPOPT must reach (a folded
-        # line hit IPOPT's iteration limit at that bound, issue 20). A hawser's u is its
+        # line hit IPOPT's iteration limit at that bound). A hawser's u is its
         # tension and a rigid contact's unknown its reaction (Fischer-Burmeister
         # complementarities): neither pulls, and the bound keeps a Newton step from making
         # them pull where the smoothed Jacobian would.

@@ -122,7 +122,7 @@ class Certificate:
 
 @dataclass(frozen=True)
 class LegResult:
-    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; see CONTRACT.md.
+    """One leg at equilibrium. Forces [N], lengths [m], angles [deg]; the JSON of ``solve --json`` names them.
 
     A multi-segment leg adds ``segments`` (per segment, from the anchor: type, length, top
     and bottom tension, horizontal tension, grounded length, largest tension, T/MBL)

@@ -4,14 +4,14 @@ The total tangent stiffness of the free body degrees of freedom is ``K = -dQ/dq`
 ``Q`` the generalized forces of :mod:`.problem` (mooring, weight, hydrostatics, springs and
 the load models' own dependence on position and heading: wind and current drag turn with
 the body) and every line unknown and free point condensed out (they follow the bodies):
-``K = -(J_qq - J_qr J_rr^-1 J_rq)`` from the Jacobian of the residuals (REFERENCE.md
-section 7). ``K`` need not be symmetric. The equilibrium is statically stable when every
+``K = -(J_qq - J_qr J_rr^-1 J_rq)`` from the Jacobian of the residuals.
+``K`` need not be symmetric. The equilibrium is statically stable when every
 eigenvalue has a positive real part. Rotations are measured as arc length at the scene's
 moment arm ``L`` (``moment_scale / force_scale``) so that every entry is a stiffness in N/m
 and the eigenvalues compare.
 
 A zero eigenvalue is decided by the restoring force at finite perturbations along its mode,
-on both sides (REFERENCE.md section 7): restoring on both sides is stable (a drag yaw moment
+on both sides: restoring on both sides is stable (a drag yaw moment
 that grows with the square of the angle); zero on both sides is neutral (a degree of freedom
 nothing restrains nor loads, e.g. the yaw of a body whose lines all meet at one point and on
 which no load turns: it keeps its given value); pushing away on either side is unstable.

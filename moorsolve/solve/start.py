@@ -1,7 +1,7 @@
 """Starting points: the scene at its case-file pose with every line in a closed-form state.
 
 A start with all lines slack gives a singular Jacobian, and the pretensioned rest state keeps
-a body on the right equilibrium branch (REFERENCE.md section 1), so every line starts from
+a body on the right equilibrium branch, so every line starts from
 the inextensible closed-form catenary between its ends at the case pose (a multi-segment or
 lumped line from the equivalent uniform line), bodies at their case pose and free points
 where the case puts them. :func:`rest_point` solves the unloaded state once per layout.

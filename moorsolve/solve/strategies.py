@@ -55,7 +55,7 @@ def rest_point(problem, case: Case, tol: float, kernel=None) -> np.ndarray:
 
     Loading from the solved rest state keeps the solve on the quasi-static branch: a
     direct solve from the closed-form state can land on another certified equilibrium
-    (seen at 36.5 deg yaw instead of 20.8 deg under a large couple, issue 7). Solved once
+    (seen at 36.5 deg yaw instead of 20.8 deg under a large couple). Solved once
     per problem and parameters and remembered: by the Newton ``kernel`` when the caller
     has one and it certifies (building an IPOPT solver costs seconds for hundreds of
     lines), else with IPOPT; the closed-form state when the scene has free bodies or points
@@ -257,7 +257,7 @@ def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback, deadline):
 
 
 #: A direct solve that turns a body further than this from its rest state is checked by
-#: load stepping, which follows the quasi-static branch (issue 7 found a certified
+#: load stepping, which follows the quasi-static branch (a certified
 #: equilibrium at 36.5 deg where loading the body gradually ends at 20.8 deg).
 YAW_JUMP = math.radians(10.0)
 

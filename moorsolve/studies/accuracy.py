@@ -93,7 +93,7 @@ def _fidelity_variants(case: Case):
         yield "frictionless seabed", dataclasses.replace(case, environment=env)
     if case.environment.current is not None and any(
             lt.drag is not None for lt in case.line_types.values()):
-        # Lines in a current (issue 4): other element counts, and the analytic legs
+        # Lines in a current: other element counts, and the analytic legs
         # without the flow force on the lines.
         declared = case.solver.line_elements
         for n in sorted({max(2, declared // 4), max(2, declared // 2), 2 * declared}):

@@ -1,6 +1,6 @@
 """Hu & Tang's inverse questions on one leg, solved as small NLPs on the same leg block.
 
-Hu & Tang (2004, seed 001) search the catenary by hand-written loops for three design
+Hu & Tang (2004) search the catenary by hand-written loops for three design
 questions; here each is one IPOPT problem whose constraints are the leg block of
 :func:`moorsolve.physics.catenary.leg_function` (the span residuals ``rX = rZ = 0``), so an
 elastic line, seabed contact and anchor uplift are handled exactly as in the equilibrium
@@ -149,7 +149,7 @@ def _solve(question, height, weight, ea, fairlead_tension, horizontal_tension, f
     # is solved as the square system with the inequality as an equality, and without
     # bounds on the distance and the tension (the load equation fixes it): with them a tiny
     # horizontal tension (a nearly vertical line) left IPOPT stuck at a bound ("no
-    # solution" where the answer exists, issue 20).
+    # solution" where the answer exists).
     lbg = [0, 0, 0, 0]
     ubg = [0, 0, 0, 0]
     lbx = [-np.inf, -np.inf, -np.inf, 1e-9]

@@ -4,7 +4,7 @@ The mooring stiffness of one body is ``K = -dW/dq`` over its six degrees of free
 ``W`` the force and moment (about the body origin, global axes) of the lines on it and ``q``
 its translations and small rotations about the global axes, every line and free point
 re-equilibrating (condensed out: ``K = -(W_q - W_r J_rr^-1 J_rq)``, every block by CasADi's
-automatic differentiation; REFERENCE.md section 7). Other bodies are held where they are.
+automatic differentiation). Other bodies are held where they are.
 The coupled stiffness of all free degrees of freedom (several bodies, with hydrostatics and
 the loads' own dependence on pose) is the matrix the stability check uses
 (:func:`moorsolve.solve.stability.condensed_stiffness`).
@@ -403,7 +403,7 @@ def natural_periods(K, mass, *, added_mass=None, inertia=None,
     Notes
     -----
     Small oscillations about the equilibrium: ``(M + A) q'' + K q = 0``; the eigenvalues
-    ``w^2`` of ``(K, M + A)`` give ``T = 2 pi / w`` (REFERENCE.md section 6 has Merkin's
+    ``w^2`` of ``(K, M + A)`` give ``T = 2 pi / w`` (Merkin 1980 has
     hanging-chain values for the line's own modes). For a diagonal system the coupled and
     uncoupled periods agree.
     """
