@@ -87,7 +87,7 @@ from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
-from .build_network import build_network, check_held
+from .build_network import build_network, check_held, end_position
 from .build_sea import sea_state_fields
 from .build_contact import build_contacts
 from .contact import Contacts
@@ -316,22 +316,28 @@ _BERTH = ("walls", "piles", "fenders", "guides")
 MAX_TIDE = 100.0
 
 
-def check_tide_on_lines(environment, lines) -> None:
+def check_tide_on_lines(environment, lines, bodies: tuple) -> None:
     """Refuse a tide (``water_level`` other than 0) where a line meets the free surface.
 
     The lines' own free surface (a buoyant segment or float held up by it, the part of a
-    line in air weighed by ``weight_in_air``) is modelled at the datum z = 0; floating
-    bodies and the hydrostatics follow the tide, these lines would not. Refused rather than
-    answered at the wrong surface, with the equivalent scene to give instead.
+    line in air weighed by ``weight_in_air`` above an end over z = 0 in the case file) is
+    modelled at the datum z = 0; floating bodies and the hydrostatics follow the tide, these
+    lines would not. Refused rather than answered at the wrong surface, with the equivalent
+    scene to give instead. A line whose ends are at or under z = 0 in the case file (a
+    floating body's fairleads at its waterline) takes its weight in water and follows the
+    tide with the body: its ``weight_in_air`` is not used.
     """
     if environment.water_level == 0.0:
         return
-    for i, line in enumerate(lines):
+    by_name = {b.name: b for b in bodies}
+    for line in lines:
         types = [seg.line_type for seg in line.segments]
         floats = [c for c in line.joint_clumps if c is not None and c.weight < 0]
+        in_air = any(end_position(end, by_name)[2] > 1e-9 for end in (line.a, line.b))
         meets = ("a buoyant segment" if any(lt.weight_in_water < 0 for lt in types)
                  else "a float" if floats
-                 else "a weight in air" if any(lt.weight_in_air is not None for lt in types)
+                 else "an end in air weighed by weight_in_air"
+                 if in_air and any(lt.weight_in_air is not None for lt in types)
                  else None)
         if meets:
             raise CaseError(
@@ -393,7 +399,7 @@ def build_case(data, default_name: str = "case") -> Case:
         lines = _legs(m["legs"], "legs", environment, line_types, body is not None)
         bodies, points = (() if body is None else (body,)), ()
     check_bathymetry(environment, lines, points, contacts, network)
-    check_tide_on_lines(environment, lines)
+    check_tide_on_lines(environment, lines, bodies)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
     checks = None if m.get("checks") is None else _checks(m["checks"], "checks", lines)
     moordyn = (None if m.get("moordyn") is None
