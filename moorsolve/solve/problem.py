@@ -34,12 +34,12 @@ import numpy as np
 from ..model import DOFS, Case
 from ..model.line_table import LINE_COLUMNS
 from ..physics.kinematics import cross, rotation_matrix
-from . import body_loads as body_load_models
 from .certify import Certification
 from ..concurrency import SYMBOLIC_LOCK
 from .nodes import node_balances
 from .numerics import SolverAccess
 from .discrete import discrete_leg
+from .effects import scene_effects
 from .layout import BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, SEABED_PARAMS, build_layout
 from .contact import add_contacts, contact_points, element_reactions
 from .stretch_params import line_laws
@@ -139,7 +139,7 @@ class EquilibriumProblem(Certification, SolverAccess):
         self.n_p = self.layout.size
         #: Parameter entries that only scale with the load factor (not in the rest state).
         self.load_mask = self.layout.load_mask()
-        self.effects = self._effects()
+        self.effects = scene_effects(self.case, self.kinds)
         self._lock = threading.RLock()
         self._ipopt_solvers = None
         self._newton = None
@@ -160,59 +160,6 @@ class EquilibriumProblem(Certification, SolverAccess):
         return self._lock
 
     # -- construction ---------------------------------------------------------------
-    def _effects(self) -> list:
-        case = self.case
-        kinds = self.kinds
-        effects = []
-        if any(k.elastic for k in kinds):
-            effects.append("elastic")
-        if not all(k.elastic for k in kinds):
-            effects.append("inextensible")
-        if any(seg.line_type.stretch is not None for line in case.lines
-               for seg in line.segments):
-            effects.append("nonlinear_stretch")
-        if any(k.contact for k in kinds):
-            effects.append("seabed_contact")
-        if any(k.surface for k in kinds):
-            effects.append("surface_contact")
-        if any(k.friction for k in kinds):
-            effects.append("seabed_friction")
-        if any(k.sloped for k in kinds):
-            effects.append("sloped_seabed")
-        if case.environment.seabed.bathymetry is not None:
-            effects.append("bathymetry")
-        types = [seg.line_type for line in case.lines for seg in line.segments]
-        if any(lt.weight_in_water < 0 for lt in types):
-            effects.append("buoyant_line")
-        if any(k.neutral for k in kinds) or any(
-                s.block == "straight" for k in kinds if k.multi for s in k.block.segments):
-            effects.append("neutral_line")
-        if any(lt.sealed for lt in types):
-            effects.append("wall_tension")
-        if any(line.multi_segment for line in case.lines):
-            effects.append("multi_segment")
-        if any(k.discrete for k in kinds):
-            effects.append("line_drag")
-        if case.free_points:
-            effects.append("free_points")
-        if len(case.bodies) > 1:
-            effects.append("several_bodies")
-        if any(b.mass is not None for b in case.bodies):
-            effects.append("body_weight")
-        if any(b.hydrostatics is not None for b in case.bodies):
-            effects.append("hydrostatics")
-        if any(b.hull for b in case.bodies):
-            effects.append("exact_hydrostatics")
-        if any(b.stiffness is not None for b in case.bodies):
-            effects.append("springs")
-        names = []
-        for body in case.bodies:
-            for e in body_load_models.effect_names(body.loads, case.environment):
-                e = "constant_force" if e == "force" else e
-                if e not in names:
-                    names.append(e)
-        return effects + names
-
     def _build(self):
         case = self.case
         layout = self.layout
