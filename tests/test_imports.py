@@ -220,3 +220,39 @@ def test_the_layering_check_sees_what_it_forbids():
     found = _run_time_imports("moorsolve.audit.run", PACKAGE / "audit" / "run.py", tree)
     assert sorted((t, _floor(t)) for t, _ in found) == [("moorsolve.solve.result", "solve"),
                                                         ("typing", None)]
+
+
+def test_no_import_cycles():
+    """No cycle among the package's modules, function-level imports included (a lazy import
+    back up the floors is a cycle all the same)."""
+    modules = {name: (path, tree) for name, path, tree in _modules()}
+    graph = {name: {target for target, _ in _run_time_imports(name, path, tree)
+                    if target in modules and target != name}
+             for name, (path, tree) in modules.items()}
+    index, low, stack, on_stack, cycles = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in graph[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                cycles.append(sorted(component))
+
+    for name in graph:
+        if name not in index:
+            visit(name)
+    assert not cycles, cycles

@@ -31,3 +31,16 @@ from .._lazy import lazy_exports  # noqa: E402
 __getattr__, __dir__ = lazy_exports(__name__, {"build_case": ".build"}, globals())
 
 __all__ += ["build_case"]
+
+
+def _with_values(self, assignments, *, keep_source: bool = True) -> Case:
+    """This case with each ``path: value`` of ``assignments`` set in its case-file data
+    and validated again (:func:`moorsolve.model.edit.with_values`); no file is read."""
+    from .edit import with_values
+    return with_values(self, assignments, keep_source=keep_source)
+
+
+# Bound here, above both the data (scene.py) and the builder it needs (edit.py, build.py),
+# so that the data's module imports no builder (no import cycle).
+_with_values.__name__ = _with_values.__qualname__ = "with_values"
+Case.with_values = _with_values

@@ -90,12 +90,6 @@ class Case:
     #: None for a Case built in code.
     source: Optional[Mapping] = field(default=None, compare=False, repr=False)
 
-    def with_values(self, assignments: Mapping, *, keep_source: bool = True) -> "Case":
-        """This case with each ``path: value`` of ``assignments`` set in its case-file data
-        and validated again (:func:`moorsolve.model.edit.with_values`); no file is read."""
-        from .edit import with_values
-        return with_values(self, assignments, keep_source=keep_source)
-
     @property
     def legs(self) -> tuple:
         """The lines (the ``legs:`` form's name for them)."""

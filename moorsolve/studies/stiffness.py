@@ -27,6 +27,8 @@ from ..solve.cache import get_problem
 from ..solve.equilibrium import solve
 from ..solve.result import Result
 from ..solve.stability import condensed_stiffness
+from .kinks import (contacts_at_first_contact, lines_at_slack_point, warn_one_sided,
+                    with_lines)
 
 #: Units of the rows and columns of a 6x6 stiffness (global axes).
 STIFFNESS_UNITS = ("N/m", "N/m", "N/m", "N m/rad", "N m/rad", "N m/rad")
@@ -143,7 +145,6 @@ def stiffness(result_or_case, body: Optional[str] = None, *,
     (:func:`moorsolve.one_sided_stiffness` gives both).
     """
     result = as_result(result_or_case, solver)
-    from .one_sided import lines_at_slack_point, warn_one_sided, with_lines
     at_point = lines_at_slack_point(result)
     if at_point:
         # Neither side's derivative is that of the scene as solved: give the taut side's
@@ -218,7 +219,6 @@ def coupled_stiffness(result_or_case, *, solver: str = "ipopt") -> tuple:
     condensed out), with ``dofs`` labels ``"body.surge"`` ... [SI; rotations are the
     bodies' own angles]."""
     result = as_result(result_or_case, solver)
-    from .one_sided import contacts_at_first_contact, lines_at_slack_point
     at_point = lines_at_slack_point(result)
     if at_point:
         warnings.warn(
