@@ -66,6 +66,7 @@ def format_check_table(report: CheckReport) -> str:
     lines = [f"Mooring check: {report.case_name}",
              f"standard     {report.standard} (quasi-static): "
              + "; ".join(f"{k} {v.describe().split(': ', 1)[1]}" for k, v in crit.items()),
+             f"method       {report.method}",
              f"columns      {UTIL_LEGEND}"]
     rows = summary_rows(report)
     wide = max([22] + [len(row["condition"]) + 1 for row in rows])
