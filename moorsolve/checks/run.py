@@ -16,7 +16,10 @@ Per leg and condition:
   tension along each segment of a line type with a ``min_tension`` at least that (a rope
   that must not go slack: :mod:`moorsolve.checks.fibre`);
 
-and per condition the horizontal offset of the body origin against the offset limit. At a
+and per condition the horizontal offset of the body origin against the offset limit. With
+API RP 2SK and a sea state in which bodies move, the tension, uplift, grounded length and
+offset are those at the bodies' design offset (the quasi-static method,
+:mod:`.design_offset`); otherwise the mean tension's, and the report says so. At a
 berth (:mod:`.berth`) a hawser's tension is checked against the working load
 limit of OCIMF MEG4 instead of the standard's factor, each fender's compression against its
 rated deflection and each pile guide's height against its pile's top.
@@ -29,7 +32,7 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from ..errors import ConvergenceError
+from ..errors import CaseError, ConvergenceError
 from ..model import AnchorType, Case, Checks
 from ..model.edit import without_line
 from ..solve import Result, solve
@@ -314,9 +317,14 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol,
     if simulate:
         try:
             held = design_offset_solve(result, tol=tol)
-        except ConvergenceError as exc:
+        except (ConvergenceError, CaseError) as exc:
+            if isinstance(exc, CaseError) and removed is None:
+                raise       # the case's own sea state or hydrodynamics: bad input
+            # A damaged scene whose motions cannot be had (no equilibrium with the mean
+            # drift, a slow-drift mode the removed line held): not checked, so failed.
+            why = exc.reason if isinstance(exc, ConvergenceError) else str(exc)
             return ConditionResult(name=name, kind=kind, removed=removed, solved=False,
-                                   reason=f"in the sea state: {exc.reason}", result=result,
+                                   reason=f"in the sea state: {why}", result=result,
                                    items=[], criterion=crit,
                                    drifting=drift_findings(drifts, result.loads),
                                    method="design offset")

@@ -179,3 +179,63 @@ def test_dnv_with_a_sea_state_says_its_dynamic_method_is_not_wired(buoy):
         line = next(x for x in report.conditions[0].lines if x["leg"] == lr.name)
         assert line["t_max_N"] == pytest.approx(max(lr.fairlead_tension_N,
                                                     lr.anchor_tension_N), rel=1e-9)
+
+
+def test_offset_uplift_and_grounded_length_are_checked_at_the_design_offset(buoy):
+    # A 2 m offset limit: the mean offset (under 0.1 m) passes it, the design offset
+    # (about 2.5 m) does not; grounded length and uplift from the held solve.
+    from moorsolve.model import Checks
+    case = dataclasses.replace(buoy, checks=Checks(offset_limit=2.0, min_grounded_length=1.0,
+                                                   damaged=False))
+    report = run_checks(case)
+    cond = report.conditions[0]
+    design, _, mean = _held_tensions(case)
+    mean_offset = math.hypot(mean.body_named("buoy")["offset"]["x_m"],
+                             mean.body_named("buoy")["offset"]["y_m"])
+    assert mean_offset < 2.0 < design
+    offset = next(i for i in cond.items if i.check == "offset")
+    assert offset.value == pytest.approx(design, rel=1e-12)
+    assert not offset.passed and not report.passed
+    assert "design offset" in offset.criterion
+    held = {lr.name: lr for lr in cond.held.legs}
+    for item in cond.items:
+        if item.check == "grounded length":
+            assert item.value == pytest.approx(held[item.leg].grounded_length_m, rel=1e-12)
+        if item.check == "anchor uplift":
+            assert item.value == (held[item.leg].anchor_vertical_N
+                                  if held[item.leg].anchor_vertical_N > max(
+                                      1e-6 * held[item.leg].anchor_tension_N, 1.0) else 0.0)
+    # The slackening line (L1) has more chain on the seabed at the offset than at the mean.
+    mean_legs = {lr.name: lr for lr in mean.legs}
+    assert held["L1"].grounded_length_m > mean_legs["L1"].grounded_length_m
+    assert held["L3"].grounded_length_m < mean_legs["L3"].grounded_length_m
+
+
+def test_a_free_floating_body_without_hydrodynamics_in_a_sea_is_refused(tmp_path, capsys):
+    import yaml
+    data = yaml.safe_load(BUOY.read_text())
+    del data["bodies"][0]["hydrodynamics"]
+    path = tmp_path / "no_hydro.yaml"
+    path.write_text(yaml.safe_dump(data))
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "bodies[0].hydrodynamics" in err and "Traceback" not in err
+
+
+def test_a_damaged_condition_whose_motions_fail_is_a_failed_condition(buoy, monkeypatch):
+    from moorsolve.checks import run as run_module
+    from moorsolve.errors import CaseError
+    real = run_module.design_offset_solve
+
+    def refuse_damaged(result, *, tol=None):
+        if len(result.legs) < 3:
+            raise CaseError("bodies[0].damping", "an undamped slow-drift mode")
+        return real(result, tol=tol)
+
+    monkeypatch.setattr(run_module, "design_offset_solve", refuse_damaged)
+    report = run_checks(buoy)
+    assert report.conditions[0].passed
+    for cond in report.conditions[1:]:
+        assert not cond.solved and not cond.passed
+        assert "an undamped slow-drift mode" in cond.reason
+    assert not report.passed
