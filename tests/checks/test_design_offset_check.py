@@ -156,6 +156,14 @@ def test_cli_text_and_json_carry_the_method(capsys, tmp_path):
     assert main(["check", str(BUOY), "--no-damaged"]) == 0
     text = capsys.readouterr().out
     assert f"method       {METHOD_DESIGN_OFFSET}" in text
+    # Every line's figures in the per-line table, as the JSON has them.
+    report = run_checks(moorsolve.load_case(BUOY), damaged=False)
+    for line in report.conditions[0].lines:
+        row = (f"{line['leg']:>6}{line['end']:>9}{line['t_mean_N'] / 1e3:11.1f}"
+               f"{line['t_max_N'] / 1e3:10.1f}{line['design_N'] / 1e3:11.1f}"
+               f"{line['capacity_N'] / 1e3:13.1f}{line['utilisation']:6.3f}")
+        assert row in text
+    assert f"design offset: buoy {report.conditions[0].design_offset_m['buoy']:.2f} m" in text
     assert main(["check", str(BUOY), "--no-damaged", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["method"] == METHOD_DESIGN_OFFSET
