@@ -324,7 +324,7 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol,
             # drift, a slow-drift mode the removed line held): not checked, so failed.
             why = exc.reason if isinstance(exc, ConvergenceError) else str(exc)
             return ConditionResult(name=name, kind=kind, removed=removed, solved=False,
-                                   reason=f"in the sea state: {why}", result=result,
+                                   reason=f"the motions in the sea state: {why}", result=result,
                                    items=[], criterion=crit,
                                    drifting=drift_findings(drifts, result.loads),
                                    method="design offset")
