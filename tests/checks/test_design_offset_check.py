@@ -68,6 +68,16 @@ def test_tension_at_design_offset_equals_an_independent_held_solve(buoy, report,
     mean_offset = math.hypot(mean.body_named("buoy")["offset"]["x_m"],
                              mean.body_named("buoy")["offset"]["y_m"])
     assert design > mean_offset
+    # The body is held at the design offset from the case pose (origin), along the mean
+    # offset, with heave and the rotations at their mean values.
+    held = cond.held.body_named("buoy")
+    m = mean.body_named("buoy")
+    assert math.hypot(held["x_m"], held["y_m"]) == pytest.approx(design, rel=1e-12)
+    cross = held["x_m"] * m["offset"]["y_m"] - held["y_m"] * m["offset"]["x_m"]
+    assert abs(cross) <= 1e-12 * design * mean_offset
+    assert held["x_m"] * m["offset"]["x_m"] + held["y_m"] * m["offset"]["y_m"] > 0
+    for key in ("z_m", "roll_deg", "pitch_deg", "yaw_deg"):
+        assert held[key] == pytest.approx(m[key], rel=1e-12, abs=1e-12)
     lines = {line["leg"]: line for line in cond.lines}
     assert set(lines) == set(tensions)
     for name, t in tensions.items():
