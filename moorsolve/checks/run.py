@@ -16,7 +16,10 @@ Per leg and condition:
   tension along each segment of a line type with a ``min_tension`` at least that (a rope
   that must not go slack: :mod:`moorsolve.checks.fibre`);
 
-and per condition the horizontal offset of the body origin against the offset limit. At a
+and per condition the horizontal offset of the body origin against the offset limit. With
+API RP 2SK and a sea state in which bodies move, the tension, uplift, grounded length and
+offset are those at the bodies' design offset (the quasi-static method,
+:mod:`.design_offset`); otherwise the mean tension's, and the report says so. At a
 berth (:mod:`.berth`) a hawser's tension is checked against the working load
 limit of OCIMF MEG4 instead of the standard's factor, each fender's compression against its
 rated deflection and each pile guide's height against its pile's top.
@@ -29,13 +32,16 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from ..errors import ConvergenceError
+from ..errors import CaseError, ConvergenceError
 from ..model import AnchorType, Case, Checks
 from ..model.edit import without_line
 from ..solve import Result, solve
 from ..model.restraint import drifting_bodies
 from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
+from .design_offset import (MEAN_ONLY, MEAN_ONLY_DNV, METHOD_DESIGN_OFFSET,
+                            design_offset_solve, design_offset_tension, mean_tension,
+                            sea_simulated)
 from .drift import drift_findings, hold_drifting
 from .fibre import LOWER_LIMIT_CHECKS, fibre_items
 from .items import CheckItem
@@ -70,6 +76,17 @@ class ConditionResult:
         broke): each ``body``, ``dofs``, ``group``, ``lines``, ``load_N``, ``toward_deg``
         and ``message`` (:mod:`.drift`). Such a condition fails; ``result`` is then the
         rest of the mooring solved with those bodies held.
+    method : str
+        ``mean`` (the factors on the mean tension) or ``design offset`` (API RP 2SK's
+        quasi-static method, :mod:`.design_offset`).
+    lines : tuple of dict
+        Per line: ``leg``, ``end`` and the figures of
+        :class:`~moorsolve.checks.design_tension.DesignTension` (``t_mean_N``, ``t_dyn_N``,
+        ``t_max_N``, ``design_N``, ``capacity_N``, ``utilisation``).
+    design_offset_m : dict
+        Body name to its design offset [m] (``design offset`` method only).
+    held : Result or None
+        The lines with the bodies held at the design offset (``design offset`` method).
     """
 
     name: str
@@ -81,6 +98,10 @@ class ConditionResult:
     items: list
     criterion: Criterion
     drifting: tuple = ()
+    method: str = "mean"
+    lines: tuple = ()
+    design_offset_m: dict = field(default_factory=dict)
+    held: Result | None = None
 
     @property
     def passed(self) -> bool:
@@ -100,7 +121,10 @@ class ConditionResult:
 
     @property
     def offset_m(self) -> float | None:
-        """The body's horizontal offset [m]; with several bodies the largest one's."""
+        """The body's horizontal offset [m]; with several bodies the largest one's. At the
+        design offset where the quasi-static method ran."""
+        if self.design_offset_m:
+            return max(self.design_offset_m.values())
         if self.result is None:
             return None
         if self.result.body is not None:
@@ -123,6 +147,9 @@ class ConditionResult:
             "max_tension_utilisation": None if worst is None else worst.utilisation,
             "criterion": self.criterion.describe(),
             "drifting": [dict(d) for d in self.drifting],
+            "method": self.method,
+            "design_offset_m": dict(self.design_offset_m),
+            "lines": [dict(line) for line in self.lines],
             "checks": [item.to_dict() for item in self.items],
         }
 
@@ -140,6 +167,8 @@ class CheckReport:
     time_s: float = 0.0
     #: The certified relative force residual every condition was solved to.
     tolerance: float = math.nan
+    #: The case has a sea state (waves with a period).
+    sea: bool = False
 
     def __repr__(self) -> str:
         verdict = "PASS" if self.passed else "FAIL"
@@ -174,6 +203,22 @@ class CheckReport:
         return out
 
     @property
+    def method(self) -> str:
+        """What the line-tension check covers, in one sentence."""
+        used = {c.method for c in self.conditions if c.solved}
+        if used == {"design offset"}:
+            return METHOD_DESIGN_OFFSET
+        if "design offset" in used:
+            return (METHOD_DESIGN_OFFSET + " where a body moves in the sea state ("
+                    + ", ".join(c.name for c in self.conditions
+                                if c.method == "design offset")
+                    + "); elsewhere " + MEAN_ONLY)
+        waves = self.sea
+        if self.standard == "dnv-os-e301" and waves:
+            return MEAN_ONLY_DNV
+        return MEAN_ONLY
+
+    @property
     def warnings(self) -> list[dict]:
         """Every solved condition's warnings (:attr:`moorsolve.Result.warnings`), each with
         its ``condition``: what no engineer may miss, pass or fail."""
@@ -184,6 +229,7 @@ class CheckReport:
         return {
             "case": self.case_name, "standard": self.standard,
             "consequence_class": self.consequence_class, "passed": self.passed,
+            "method": self.method,
             "time_s": self.time_s, "tolerance": self.tolerance,
             "limits": {"offset_limit_m": self.checks.offset_limit,
                        "offset_limit_damaged_m": _damaged(self.checks.offset_limit_damaged,
@@ -232,21 +278,25 @@ def run_checks(case: Case, *, standard: str | None = None, tol: float | None = N
         checks = dataclasses.replace(checks, standard=standard)
     run_damaged = checks.damaged if damaged is None else damaged
     t0 = time.perf_counter()
-    conditions = [_condition(case, checks, None, tol)]
+    simulate = sea_simulated(case, checks.standard)
+    conditions = [_condition(case, checks, None, tol, simulate)]
     movable = any(b.free for b in case.bodies) or bool(case.free_points)
     if run_damaged and movable and len(case.legs) > 1:
         # With nothing free each line ends at fixed points: removing one leaves the others
         # unchanged, so there is no damaged condition to solve.
         for leg in case.legs:
-            conditions.append(_condition(case, checks, leg.name, tol))
+            conditions.append(_condition(case, checks, leg.name, tol, simulate))
     return CheckReport(case_name=case.name, standard=checks.standard,
                        consequence_class=checks.consequence_class, checks=checks,
                        conditions=conditions, criteria=standard_rows(checks.standard),
                        time_s=time.perf_counter() - t0,
-                       tolerance=case.solver.tol if tol is None else float(tol))
+                       tolerance=case.solver.tol if tol is None else float(tol),
+                       sea=bool(case.environment.waves is not None
+                                and case.environment.waves.sea_state))
 
 
-def _condition(case: Case, checks: Checks, removed: str | None, tol) -> ConditionResult:
+def _condition(case: Case, checks: Checks, removed: str | None, tol,
+               simulate: bool = False) -> ConditionResult:
     kind = "intact" if removed is None else "damaged"
     name = "intact" if removed is None else f"damaged: {removed} removed"
     crit = criterion(checks.standard, kind, checks.consequence_class)
@@ -263,14 +313,35 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
         return ConditionResult(name=name, kind=kind, removed=removed, solved=False,
                                reason=exc.reason, result=None, items=[], criterion=crit,
                                drifting=drift_findings(drifts, None))
-    items = []
-    for leg, lr in zip(scene.legs, result.legs):
+    held = None
+    if simulate:
+        try:
+            held = design_offset_solve(result, tol=tol)
+        except (ConvergenceError, CaseError) as exc:
+            if isinstance(exc, CaseError) and removed is None:
+                raise       # the case's own sea state or hydrodynamics: bad input
+            # A damaged scene whose motions cannot be had (no equilibrium with the mean
+            # drift, a slow-drift mode the removed line held): not checked, so failed.
+            why = exc.reason if isinstance(exc, ConvergenceError) else str(exc)
+            return ConditionResult(name=name, kind=kind, removed=removed, solved=False,
+                                   reason=f"the motions in the sea state: {why}", result=result,
+                                   items=[], criterion=crit,
+                                   drifting=drift_findings(drifts, result.loads),
+                                   method="design offset")
+    mean = result if held is None else held.mean
+    at = result.legs if held is None else _by_name(held.held, scene.legs)
+    items, lines = [], []
+    for leg, lm, lr in zip(scene.legs, mean.legs, at):
         if leg.name in lost:
             continue        # it drifts off with its bodies: no tension to check
         if is_hawser(leg):
             items.append(_hawser(name, lr, leg))
             continue
-        items.append(_tension(name, lr, crit))
+        items.append(_tension(name, lr, crit, at_offset=held is not None))
+        if lr.mbl_N:
+            end, dt = (mean_tension(lr, crit) if held is None
+                       else design_offset_tension(lm, lr, crit))
+            lines.append({"leg": lr.name, "end": end, **dt.to_dict()})
         if not leg.a.on_seabed:
             continue        # end A is not an anchor (a bridle leg, a shared line)
         anchor = leg.anchor_type or checks.anchor
@@ -292,21 +363,33 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol) -> Conditio
     limit = (checks.offset_limit if kind == "intact"
              else _damaged(checks.offset_limit_damaged, checks.offset_limit))
     if limit is not None:
-        for body, entry in zip(scene.bodies, result.bodies):
+        design = {} if held is None else held.design_offset_m
+        for body, entry in zip(scene.bodies, mean.bodies):
             if not body.free:
                 continue        # held, or lost (held here, reported as drifting)
             off = entry["offset"]
-            offset = math.hypot(off["x_m"], off["y_m"])
+            offset = design.get(body.name, math.hypot(off["x_m"], off["y_m"]))
             label = "offset" if len(scene.bodies) == 1 else f"offset of {body.name}"
+            where = " (design offset)" if body.name in design else ""
             items.append(CheckItem(condition=name, leg=None, check=label, value=offset,
                                    limit=limit, unit="m", utilisation=offset / limit,
                                    passed=offset <= limit,
-                                   criterion=f"horizontal offset <= {limit:.2f} m"))
+                                   criterion=f"horizontal offset{where} <= {limit:.2f} m"))
     items += [_fender(name, f) for f in result.fenders if f["rated_deflection_m"]]
     items += [_guide(name, g) for g in result.guides if g["pile_top_m"] is not None]
     return ConditionResult(name=name, kind=kind, removed=removed, solved=True, reason="",
-                           result=result, items=items, criterion=crit,
-                           drifting=drift_findings(drifts, result.loads))
+                           result=mean, items=items, criterion=crit,
+                           drifting=drift_findings(drifts, result.loads),
+                           method="mean" if held is None else "design offset",
+                           lines=tuple(lines),
+                           design_offset_m={} if held is None else dict(held.design_offset_m),
+                           held=None if held is None else held.held)
+
+
+def _by_name(result: Result, legs) -> list:
+    """``result``'s line results in the order of ``legs``."""
+    found = {lr.name: lr for lr in result.legs}
+    return [found[leg.name] for leg in legs]
 
 
 def _hawser(condition: str, lr, line) -> CheckItem:
@@ -352,7 +435,7 @@ def _guide(condition: str, guide: dict) -> CheckItem:
                      criterion=f"collar height <= pile {guide['pile']}'s top")
 
 
-def _tension(condition: str, lr, crit: Criterion) -> CheckItem:
+def _tension(condition: str, lr, crit: Criterion, at_offset: bool = False) -> CheckItem:
     T = max(lr.fairlead_tension_N, lr.anchor_tension_N)
     if not lr.mbl_N:
         return CheckItem(condition=condition, leg=lr.name, check="tension", value=T,
@@ -362,7 +445,7 @@ def _tension(condition: str, lr, crit: Criterion) -> CheckItem:
     allowed = crit.capacity_factor * lr.mbl_N / crit.factor
     return CheckItem(condition=condition, leg=lr.name, check="tension", value=T,
                      limit=allowed, unit="N", utilisation=T / allowed, passed=T <= allowed,
-                     criterion=crit.describe())
+                     criterion=crit.describe() + (" at the design offset" if at_offset else ""))
 
 
 def _uplift(condition: str, lr, anchor: AnchorType) -> CheckItem:

@@ -288,8 +288,12 @@ def _criteria_section(report: CheckReport) -> list:
                f"damaged {_opt(damaged_grounded, 'm')}"),
               f"default anchor: {_anchor_text(checks.anchor)}"]
     out.append("<ul>" + "".join(f"<li>{_e(x)}</li>" for x in limits) + "</ul>")
+    out.append(f'<p class="note">Line tension: {_e(report.method)}.</p>')
+    where = ("with each moving body held at its design offset, the lines re-solved"
+             if any(c.method == "design offset" for c in report.conditions)
+             else "of the quasi-static equilibrium under the mean environmental loads")
     out.append('<p class="note">The line tension is the larger of the fairlead and anchor '
-               "tension of the quasi-static equilibrium under the mean environmental loads. "
+               f"tension {where}. "
                "Damaged conditions remove one leg and solve the body again. Only the "
                "quasi-static rows of the table are applied; a DNV-OS-E301 check on a "
                "quasi-static solution covers the mean tension only (no dynamic part), so "
