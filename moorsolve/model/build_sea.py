@@ -162,15 +162,20 @@ def hydrodynamics(raw, path: str, rho: float, g: float) -> Hydrodynamics:
     return _table(m, path, "table")
 
 
-def _table(m: dict, path: str, source: str) -> Hydrodynamics:
-    opath = field_path(path, "omega")
-    omega = _array(m["omega"], opath, (None,), "a list of frequencies [rad/s]")
+def _frequencies(raw, opath: str):
+    """A list of at least two increasing frequencies [rad/s] within :data:`OMEGA_RANGE`."""
+    omega = _array(raw, opath, (None,), "a list of frequencies [rad/s]")
     if len(omega) < 2:
         raise CaseError(opath, f"{len(omega)} value(s); give at least 2 frequencies")
     _increasing(omega, opath, "omega")
     if omega[0] < OMEGA_RANGE[0] or omega[-1] > OMEGA_RANGE[1]:
         raise CaseError(opath, f"frequencies must lie in [{OMEGA_RANGE[0]:g}, "
                                f"{OMEGA_RANGE[1]:g}] rad/s (is a period given as omega?)")
+    return omega
+
+
+def _table(m: dict, path: str, source: str) -> Hydrodynamics:
+    omega = _frequencies(m["omega"], field_path(path, "omega"))
     n = len(omega)
     matrices = {}
     for key in ("added_mass", "damping"):
@@ -204,14 +209,7 @@ def _wamit(raw, path: str, rho: float, g: float) -> Hydrodynamics:
 def _capytaine(raw, path: str) -> CapytaineHull:
     m = check_mapping(raw, path, required=("source", "omega", "headings_deg"),
                       optional=("panel_size", "cache"))
-    opath = field_path(path, "omega")
-    omega = _array(m["omega"], opath, (None,), "a list of frequencies [rad/s]")
-    if len(omega) < 2:
-        raise CaseError(opath, f"{len(omega)} value(s); give at least 2 frequencies")
-    _increasing(omega, opath, "omega")
-    if omega[0] < OMEGA_RANGE[0] or omega[-1] > OMEGA_RANGE[1]:
-        raise CaseError(opath, f"frequencies must lie in [{OMEGA_RANGE[0]:g}, "
-                               f"{OMEGA_RANGE[1]:g}] rad/s")
+    omega = _frequencies(m["omega"], field_path(path, "omega"))
     hpath = field_path(path, "headings_deg")
     headings = _array(m["headings_deg"], hpath, (None,), "a list of headings [deg]")
     if not headings:
