@@ -135,12 +135,17 @@ def _ends(lr) -> tuple:
 
 def design_offset_tension(mean_leg, held_leg, crit: Criterion) -> tuple:
     """``(end, DesignTension)`` of one line by API RP 2SK's quasi-static method: the
-    tension at the design offset (``t_max_N``) against ``MBL / SF``, at the end where it is
-    larger. ``t_dyn_N = t_max_N - t_mean_N`` is the quasi-static change of tension from
-    the mean to the design offset (negative on a line that slackens there)."""
+    tension at the design offset against ``MBL / SF``, at the end where it is larger.
+
+    A line that slackens at the design offset (leeward of the mean offset) is checked at no
+    less than its mean tension: the body swings back through the mean and beyond it, so
+    its largest tension in the storm is at least that. ``t_max_N`` is the larger of the
+    two and ``t_dyn_N = t_max_N - t_mean_N >= 0``.
+    """
     mean = dict(_ends(mean_leg))
-    end, t_max = max(_ends(held_leg), key=lambda e: e[1])
+    end, t_offset = max(_ends(held_leg), key=lambda e: e[1])
     t_mean = mean[end]
+    t_max = max(t_offset, t_mean)
     design = crit.factor * t_max
     capacity = crit.capacity_factor * held_leg.mbl_N
     return end, DesignTension(standard=crit.standard, condition=crit.condition,

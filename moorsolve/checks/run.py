@@ -337,11 +337,14 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol,
         if is_hawser(leg):
             items.append(_hawser(name, lr, leg))
             continue
-        items.append(_tension(name, lr, crit, at_offset=held is not None))
+        design = None
         if lr.mbl_N:
-            end, dt = (mean_tension(lr, crit) if held is None
-                       else design_offset_tension(lm, lr, crit))
-            lines.append({"leg": lr.name, "end": end, **dt.to_dict()})
+            end, design = (mean_tension(lr, crit) if held is None
+                           else design_offset_tension(lm, lr, crit))
+            lines.append({"leg": lr.name, "end": end, **design.to_dict()})
+        # The item checks the same tension the line's design figures carry.
+        items.append(_tension(name, lr, crit, at_offset=held is not None,
+                              tension=None if design is None else design.t_max_N))
         if not leg.a.on_seabed:
             continue        # end A is not an anchor (a bridle leg, a shared line)
         anchor = leg.anchor_type or checks.anchor
@@ -435,8 +438,11 @@ def _guide(condition: str, guide: dict) -> CheckItem:
                      criterion=f"collar height <= pile {guide['pile']}'s top")
 
 
-def _tension(condition: str, lr, crit: Criterion, at_offset: bool = False) -> CheckItem:
-    T = max(lr.fairlead_tension_N, lr.anchor_tension_N)
+def _tension(condition: str, lr, crit: Criterion, at_offset: bool = False,
+             tension: float | None = None) -> CheckItem:
+    """The line's tension item: ``tension`` where the design figures give it (at the design
+    offset, no less than the mean), else the larger end tension of ``lr``."""
+    T = max(lr.fairlead_tension_N, lr.anchor_tension_N) if tension is None else tension
     if not lr.mbl_N:
         return CheckItem(condition=condition, leg=lr.name, check="tension", value=T,
                          limit=math.nan, unit="N", utilisation=math.inf, passed=False,

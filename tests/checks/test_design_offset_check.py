@@ -81,13 +81,14 @@ def test_tension_at_design_offset_equals_an_independent_held_solve(buoy, report,
     lines = {line["leg"]: line for line in cond.lines}
     assert set(lines) == set(tensions)
     for name, t in tensions.items():
-        assert lines[name]["t_max_N"] == pytest.approx(t, rel=1e-6)
         lr = next(lr for lr in mean.legs if lr.name == name)
         end = lines[name]["end"]
         t_mean = lr.fairlead_tension_N if end == "fairlead" else lr.anchor_tension_N
         assert lines[name]["t_mean_N"] == pytest.approx(t_mean, rel=1e-9)
+        # At the design offset, or at its mean where the line slackens there.
+        assert lines[name]["t_max_N"] == pytest.approx(max(t, t_mean), rel=1e-6)
         item = next(i for i in cond.items if i.check == "tension" and i.leg == name)
-        assert item.value == pytest.approx(t, rel=1e-6)
+        assert item.value == pytest.approx(max(t, t_mean), rel=1e-6)
     offset_item = next(i for i in cond.items if i.check == "offset") \
         if any(i.check == "offset" for i in cond.items) else None
     assert offset_item is None or offset_item.value == pytest.approx(design)
@@ -98,7 +99,9 @@ def test_intact_windward_line_tightens_at_the_design_offset(report):
     # tightens, the one it runs toward (L1, anchor at 0 deg) slackens.
     lines = {line["leg"]: line for line in report.conditions[0].lines}
     assert lines["L3"]["t_max_N"] > lines["L3"]["t_mean_N"]
-    assert lines["L1"]["t_max_N"] < lines["L1"]["t_mean_N"]
+    # L1 slackens at the design offset: it is checked at its mean tension, no less.
+    assert lines["L1"]["t_max_N"] == lines["L1"]["t_mean_N"]
+    assert lines["L1"]["t_dyn_N"] == 0.0
 
 
 def test_utilisation_is_the_tension_over_mbl_by_the_safety_factor(report):
