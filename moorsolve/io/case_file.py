@@ -6,23 +6,19 @@ YAML is read strictly (duplicate keys are errors); the data is validated by
 
 from __future__ import annotations
 
-import copy
-import dataclasses
-import warnings
 from collections.abc import Mapping
 from os import PathLike
 from pathlib import Path
 
 import yaml
 
-from ..errors import CaseError, UnusedInputWarning
+from ..errors import CaseError
 from ..model import Case
-from ..model.build import build_case
+from ..model.edit import build_with_source
 from .bathymetry import resolve_in_case
 from .wamit import resolve_in_case as resolve_wamit
 from ..model.fields import FAIRLEAD_Z_MAX
 from ..model.units import show_value
-from ..model.usage import unused_inputs
 
 __all__ = ["load_case", "FAIRLEAD_Z_MAX"]
 
@@ -153,16 +149,4 @@ def load_case(source, *, keep_source: bool = True) -> Case:
     built, kept = resolve_wamit(built, base)
     if kept is not built:
         data = resolve_wamit(data, base)[1]
-    try:
-        case = build_case(built, default_name)
-    except RecursionError:
-        # A self-referencing or absurdly nested dict; report it as bad input.
-        raise CaseError("", "the case is nested too deeply") from None
-    if not keep_source:
-        return case
-    source = copy.deepcopy(dict(data))
-    source["name"] = case.name
-    case = dataclasses.replace(case, source=source)
-    for field, message in unused_inputs(case):
-        warnings.warn(UnusedInputWarning(field, message), stacklevel=2)
-    return case
+    return build_with_source(built, data, default_name, keep_source, stacklevel=3)

@@ -66,26 +66,36 @@ def with_values(case: Case, assignments: Mapping, *, keep_source: bool = True) -
         field). An edit may not name another bathymetry file (a file is read by
         ``load_case``, relative to its case file).
     """
-    from .build import build_case
     from .paths import with_values as set_values
-    from .usage import unused_inputs
 
     if case.source is None:
         raise CaseError("case", "edits need the case-file data; load the case with "
                                 "moorsolve.load_case (from a file or a dict)")
     data = set_values(case.source, assignments)
+    return build_with_source(_with_grid(data, case), data, "case", keep_source, stacklevel=4)
+
+
+def build_with_source(built: Mapping, data: Mapping, default_name: str, keep_source: bool,
+                      stacklevel: int) -> Case:
+    """The Case of the case-file data ``built``, keeping ``data`` (the same data as the user
+    wrote it) as its source and warning of every input no model uses (at ``stacklevel``,
+    counted from this function), as load_case and edits both do."""
+    from .build import build_case
+    from .usage import unused_inputs
+
     try:
-        edited = build_case(_with_grid(data, case), "case")
+        case = build_case(built, default_name)
     except RecursionError:
+        # A self-referencing or absurdly nested dict: bad input, not a crash.
         raise CaseError("", "the case is nested too deeply") from None
     if not keep_source:
-        return edited
+        return case
     source = copy.deepcopy(dict(data))
-    source["name"] = edited.name
-    edited = dataclasses.replace(edited, source=source)
-    for field, message in unused_inputs(edited):
-        warnings.warn(UnusedInputWarning(field, message), stacklevel=3)
-    return edited
+    source["name"] = case.name
+    case = dataclasses.replace(case, source=source)
+    for field, message in unused_inputs(case):
+        warnings.warn(UnusedInputWarning(field, message), stacklevel=stacklevel)
+    return case
 
 
 def variant(case: Case, edits: Mapping, path: str = "set") -> Case:
