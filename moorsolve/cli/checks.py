@@ -19,6 +19,9 @@ def add_commands(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the check as JSON")
     p.add_argument("--report", default=None, help="write a self-contained HTML report")
     p.add_argument("--no-damaged", action="store_true", help="intact condition only")
+    p.add_argument("--end-of-life", action="store_true",
+                   help="check the mooring after its design life: corroded steel, crept "
+                        "fibre (the case's checks.corrosion and checks.creep)")
     tolerance_option(p)
     p.set_defaults(run=run_check)
     inverse_help = {
@@ -53,6 +56,8 @@ def run_check(args) -> int:
     case = load_case(args.case)
     if args.report is not None:
         check_output(args.report, "--report", (".html", ".htm"), describe=".html")
+    if args.end_of_life:
+        return _run_end_of_life(args, case)
     report = run_checks(case, standard=args.standard, tol=args.tol,
                         damaged=False if args.no_damaged else None)
     from ..report.check_html import check_json, format_check_table, write_html_report
@@ -62,6 +67,20 @@ def run_check(args) -> int:
     if args.report is not None and not args.json:
         print_text(f"wrote {args.report}")
     return EXIT_OK if report.passed else EXIT_NO_EQUILIBRIUM
+
+
+def _run_end_of_life(args, case) -> int:
+    from ..checks.end_of_life import run_end_of_life
+    from ..report.check_html import write_html_report
+    from ..report.end_of_life import end_of_life_json, end_of_life_text
+    eol = run_end_of_life(case, standard=args.standard, tol=args.tol,
+                          damaged=False if args.no_damaged else None)
+    if args.report is not None:
+        write_html_report(eol.report, eol.case, args.report, case_file=args.case)
+    print_text(end_of_life_json(eol) if args.json else end_of_life_text(eol))
+    if args.report is not None and not args.json:
+        print_text(f"wrote {args.report}")
+    return EXIT_OK if eol.passed else EXIT_NO_EQUILIBRIUM
 
 
 def run_inverse(args) -> int:

@@ -67,7 +67,8 @@ Schema (SI units, ``[...]`` lists)::
              line_elements: int 2..400 (default 20)}
     checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
              offset_limit, offset_limit_damaged, min_grounded_length,
-             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
+             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool,
+             design_life, corrosion, creep (moorsolve.model.build_wear)}   optional
     moordyn: {...}                             optional; MoorDyn columns moorsolve does not use,
                                                kept for export (moorsolve.model.moordyn_block);
                                                the solver ignores it
@@ -89,6 +90,7 @@ from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
 from .build_network import build_network, check_held, end_position
 from .build_sea import sea_state_fields
+from .build_wear import WEAR_KEYS, wear_fields
 from .build_contact import build_contacts
 from .contact import Contacts
 from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS,
@@ -239,10 +241,11 @@ def _compass(m: dict, path: str) -> Compass:
     return Compass(convention=convention, north_deg=north)
 
 
-def _checks(raw, path: str, legs: tuple) -> Checks:
+def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Checks:
     m = check_mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
                                       "offset_limit_damaged", "min_grounded_length",
-                                      "min_grounded_length_damaged", "anchor", "damaged"))
+                                      "min_grounded_length_damaged", "anchor", "damaged")
+                      + WEAR_KEYS)
     defaults = Checks()
     standard = m.get("standard", defaults.standard)
     if not isinstance(standard, str) or standard not in STANDARDS:
@@ -271,7 +274,7 @@ def _checks(raw, path: str, legs: tuple) -> Checks:
     return Checks(standard=standard, consequence_class=int(cclass), offset_limit=offset,
                   offset_limit_damaged=offset_damaged, min_grounded_length=grounded,
                   min_grounded_length_damaged=grounded_damaged, anchor=anchor,
-                  damaged=damaged)
+                  damaged=damaged, wear=wear_fields(m, path, line_types or {}, legs))
 
 
 # ---- solver -----------------------------------------------------------------------------
@@ -401,7 +404,8 @@ def build_case(data, default_name: str = "case") -> Case:
     check_bathymetry(environment, lines, points, contacts, network)
     check_tide_on_lines(environment, lines, bodies)
     solver = SolverOptions() if "solver" not in m else _solver(m["solver"], "solver")
-    checks = None if m.get("checks") is None else _checks(m["checks"], "checks", lines)
+    checks = (None if m.get("checks") is None
+              else _checks(m["checks"], "checks", lines, line_types))
     moordyn = (None if m.get("moordyn") is None
                else validate_moordyn_block(m["moordyn"], "moordyn", line_types, lines))
     return Case(name=name, environment=environment, line_types=line_types, lines=lines,

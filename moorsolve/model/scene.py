@@ -52,6 +52,9 @@ class Checks:
         Default anchor type for legs that do not give their own.
     damaged : bool
         Also run the damaged conditions (each leg removed in turn).
+    wear : Wear or None
+        Corrosion and creep over the design life, for the end-of-life check
+        (:mod:`moorsolve.model.build_wear`, :mod:`moorsolve.checks.end_of_life`).
     """
 
     standard: str = "api-rp-2sk"
@@ -62,6 +65,7 @@ class Checks:
     min_grounded_length_damaged: Optional[float] = None
     anchor: AnchorType = field(default_factory=AnchorType)
     damaged: bool = True
+    wear: Optional[object] = None
 
 
 @dataclass(frozen=True)
