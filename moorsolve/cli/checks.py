@@ -66,6 +66,9 @@ def run_check(args) -> int:
     print_text(check_json(report) if args.json else format_check_table(report))
     if args.report is not None and not args.json:
         print_text(f"wrote {args.report}")
+    if not args.json and case.checks is not None and case.checks.wear is not None:
+        print_text("note: the new mooring; the case gives corrosion or creep, so check it "
+                   "at the end of its design life too: --end-of-life")
     return EXIT_OK if report.passed else EXIT_NO_EQUILIBRIUM
 
 

@@ -26,7 +26,7 @@ def end_of_life_text(eol) -> str:
                f"{eol.splash_depth_m:g} m below still water, " if eol.splash_depth_m
                is not None else "no splash zone given, ")
             + "catenary the rest"]
-    header = (f"{'line':>8}{'seg':>4} {'type':<14}{'zone':<18}{'L m':>9}{'L eol m':>9}"
+    header = (f"{'line':>8}{'seg':>4} {'type':<14}{'zone':<24}{'L m':>9}{'L eol m':>9}"
               f"{'mm/y':>6}{'d mm':>7}{'d eol':>7}{'d fat':>7}{'MBL kN':>8}{'eol kN':>8}"
               f"{'w N/m':>8}{'eol N/m':>8}")
     head += ["", header, "-" * len(header)]
@@ -35,7 +35,7 @@ def end_of_life_text(eol) -> str:
             rate = part["rate_mm_per_y"]
             head.append(
                 f"{(row['line'] if k == 0 else ''):>8}{(row['segment'] if k == 0 else ''):>4} "
-                f"{(row['line_type'] if k == 0 else ''):<14}{part['zone']:<18}"
+                f"{(row['line_type'] if k == 0 else ''):<14}{part['zone']:<24}"
                 f"{part['length_m']:9.2f}{part['length_eol_m']:9.2f}"
                 f"{'-' if rate is None else f'{rate:.2f}':>6}"
                 f"{_mm(part['diameter_m']):>7}{_mm(part['diameter_eol_m']):>7}"
