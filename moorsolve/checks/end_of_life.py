@@ -144,8 +144,14 @@ def end_of_life_case(case: Case, *, tol=None) -> tuple:
                 segments.append(seg)
                 continue
             factor = 1.0 if creep is None else creep_factor(creep, life)
-            runs = runs_of[j] if runs_of is not None else [("catenary", seg.length)]
+            runs = runs_of[j] if runs_of is not None else [("whole", seg.length)]
             parts = _parts(runs, rates, runs_of is None)
+            if len(parts) > 1 and case.environment.seabed.sloped and case.form == "legs":
+                raise CaseError(
+                    "checks.corrosion.rate",
+                    f"rates by zone split line {line.name!r} segment {j} into "
+                    f"{len(parts)} parts, but on a sloped seabed or a bathymetry grid a leg "
+                    "takes one segment; give one rate for all zones (or a flat seabed)")
             for k, (zone, length, rate) in enumerate(parts):
                 new = _worn_type(lt, rate, factor, life, zone if len(parts) > 1 else None,
                                  line, j, types)
@@ -153,7 +159,8 @@ def end_of_life_case(case: Case, *, tol=None) -> tuple:
                 if k:
                     clumps.append(None)
                 segments.append(Segment(line_type=new, length=length * factor))
-            rows.append(_row(line, j, seg, runs, parts, factor, creep, life, types))
+            rows.append(_row(line, j, seg, None if runs_of is None else runs, parts, factor,
+                             creep, life, types))
         lines.append(dataclasses.replace(line, segments=tuple(segments),
                                          clumps=tuple(clumps)))
     eol = dataclasses.replace(case, lines=tuple(lines), line_types=types, source=None)
@@ -225,7 +232,7 @@ def _row(line, j, seg, runs, parts, factor, creep, life, types) -> dict:
             "weight_N_per_m": lt.weight_in_water,
             "weight_eol_N_per_m": new.weight_in_water})
     return {"line": line.name, "segment": j, "line_type": lt.name,
-            "zones": zone_lengths(runs), "length_m": seg.length,
+            "zones": None if runs is None else zone_lengths(runs), "length_m": seg.length,
             "length_eol_m": seg.length * factor,
             "creep_strain": None if creep is None else factor - 1.0, "parts": out}
 

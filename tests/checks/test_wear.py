@@ -352,3 +352,26 @@ def test_cli_end_of_life_without_wear_is_bad_input(tmp_path, capsys):
     status, out, err = _run(["check", path, "--end-of-life"], capsys)
     assert status == 2
     assert "checks.corrosion" in err and "Traceback" not in err
+
+
+def test_zone_rates_on_a_sloped_seabed_are_refused_one_rate_is_not():
+    # A leg on a sloped seabed takes one segment: splitting it by zone is refused, by name.
+    data = fixed_line(ZONED)
+    data["environment"]["seabed"] = {"gradient": [0.01, 0.0]}
+    data["legs"][0]["anchor"] = [0.0, 0.0, -20.0]
+    with pytest.raises(CaseError, match="sloped seabed") as info:
+        end_of_life_case(moorsolve.load_case(data))
+    assert info.value.field == "checks.corrosion.rate"
+    data["checks"]["corrosion"] = {"rate": "0.4 mm/y"}
+    eol, rows = end_of_life_case(moorsolve.load_case(data))
+    assert [s.line_type.name for s in eol.lines[0].segments] == ["chain@eol"]
+    assert moorsolve.solve(eol).legs[0].mbl_N == pytest.approx(3e6 * (70 / 80) ** 2,
+                                                                rel=1e-12)
+
+
+def test_creep_alone_needs_no_zones():
+    case = moorsolve.load_case(dock({"design_life": "5 y", "creep": {
+        "line_types": {"poly": {"rate": "0.4 %/y"}}}}, poly=True))
+    eol, rows = end_of_life_case(case)
+    assert all(r["zones"] is None for r in rows)
+    assert rows[0]["length_eol_m"] == pytest.approx(50.0 * 1.02, rel=1e-14)
