@@ -163,7 +163,8 @@ def end_of_life_case(case: Case, *, tol=None) -> tuple:
                              creep, life, types))
         lines.append(dataclasses.replace(line, segments=tuple(segments),
                                          clumps=tuple(clumps)))
-    eol = dataclasses.replace(case, lines=tuple(lines), line_types=types, source=None)
+    eol = dataclasses.replace(case, name=f"{case.name} (end of life, {life:g} y)",
+                              lines=tuple(lines), line_types=types, source=None)
     return eol, tuple(rows)
 
 
