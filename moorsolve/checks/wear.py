@@ -35,7 +35,8 @@ from .. import catalog as line_catalog
 from ..model.lines import LineType
 
 __all__ = ["corroded_diameter", "area_ratio", "corroded_mbl", "fatigue_diameter",
-           "creep_factor", "corroded_line_type", "crept_line_type", "sources"]
+           "segment_fatigue_diameter", "creep_factor", "corroded_line_type",
+           "crept_line_type", "sources"]
 
 
 def corroded_diameter(diameter: float, rate: float, years: float) -> float:
@@ -101,6 +102,29 @@ def fatigue_diameter(diameter: float, rate: float, design_life: float) -> float:
     return corroded_diameter(diameter, 0.5 * rate, design_life)
 
 
+def segment_fatigue_diameter(case, line: str, segment: int) -> float | None:
+    """The fatigue diameter [m] of segment ``segment`` (from end A) of line ``line`` under
+    the case's ``checks.corrosion`` and ``checks.design_life`` (:func:`fatigue_diameter`).
+
+    The nominal diameter where no corrosion applies; None for a line type without a
+    diameter. With rates by zone the largest is taken: a line's fatigue is worst at its
+    ends (the fairlead in the splash zone, the touchdown on the bottom), so the smallest
+    diameter is the safe one. Raises KeyError for an unknown line, IndexError for a
+    segment it does not have.
+    """
+    found = {x.name: x for x in case.lines}[line]
+    lt = found.segments[segment].line_type
+    if lt.diameter is None:
+        return None
+    wear = None if case.checks is None else case.checks.wear
+    rates = (None if wear is None or wear.corrosion is None
+             else wear.corrosion.rates_for(line, segment, lt))
+    if rates is None:
+        return lt.diameter
+    return fatigue_diameter(lt.diameter, max(rates.splash, rates.catenary, rates.bottom),
+                            wear.design_life)
+
+
 def creep_factor(rate: float, design_life: float) -> float:
     """Length at end of life over new unstretched length: ``1 + rate design_life``."""
     return 1.0 + rate * design_life
@@ -137,9 +161,13 @@ def crept_line_type(line_type: LineType, factor: float, name: str) -> LineType:
 
 
 @lru_cache(maxsize=1)
-def sources() -> tuple:
-    """The laws and constants used here with their sources (rows of ``wear_sources.csv``:
-    ``name``, ``law_or_value``, ``source``, ``status``)."""
+def _source_rows() -> tuple:
     text = resources.files(__package__).joinpath("wear_sources.csv").read_text("utf-8")
     body = "\n".join(line for line in text.splitlines() if not line.startswith("#"))
-    return tuple(dict(row) for row in csv.DictReader(io.StringIO(body)))
+    return tuple(tuple(row.items()) for row in csv.DictReader(io.StringIO(body)))
+
+
+def sources() -> tuple:
+    """The laws and constants used here with their sources (rows of ``wear_sources.csv``:
+    ``name``, ``law_or_value``, ``source``, ``status``), fresh dicts on every call."""
+    return tuple(dict(row) for row in _source_rows())

@@ -375,3 +375,18 @@ def test_creep_alone_needs_no_zones():
     eol, rows = end_of_life_case(case)
     assert all(r["zones"] is None for r in rows)
     assert rows[0]["length_eol_m"] == pytest.approx(50.0 * 1.02, rel=1e-14)
+
+
+def test_segment_fatigue_diameter_for_a_fatigue_analysis():
+    from moorsolve.checks.wear import segment_fatigue_diameter
+    case = moorsolve.load_case(dock({"design_life": "20 y", "corrosion": {
+        "rate": {"splash": "0.8 mm/y", "catenary": "0.2 mm/y", "bottom": "0.4 mm/y"},
+        "splash_depth": "4 m"}}, poly=True))
+    # The largest zone rate, half the loss over the life: 60 - 0.8 x 20 / 2 = 52 mm.
+    assert segment_fatigue_diameter(case, "E", 0) == pytest.approx(0.052, rel=1e-12)
+    # The rope does not corrode: its nominal diameter.
+    assert segment_fatigue_diameter(case, "E", 1) == pytest.approx(0.120, rel=1e-12)
+    new = moorsolve.load_case(dock({}))
+    assert segment_fatigue_diameter(new, "W", 1) == pytest.approx(0.060, rel=1e-12)
+    with pytest.raises(KeyError):
+        segment_fatigue_diameter(case, "X", 0)
