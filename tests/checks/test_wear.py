@@ -390,3 +390,41 @@ def test_segment_fatigue_diameter_for_a_fatigue_analysis():
     assert segment_fatigue_diameter(new, "W", 1) == pytest.approx(0.060, rel=1e-12)
     with pytest.raises(KeyError):
         segment_fatigue_diameter(case, "X", 0)
+
+
+def test_zones_add_up_on_a_multi_segment_line_with_clumps():
+    from conftest import ROOT
+    data = dict(moorsolve.load_case(ROOT / "cases" / "chain_polyester_clump.yaml").source)
+    # Fairleads 10 m deep: a 12 m splash depth reaches the top chain.
+    zoned = copy.deepcopy(ZONED)
+    zoned["corrosion"]["splash_depth"] = "12 m"
+    data["checks"] = {"damaged": False, **zoned,
+                      "creep": {"line_types": {"polyester160": {"rate": "0.05 %/y"}}}}
+    case = moorsolve.load_case(data)
+    result = moorsolve.solve(case)
+    eol, rows = end_of_life_case(case)
+    for row in rows:
+        assert sum(row["zones"].values()) == pytest.approx(row["length_m"], rel=1e-12)
+        assert sum(p["length_m"] for p in row["parts"]) == pytest.approx(row["length_m"],
+                                                                         rel=1e-12)
+    for line, lr, new in zip(case.lines, result.legs, eol.lines):
+        mine = [r for r in rows if r["line"] == line.name]
+        # The bottom chain holds all the grounded length; the top chain meets the splash.
+        assert mine[0]["zones"]["bottom"] == pytest.approx(lr.grounded_length_m, abs=1e-6)
+        assert mine[2]["zones"]["splash"] > 0
+        # The clump stays at the chain-polyester joint, the new joints are bare.
+        n0 = len(mine[0]["parts"])
+        assert new.joint_clumps[n0 - 1] == line.joint_clumps[0]
+        assert all(c is None for i, c in enumerate(new.joint_clumps) if i != n0 - 1)
+        # The polyester is 25 x 0.05 % = 1.25 % longer at the end of life.
+        assert mine[1]["length_eol_m"] == pytest.approx(500.0 * 1.0125, rel=1e-12)
+    assert run_end_of_life(case, damaged=False).report.conditions[0].solved
+
+
+def test_shallow_water_inside_the_splash_depth_is_all_splash_or_bottom():
+    data = fixed_line({"design_life": "10 y", "corrosion": {
+        "rate": {"splash": "0.8 mm/y", "catenary": "0.2 mm/y", "bottom": "0.4 mm/y"},
+        "splash_depth": "25 m"}})
+    eol, rows = end_of_life_case(moorsolve.load_case(data))
+    zones = rows[0]["zones"]
+    assert zones["catenary"] == 0.0 and zones["splash"] > 0 and zones["bottom"] > 0
