@@ -146,11 +146,11 @@ def end_of_life_case(case: Case, *, tol=None) -> tuple:
             factor = 1.0 if creep is None else creep_factor(creep, life)
             runs = runs_of[j] if runs_of is not None else [("whole", seg.length)]
             parts = _parts(runs, rates, runs_of is None)
-            if len(parts) > 1 and case.environment.seabed.sloped and case.form == "legs":
+            if len(parts) > 1 and case.environment.seabed.sloped:
                 raise CaseError(
                     "checks.corrosion.rate",
                     f"rates by zone split line {line.name!r} segment {j} into "
-                    f"{len(parts)} parts, but on a sloped seabed or a bathymetry grid a leg "
+                    f"{len(parts)} parts, but on a sloped seabed or a bathymetry grid a line "
                     "takes one segment; give one rate for all zones (or a flat seabed)")
             for k, (zone, length, rate) in enumerate(parts):
                 new = _worn_type(lt, rate, factor, life, zone if len(parts) > 1 else None,
