@@ -428,3 +428,17 @@ def test_shallow_water_inside_the_splash_depth_is_all_splash_or_bottom():
     eol, rows = end_of_life_case(moorsolve.load_case(data))
     zones = rows[0]["zones"]
     assert zones["catenary"] == 0.0 and zones["splash"] > 0 and zones["bottom"] > 0
+
+
+def test_rates_as_plain_numbers_and_design_life_alone():
+    # Plain numbers: metres of diameter per year, a strain fraction per year.
+    case = moorsolve.load_case(dock({"design_life": 10, "corrosion": {"rate": 0.0003},
+                                     "creep": {"rate": 0.002}}, poly=True))
+    wear = case.checks.wear
+    assert wear.corrosion.rate.catenary == pytest.approx(3e-4, rel=1e-14)
+    assert wear.creep.rate == pytest.approx(2e-3, rel=1e-14)
+    # A design life alone (no corrosion, no creep) is checked and wears nothing.
+    assert moorsolve.load_case(dock({"design_life": "25 y"})).checks.wear is None
+    with pytest.raises(CaseError) as info:
+        moorsolve.load_case(dock({"design_life": "300 y"}))
+    assert info.value.field == "checks.design_life"
