@@ -261,8 +261,13 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
     grounded_damaged = nullable_quantity(m, path, "min_grounded_length_damaged", "length", ge=0)
     for key, value in (("min_grounded_length", grounded),
                        ("min_grounded_length_damaged", grounded_damaged)):
+        if value is None:
+            continue
+        if not legs:
+            raise CaseError(field_path(path, key), "the scene has no mooring legs to ground; "
+                                                  "leave the limit out")
         longest = max(leg.length for leg in legs)
-        if value is not None and value >= longest:
+        if value >= longest:
             raise CaseError(field_path(path, key), f"{format_si(value, 'length')} must be shorter "
                                               f"than the longest leg "
                                               f"({format_si(longest, 'length')})")

@@ -301,3 +301,17 @@ def test_utilisation_has_one_meaning_and_t_over_mbl_is_named_apart():
             format_check_table(report)
     with pytest.warns(DeprecationWarning, match="t_over_mbl"):
         assert result.legs[0].utilisation == result.legs[0].t_over_mbl
+
+
+def test_checks_of_a_scene_without_legs():
+    """A berth of fenders and piles alone takes a checks block; a grounded-length limit there
+    is refused by name instead of failing on an empty list."""
+    import yaml
+    raw = yaml.safe_load(open(ROOT / "cases" / "pontoon_piles.yaml"))
+    raw["checks"] = {"standard": "api-rp-2sk"}
+    assert moorsolve.load_case(raw).checks.standard == "api-rp-2sk"
+    raw["checks"] = {"min_grounded_length": 5}
+    with pytest.raises(CaseError) as err:
+        moorsolve.load_case(raw)
+    assert err.value.field == "checks.min_grounded_length"
+    assert "no mooring legs" in str(err.value)
