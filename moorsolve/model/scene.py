@@ -52,6 +52,9 @@ class Checks:
         Default anchor type for legs that do not give their own.
     damaged : bool
         Also run the damaged conditions (each leg removed in turn).
+    anchors : tuple of AnchorDesign
+        At most one :class:`~moorsolve.model.anchors.AnchorDesign` per anchor kind: the
+        capacity each kind of anchor is checked against, and its mass for the cost.
     """
 
     standard: str = "api-rp-2sk"
@@ -62,6 +65,11 @@ class Checks:
     min_grounded_length_damaged: Optional[float] = None
     anchor: AnchorType = field(default_factory=AnchorType)
     damaged: bool = True
+    anchors: tuple = ()
+
+    def anchor_design(self, kind: str):
+        """The :class:`~moorsolve.model.anchors.AnchorDesign` of anchor ``kind``, or None."""
+        return next((a for a in self.anchors if a.kind == kind), None)
 
 
 @dataclass(frozen=True)
