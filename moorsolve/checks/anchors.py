@@ -220,9 +220,6 @@ def anchor_items(condition: str, condition_kind: str, leg, mean_leg, leg_result,
             util = max(h, v)
             text = f"{crit.standard} pile: {factors}: H <= H_max and V <= V_max"
         value, limit, unit = util, 1.0, "-"
-    if load.vertical:
-        text += ("; the line turns vertical in the soil above the padeye: padeye at 90 deg, "
-                 "tension an upper bound")
     detail["utilisation"] = util
     return [CheckItem(condition=condition, leg=name, check=CHECK, value=value, limit=limit,
                       unit=unit, utilisation=util, passed=util <= 1.0, criterion=text,
