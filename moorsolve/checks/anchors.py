@@ -78,11 +78,12 @@ def _table() -> tuple:
 
 def anchor_criterion(standard: str, anchor: str, condition: str, analysis: str,
                      consequence_class: int = 1) -> AnchorCriterion | None:
-    """The row for an anchor kind, or None where the table has none."""
+    """The row for an anchor kind, or None where the table has none. A row of analysis
+    ``any`` holds for every analysis (DNV's factors do not depend on the method)."""
     for row in _table():
-        if (row.standard, row.anchor, row.condition, row.analysis) == (
-                standard, anchor, condition, analysis) and row.consequence_class in (
-                None, consequence_class):
+        if (row.standard, row.anchor, row.condition) == (standard, anchor, condition) \
+                and row.analysis in (analysis, "any") \
+                and row.consequence_class in (None, consequence_class):
             return row
     return None
 
