@@ -240,3 +240,14 @@ def test_embedded_non_catalogue_line_needs_its_diameter():
     with pytest.raises(CaseError) as err:
         run_checks(moorsolve.load_case(data))
     assert err.value.field == "checks.anchors.drag.embedment.line_diameter"
+
+
+def test_cli_bad_anchor_input_exits_2_naming_the_field(tmp_path, capsys):
+    import yaml
+    from moorsolve.cli import main
+    data = _case({"drag": {"fluke_weight": "10 t", "soil": "peat"}})
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(data))
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "checks.anchors.drag.soil" in err and "Traceback" not in err
