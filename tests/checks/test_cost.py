@@ -99,3 +99,25 @@ def test_study_cost_basis_errors():
         moorsolve.optimise(case, _study("cost", {"chain81": {"material": "chain"}},
                                         currency="EUR"))
     assert err.value.field == "currency"
+
+
+def test_cost_command(capsys):
+    import json
+
+    from moorsolve.cli import main
+    assert main(["cost", DOCK, "--material", "chain81=chain", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    case = moorsolve.load_case(DOCK)
+    assert out["lines"] == pytest.approx(moorsolve.cost(
+        case, materials={"chain81": "chain"}).lines, rel=1e-12)
+    assert main(["cost", DOCK, "--price", "chain81=300"]) == 0
+    text = capsys.readouterr().out
+    total = 300 * sum(leg.length for leg in case.legs)
+    assert f"{total:,.0f}" in text and "not priced: L1 anchor" in text
+    for argv, field in ((["cost", DOCK], "--material"),
+                        (["cost", DOCK, "--price", "chain81=-1"], "--price"),
+                        (["cost", DOCK, "--price", "nope=1"], "--price"),
+                        (["cost", DOCK, "--material", "chain81"], "--material")):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert f"bad input: {field}" in err and "Traceback" not in err
