@@ -251,3 +251,23 @@ def test_cli_bad_anchor_input_exits_2_naming_the_field(tmp_path, capsys):
     assert main(["check", str(path)]) == 2
     err = capsys.readouterr().err
     assert "checks.anchors.drag.soil" in err and "Traceback" not in err
+
+
+def test_design_offset_method_checks_the_anchor_at_the_design_offset():
+    # API RP 2SK in a sea state: the anchor load is the held (design offset) solve's.
+    import yaml
+    from pathlib import Path
+    data = yaml.safe_load((Path(__file__).parents[2] / "cases" / "buoy_sea.yaml").read_text())
+    data["checks"] = dict(data.get("checks") or {}, standard="api-rp-2sk", damaged=False,
+                          anchor={"type": "pile", "allowed_uplift_angle_deg": 89},
+                          anchors={"pile": {"h_max": "200 kN", "v_max": "150 kN"}})
+    report = run_checks(moorsolve.load_case(data))
+    c = report.conditions[0]
+    assert c.method == "design offset"
+    for item in (i for i in c.items if i.check == "anchor capacity"):
+        held = c.held.leg(item.leg)
+        assert item.detail["mudline_tension_N"] == held.anchor_tension_N
+        assert item.detail["mudline_tension_N"] != c.result.leg(item.leg).anchor_tension_N
+        assert item.utilisation == pytest.approx(max(
+            1.6 * item.detail["padeye_horizontal_N"] / 200e3,
+            2.0 * item.detail["padeye_vertical_N"] / 150e3), rel=1e-12)
