@@ -34,6 +34,7 @@ from importlib import resources
 
 from scipy.optimize import brentq
 
+from ..catalog.anchors import drag_curve
 from ..errors import CaseError
 from .criteria import Criterion
 from .items import CheckItem
@@ -203,6 +204,10 @@ def anchor_items(condition: str, condition_kind: str, leg, mean_leg, leg_result,
         capacity = design.capacity / gm
         util = demand / capacity
         detail.update(design_N=demand, capacity_N=design.capacity, design_capacity_N=capacity)
+        if design.soil is not None:
+            # The least anchor of the same design that would hold (the maker's curve).
+            curve = drag_curve(design.soil, design.design)
+            detail["required_mass_kg"] = curve.mass_kg(demand * gm)
         text = f"{crit.standard} drag anchor: {factors}: T_padeye <= UHC"
         value, limit, unit = demand, capacity, "N"
     else:

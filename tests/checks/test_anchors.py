@@ -160,6 +160,11 @@ def test_drag_anchor_check_with_embedment():
     assert item.utilisation == pytest.approx(1.8 * load.tension / drag_curve(
         "soft_clay").capacity_N(10e3), rel=1e-12)
     assert item.passed == (item.utilisation <= 1)
+    # the least Stevpris Mk6 that holds the design load: the curve inverted
+    required = d["required_mass_kg"]
+    assert drag_curve("soft_clay").capacity_N(required) == pytest.approx(d["design_N"],
+                                                                       rel=1e-12)
+    assert required / 10e3 == pytest.approx(item.utilisation ** (1 / 0.93), rel=1e-12)
     # the uplift rule stays for a drag anchor
     assert any(i.check == "anchor uplift" for i in report.conditions[0].items)
     from moorsolve.report.check_text import check_json, format_check_table
