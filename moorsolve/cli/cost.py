@@ -56,8 +56,13 @@ def run_cost(args) -> int:
         if not exc.field.startswith("materials."):
             raise
         name = exc.field.split(".", 1)[1]
-        raise CaseError("--material", f"{exc.detail}: give --material {name}=MATERIAL or "
-                                      f"--price {name}=USD_PER_M") from None
+        if name in materials:           # an unknown material: the basis's list says it
+            raise CaseError("--material", exc.detail) from None
+        from ..catalog.costs import line_materials
+        raise CaseError("--material", f"line type {name!r} is not a catalogue line: give "
+                                      f"--material {name}=MATERIAL (one of "
+                                      f"{', '.join(line_materials())}) or --price "
+                                      f"{name}=USD_PER_M") from None
     if args.json:
         print_text(json.dumps(_finite(priced.to_dict()), indent=2))
     else:
