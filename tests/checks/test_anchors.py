@@ -3,7 +3,10 @@
 import math
 
 import pytest
+from hypothesis import given, settings, strategies as st
 from scipy.integrate import solve_ivp
+
+from hypothesis_budget import examples
 
 import moorsolve
 from moorsolve.catalog.anchors import drag_curve
@@ -108,6 +111,22 @@ def test_padeye_transfer_edges():
         padeye_load(-1.0, 0.0, 1.0, 0.4)
 
 
+@settings(max_examples=examples(200), deadline=None)
+@given(tension=st.floats(1e3, 5e7), angle=st.floats(0.0, 1.5),
+       resistance=st.floats(0.0, 2e7), friction=st.floats(0.0, 1.0))
+def test_padeye_transfer_properties(tension, angle, resistance, friction):
+    load = padeye_load(tension, angle, resistance, friction)
+    assert angle <= load.angle <= math.pi / 2 and 0 <= load.tension <= tension
+    if load.vertical:           # no root below 90 deg: f(pi/2) <= 0
+        assert tension * ((math.pi / 2) ** 2 - angle ** 2) <= 2 * resistance * math.exp(
+            friction * (math.pi / 2 - angle)) * (1 + 1e-12)
+    elif resistance > 0:        # the root: T_a / 2 (theta_a^2 - theta_m^2) = z Q_av
+        lhs = load.tension * (load.angle ** 2 - angle ** 2) / 2
+        assert lhs == pytest.approx(resistance, rel=1e-9, abs=1e-9 * tension)
+    assert load.tension == pytest.approx(
+        tension * math.exp(-friction * (load.angle - angle)), rel=1e-12)
+
+
 # ---- suction anchor envelope -------------------------------------------------------------
 
 
@@ -122,6 +141,18 @@ def test_suction_envelope_exponents_and_corners():
     y = (1 - x ** a) ** (1 / b)
     assert envelope_utilisation(x, y, a, b) == pytest.approx(1.0, rel=1e-12)
     assert envelope_utilisation(0.5 * x, 0.5 * y, a, b) == pytest.approx(0.5, rel=1e-12)
+
+
+@settings(max_examples=examples(200), deadline=None)
+@given(h=st.floats(1e-4, 5.0), v=st.floats(1e-4, 5.0), ratio=st.floats(0.2, 8.0),
+       scale=st.floats(0.1, 10.0))
+def test_suction_envelope_utilisation_is_radial(h, v, ratio, scale):
+    a, b = suction_exponents(ratio, 1.0)
+    u = envelope_utilisation(h, v, a, b)
+    assert (h / u) ** a + (v / u) ** b == pytest.approx(1.0, rel=1e-10)
+    assert max(h, v) <= u * (1 + 1e-12)
+    assert envelope_utilisation(scale * h, scale * v, a, b) == pytest.approx(scale * u,
+                                                                             rel=1e-10)
 
 
 # ---- the check, end to end ---------------------------------------------------------------
