@@ -36,6 +36,7 @@ _NAMES = {
     "natural_periods": ".studies.stiffness", "one_sided_stiffness": ".studies.one_sided",
     "stiffness_bounds": ".studies.bounds",
     "motions": ".dynamics.motions",
+    "cost": ".checks.cost",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 __all__ = ["CheckItem"]
 
@@ -13,7 +13,8 @@ class CheckItem:
     """One check: a value against its limit.
 
     ``utilisation`` is demand over capacity (``<= 1`` passes; ``inf`` when the capacity is
-    zero or missing).
+    zero or missing). ``detail`` holds what a check has beyond the one value (an
+    anchor's load at the padeye, its capacity and factors).
     """
 
     condition: str
@@ -25,6 +26,7 @@ class CheckItem:
     utilisation: float
     passed: bool
     criterion: str
+    detail: dict = field(default_factory=dict, compare=False)
 
     def to_dict(self) -> dict:
         return dataclasses.asdict(self)

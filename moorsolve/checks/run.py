@@ -10,7 +10,8 @@ Per leg and condition:
 * line tension: ``factor * T <= capacity_factor * MBL`` (criteria table of the standard);
   ``T`` is the larger of the fairlead and anchor tension;
 * anchor uplift: ``drag`` none, ``deadweight`` up to ``allowed_uplift`` [N], ``pile`` up to
-  ``allowed_uplift_angle_deg`` at the anchor;
+  ``allowed_uplift_angle_deg`` at the anchor; and, where ``checks.anchors`` gives the
+  anchor's design, its capacity against the load at its padeye (:mod:`.anchors`);
 * grounded length at least ``min_grounded_length`` for legs that can rest on the seabed;
 * fibre rope: none of it on the seabed (legs with a ``fibre`` line type), and the least
   tension along each segment of a line type with a ``min_tension`` at least that (a rope
@@ -37,6 +38,7 @@ from ..model import AnchorType, Case, Checks
 from ..model.edit import without_line
 from ..solve import Result, solve
 from ..model.restraint import drifting_bodies
+from .anchors import anchor_items
 from .berth import (fender_criterion, guide_criterion, hawser_criterion, is_hawser)
 from .criteria import Criterion, criterion, standard_rows
 from .design_offset import (MEAN_ONLY, MEAN_ONLY_DNV, METHOD_DESIGN_OFFSET,
@@ -348,7 +350,9 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol,
         if not leg.a.on_seabed:
             continue        # end A is not an anchor (a bridle leg, a shared line)
         anchor = leg.anchor_type or checks.anchor
-        items.append(_uplift(name, lr, anchor))
+        if anchor.kind != "suction":        # a suction anchor's envelope takes the uplift
+            items.append(_uplift(name, lr, anchor))
+        items += anchor_items(name, kind, leg, lm, lr, checks, crit)
         minimum = (checks.min_grounded_length if kind == "intact"
                    else _damaged(checks.min_grounded_length_damaged,
                                  checks.min_grounded_length))

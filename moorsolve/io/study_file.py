@@ -10,9 +10,12 @@ Schema (SI units or strings with units)::
     objective: mass | cost                      default mass
     line_types:                                 optional, per line type of the case
       NAME: {mass_per_length [kg/m],            needed for mass unless a catalogue line
-             cost_per_length [per m]}           needed for cost
+             cost_per_length [per m],           for cost; default: priced from the cost
+             material: chain | chain_studlink   basis (moorsolve.catalog.costs, USD) by its
+               | wire | polyester | nylon | hmpe}   material (a catalogue line's by default)
     anchor_cost: >= 0                           optional, per anchor (cost objective)
-    currency: str                               optional label, default EUR
+    currency: str                               optional label, default EUR (USD, and
+                                                only USD, where the basis prices a line)
     variables:                                  required, at least one
       VAR: {type: length | anchor_distance | anchor_radius,
             legs: "*" | NAME | [NAME, ...],     the legs that share the value
@@ -42,6 +45,7 @@ from os import PathLike
 from pathlib import Path
 
 
+from ..catalog import costs as cost_basis
 from .. import catalog as line_catalog
 from ..model.study import OBJECTIVES, VARIABLE_KINDS, DesignVariable, Limits, LoadCase, Study
 from ..errors import CaseError
@@ -94,7 +98,8 @@ def load_study(source, case: Case) -> Study:
     if not isinstance(objective, str) or objective not in OBJECTIVES:
         raise CaseError("objective", f"{show_value(objective)} is not an objective; allowed: "
                                      f"{', '.join(OBJECTIVES)}")
-    mass, cost = _line_types(m.get("line_types") or {}, case)
+    mass, cost, materials = _line_types(m.get("line_types") or {}, case)
+    from_basis = False
     used = sorted({seg.line_type.name for leg in case.legs for seg in leg.segments})
     for lt_name in used:
         lt = case.line_types[lt_name]
@@ -105,13 +110,25 @@ def load_study(source, case: Case) -> Study:
                                 "not a catalogue line, so its mass in air is unknown")
             mass[lt_name] = line_catalog.entries()[lt.catalog].mass_per_length(lt.diameter)
         if objective == "cost" and lt_name not in cost:
-            raise CaseError(f"line_types.{lt_name}.cost_per_length",
-                            f"required for the cost objective (line type {lt_name!r})")
+            try:
+                cost[lt_name] = cost_basis.line_price(
+                    lt, materials.get(lt_name), gravity=case.environment.gravity,
+                    water_density=case.environment.water_density).cost_per_length
+            except (KeyError, ValueError) as exc:
+                raise CaseError(f"line_types.{lt_name}.cost_per_length",
+                                f"required for the cost objective unless the cost basis "
+                                f"prices it: {str(exc).strip(chr(39))}") from None
+            from_basis = True
     anchor_cost = 0.0 if m.get("anchor_cost") is None else quantity(
         m["anchor_cost"], "anchor_cost", "dimensionless", ge=0)
-    currency = m.get("currency", "EUR")
+    currency = m.get("currency", cost_basis.CURRENCY if from_basis else "EUR")
     if not isinstance(currency, str) or not currency.strip():
         raise CaseError("currency", f"{show_value(currency)} must be a non-empty label")
+    if from_basis and currency != cost_basis.CURRENCY:
+        raise CaseError("currency", f"{show_value(currency)}: a line priced from the cost "
+                                    f"basis is in {cost_basis.CURRENCY}; give every "
+                                    "cost_per_length in your currency or use "
+                                    f"{cost_basis.CURRENCY}")
     variables = _variables(m["variables"], "variables", case)
     limits = _limits(m.get("limits") or {}, "limits", case, Limits())
     load_cases = _load_cases(m["load_cases"], "load_cases", case, limits)
@@ -123,17 +140,24 @@ def load_study(source, case: Case) -> Study:
 
 def _line_types(raw, case: Case):
     m = check_mapping(raw, "line_types", optional=tuple(case.line_types))
-    mass, cost = {}, {}
+    mass, cost, materials = {}, {}, {}
     for lt_name, entry in m.items():
         path = field_path("line_types", lt_name)
-        e = check_mapping(entry, path, optional=("mass_per_length", "cost_per_length"))
+        e = check_mapping(entry, path, optional=("mass_per_length", "cost_per_length",
+                                                 "material"))
+        if e.get("material") is not None:
+            if e["material"] not in cost_basis.line_materials():
+                raise CaseError(field_path(path, "material"),
+                                f"{show_value(e['material'])} is not a material of the cost "
+                                f"basis; allowed: {', '.join(cost_basis.line_materials())}")
+            materials[lt_name] = e["material"]
         if e.get("mass_per_length") is not None:
             mass[lt_name] = quantity(e["mass_per_length"], field_path(path, "mass_per_length"),
                                       "mass_per_length", gt=0)
         if e.get("cost_per_length") is not None:
             cost[lt_name] = quantity(e["cost_per_length"], field_path(path, "cost_per_length"),
                                       "dimensionless", ge=0)
-    return mass, cost
+    return mass, cost, materials
 
 
 def _leg_names(raw, path: str, case: Case) -> tuple:

@@ -68,12 +68,14 @@ Schema (SI units, ``[...]`` lists)::
     checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
              offset_limit, offset_limit_damaged, min_grounded_length,
              min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool,
-             design_life, corrosion, creep (moorsolve.model.build_wear)}   optional
+             design_life, corrosion, creep (moorsolve.model.build_wear),
+             anchors: {drag | suction | pile | deadweight: DESIGN}}   optional
+                                               (DESIGN: moorsolve.model.build_anchors)
     moordyn: {...}                             optional; MoorDyn columns moorsolve does not use,
                                                kept for export (moorsolve.model.moordyn_block);
                                                the solver ignores it
     ANCHOR: {type: drag} | {type: deadweight, allowed_uplift [N]}
-            | {type: pile, allowed_uplift_angle_deg}
+            | {type: pile, allowed_uplift_angle_deg} | {type: suction}
 """
 
 from __future__ import annotations
@@ -88,6 +90,7 @@ from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
+from .build_anchors import build_anchors
 from .build_network import build_network, check_held, end_position
 from .build_sea import sea_state_fields
 from .build_wear import WEAR_KEYS, wear_fields
@@ -244,8 +247,8 @@ def _compass(m: dict, path: str) -> Compass:
 def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Checks:
     m = check_mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
                                       "offset_limit_damaged", "min_grounded_length",
-                                      "min_grounded_length_damaged", "anchor", "damaged")
-                      + WEAR_KEYS)
+                                      "min_grounded_length_damaged", "anchor", "damaged",
+                                      "anchors") + WEAR_KEYS)
     defaults = Checks()
     standard = m.get("standard", defaults.standard)
     if not isinstance(standard, str) or standard not in STANDARDS:
@@ -276,7 +279,9 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
     damaged = m.get("damaged", True)
     if not isinstance(damaged, bool):
         raise CaseError(field_path(path, "damaged"), f"{show_value(damaged)} is not true or false")
-    return Checks(standard=standard, consequence_class=int(cclass), offset_limit=offset,
+    anchors = (() if m.get("anchors") is None
+               else build_anchors(m["anchors"], field_path(path, "anchors")))
+    return Checks(anchors=anchors, standard=standard, consequence_class=int(cclass), offset_limit=offset,
                   offset_limit_damaged=offset_damaged, min_grounded_length=grounded,
                   min_grounded_length_damaged=grounded_damaged, anchor=anchor,
                   damaged=damaged, wear=wear_fields(m, path, line_types or {}, legs))

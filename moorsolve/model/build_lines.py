@@ -251,7 +251,7 @@ def _segments(raw, path: str, environment: Environment, line_types: dict,
 # ---- mooring checks ---------------------------------------------------------------------
 
 _ANCHOR_KEYS = {"drag": (), "deadweight": ("allowed_uplift",),
-                "pile": ("allowed_uplift_angle_deg",)}
+                "pile": ("allowed_uplift_angle_deg",), "suction": ()}
 
 
 def _anchor_type(raw, path: str) -> AnchorType:

@@ -110,7 +110,7 @@ class Segment:
     pretension: Optional[float] = None
 
 
-ANCHOR_KINDS = ("drag", "deadweight", "pile")
+ANCHOR_KINDS = ("drag", "deadweight", "pile", "suction")
 
 
 @dataclass(frozen=True)
@@ -120,7 +120,8 @@ class AnchorType:
     ``drag``: no uplift at all (the line must leave the anchor horizontally);
     ``deadweight`` (sinker block, Hu & Tang's floating dock): an upward pull up to
     ``allowed_uplift`` [N]; ``pile``: an uplift angle at the anchor up to
-    ``allowed_uplift_angle_deg``.
+    ``allowed_uplift_angle_deg``; ``suction``: any uplift, the H-V capacity envelope of
+    ``checks.anchors.suction`` governs.
     """
 
     kind: str = "drag"

@@ -55,6 +55,9 @@ class Checks:
     wear : Wear or None
         Corrosion and creep over the design life, for the end-of-life check
         (:mod:`moorsolve.model.build_wear`, :mod:`moorsolve.checks.end_of_life`).
+    anchors : tuple of AnchorDesign
+        At most one :class:`~moorsolve.model.anchors.AnchorDesign` per anchor kind: the
+        capacity each kind of anchor is checked against, and its mass for the cost.
     """
 
     standard: str = "api-rp-2sk"
@@ -66,6 +69,11 @@ class Checks:
     anchor: AnchorType = field(default_factory=AnchorType)
     damaged: bool = True
     wear: Optional[object] = None
+    anchors: tuple = ()
+
+    def anchor_design(self, kind: str):
+        """The :class:`~moorsolve.model.anchors.AnchorDesign` of anchor ``kind``, or None."""
+        return next((a for a in self.anchors if a.kind == kind), None)
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,7 @@ import json
 import math
 from typing import TYPE_CHECKING
 
+from .anchors import anchor_check_lines
 from .berth import berth_check_lines
 from .text import _finite
 
@@ -91,6 +92,7 @@ def format_check_table(report: CheckReport) -> str:
         # A body lost in this condition, under its row where the eye is.
         lines += [f"{'':<4}LOST: {d['message']}" for d in c.drifting]
     lines += berth_check_lines(report, wide)  # hawsers, fenders, guides
+    lines += anchor_check_lines(report, wide)
     lines += _design_offset_lines(report, wide)
     lines.append("")
     failures = report.failures

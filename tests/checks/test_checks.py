@@ -212,7 +212,7 @@ def test_checks_section_validation():
                           ({"consequence_class": 3}, "checks.consequence_class"),
                           ({"offset_limit": -1}, "checks.offset_limit"),
                           ({"min_grounded_length": "200 m"}, "checks.min_grounded_length"),
-                          ({"anchor": {"type": "suction"}}, "checks.anchor.type"),
+                          ({"anchor": {"type": "vla"}}, "checks.anchor.type"),
                           ({"anchor": {"type": "deadweight"}},
                            "checks.anchor.allowed_uplift"),
                           ({"anchor": {"type": "drag", "allowed_uplift": 5}},
