@@ -95,15 +95,15 @@ def test_solve_stays_the_function_after_its_package_is_imported():
     must not replace the function."""
     out = subprocess.run([sys.executable, "-c", textwrap.dedent("""
         import moorsolve
-        import moorsolve.solve.cache, moorsolve.solve.equilibrium
+        import moorsolve.solve.assembly.cache, moorsolve.solve.equilibrium
         from moorsolve.solve import Result, get_problem
         print(callable(moorsolve.solve), moorsolve.solve.__module__)
-        import moorsolve.solve.newton as newton        # the package's modules, as usual
+        import moorsolve.solve.kernels.newton as newton        # the package's modules, as usual
         from moorsolve.solve import equilibrium
         print(newton.__name__, equilibrium.solve.__module__, moorsolve.solve.stability.__name__)
         print(moorsolve.solve(moorsolve.load_case("cases/buoy_vida.yaml")).converged)
     """)], cwd=ROOT, capture_output=True, text=True, check=True)
-    assert out.stdout.split() == ["True", "moorsolve", "moorsolve.solve.newton",
+    assert out.stdout.split() == ["True", "moorsolve", "moorsolve.solve.kernels.newton",
                                   "moorsolve.solve.equilibrium", "moorsolve.solve.stability",
                                   "True"]
 

@@ -31,23 +31,23 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..model import Case
-from .bathymetry import plane_slices, point_plane_slices, solve_on_grid
-from .cache import get_problem
-from .diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, over_rated,
+from .lines.bathymetry import plane_slices, point_plane_slices, solve_on_grid
+from .assembly.cache import get_problem
+from .result.diagnosis import (START_CERTIFIED, SUCCESS_STATUSES, diagnose, over_mbl, over_rated,
                         pulled_straight, unbalanced_force)
 from ..audit import audit as audit_result
 from ..audit import result_warnings
-from .outcome import build_result, hull_out_of_range
-from .polish import polish
-from .prepared import line_facts
-from .problem import LINE_COLUMNS
-from .result import Certificate, Result
-from .stability import assess, find_stable
-from .start import initial_point
-from .strategies import (YAW_JUMP, ipopt_strategy, judge_point, newton_strategy,
+from .result.outcome import build_result, hull_out_of_range
+from .kernels.polish import polish
+from .assembly.prepared import line_facts
+from .assembly.problem import LINE_COLUMNS
+from .result.classes import Certificate, Result
+from .stability.static import assess, find_stable
+from .kernels.start import initial_point
+from .kernels.strategies import (YAW_JUMP, ipopt_strategy, judge_point, newton_strategy,
                          remember_lines, remembered_answer, rest_point, turn_jump,
                          turn_jumps)
-from .weathervane import WALKED, stable_heading, yaw_unknowns
+from .stability.weathervane import WALKED, stable_heading, yaw_unknowns
 
 log = logging.getLogger(__name__)
 
@@ -75,7 +75,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         the case's ``solver.tol`` (1e-9).
     solver : {"ipopt", "newton"}
         ``"ipopt"`` (the default and the reference) or the compiled Newton fast path
-        (:mod:`moorsolve.solve.newton`), which falls back to the IPOPT strategy when it
+        (:mod:`moorsolve.solve.kernels.newton`), which falls back to the IPOPT strategy when it
         does not certify; ``Result.solver`` tells which produced the result.
     allow_overload : bool
         Return an equilibrium in which a line exceeds its minimum breaking load, or a fender
@@ -110,7 +110,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
     Safe to call from many threads at once: the solvers of one problem are used by one
     thread at a time (:attr:`EquilibriumProblem.lock`); different problems run in parallel.
     On a bathymetry grid the solve is repeated until every line's seabed plane settles
-    (:mod:`moorsolve.solve.bathymetry`); ``_planes`` is one round's planes.
+    (:mod:`moorsolve.solve.lines.bathymetry`); ``_planes`` is one round's planes.
     """
     if solver not in SOLVERS:
         raise ValueError(f"solver {solver!r}: must be one of {', '.join(SOLVERS)}")

@@ -33,7 +33,7 @@ PROBE = textwrap.dedent("""
     logging.getLogger("moorsolve").addHandler(Keep())
     logging.getLogger("moorsolve").setLevel(logging.INFO)
     import moorsolve
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     scene = json.loads(sys.argv[1])
     case = moorsolve.load_case(scene)
     first = moorsolve.solve(case, solver="newton")
@@ -93,8 +93,8 @@ def test_compile_off_runs_interpreted_with_the_same_answer(tmp_path):
 def test_a_new_structure_gets_its_own_library(tmp_path):
     """The key is the structure (and scales): a third leg means a new library."""
     import moorsolve
-    from moorsolve.solve.cache import get_problem
-    from moorsolve.solve.newton import kernel_key
+    from moorsolve.solve.assembly.cache import get_problem
+    from moorsolve.solve.kernels.newton import kernel_key
 
     two = moorsolve.load_case(SCENE)
     three = dict(SCENE, legs=SCENE["legs"] + [

@@ -12,7 +12,7 @@ import math
 import casadi as ca
 import numpy as np
 
-from ..concurrency import SYMBOLIC_LOCK
+from ...concurrency import SYMBOLIC_LOCK
 from .ipopt_solvers import IpoptSolvers
 
 

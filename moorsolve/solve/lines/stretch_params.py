@@ -15,8 +15,8 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from ..model import Case
-from ..physics.stretch import law_model, numeric_law
+from ...model import Case
+from ...physics.stretch import law_model, numeric_law
 
 __all__ = ["law_model", "stretch_parameters", "law_slot", "line_laws", "numeric_law",
            "start_ea", "stiffness_scale_column", "baranov_n_column"]

@@ -12,7 +12,7 @@ import math
 import casadi as ca
 import numpy as np
 
-from ..concurrency import SYMBOLIC_LOCK
+from ...concurrency import SYMBOLIC_LOCK
 
 #: Outputs of :meth:`EquilibriumProblem.post_function`: the certificate, the condensed
 #: stiffness and its stability test, the seven outputs of ``report``, and the segment and
@@ -82,7 +82,7 @@ class Certification:
         Result need from a solved point, in one call. Compiled with the Newton kernel."""
         with self._lock:
             if self._post is None:
-                from .stability import clearly_stable_graph, stiffness_graph
+                from ..stability.static import clearly_stable_graph, stiffness_graph
                 with SYMBOLIC_LOCK:
                     x = ca.MX.sym("x", self.n_x)
                     p = ca.MX.sym("p", self.n_p)

@@ -37,10 +37,10 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ..physics.drag import current_velocity, line_drag
-from ..physics.stretch import Law
-from .layout import DISCRETE_PARAMS
-from .lines import LineBlock
+from ...physics.drag import current_velocity, line_drag
+from ...physics.stretch import Law
+from ..assembly.layout import DISCRETE_PARAMS
+from .blocks import LineBlock
 
 #: Columns of ``EquilibriumProblem.node_report``: per node of a discretised leg (anchor
 #: first), its position [m], the line tension there [N] (the end resultant at the anchor and

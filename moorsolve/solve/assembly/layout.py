@@ -36,9 +36,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..model import Case
-from .bathymetry import PLANE, initial_planes
-from .stretch_params import law_slot
+from ...model import Case
+from ..lines.bathymetry import PLANE, initial_planes
+from ..lines.stretch_params import law_slot
 
 ENV_PARAMS = ("wind_speed", "wind_toward", "current_speed", "current_toward",
               "wave_hs", "wave_toward", "force_x", "force_y", "moment_z", "load_factor",
@@ -252,7 +252,7 @@ def build_layout(case: Case, kinds) -> ParameterLayout:
     for key in SEABED_PARAMS:
         add(f"seabed.{key}")
     if case.environment.seabed.bathymetry is not None:
-        # Each line's own seabed plane (solve/bathymetry.py), only on a grid.
+        # Each line's own seabed plane (solve/lines/bathymetry.py), only on a grid.
         for line in case.lines:
             add(f"line[{line.name}].seabed", len(PLANE))
         # and each free point's (the plane touching the grid where it rests).

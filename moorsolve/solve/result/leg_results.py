@@ -11,14 +11,14 @@ import math
 
 import numpy as np
 
-from ..physics.air import air_line_profile
-from ..physics.catenary import LegKind, air_part
-from ..physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
+from ...physics.air import air_line_profile
+from ...physics.catenary import LegKind, air_part
+from ...physics.profile import (leg_profile, segment_profile, sloped_leg_profile,
                                surface_leg_profile, surface_segment_profile, with_air_part)
-from ..physics.wall_tension import wall_tension
-from ..audit import AuditFailure, air_hint
-from .result import LazyProfile, LegResult
-from .stretch_params import numeric_law
+from ...physics.wall_tension import wall_tension
+from ...audit import AuditFailure, air_hint
+from .classes import LazyProfile, LegResult
+from ..lines.stretch_params import numeric_law
 
 _PROFILE_POINTS = 51
 

@@ -13,16 +13,16 @@ import dataclasses
 import math
 import numpy as np
 
-from ..model import Case
-from ..model.build_network import end_position as case_end_position
-from ..physics.catenary import LegKind
-from ..physics.closed_form import initial_state
-from ..physics.profile import leg_profile
-from .prepared import parameter_vector
-from .line_kinds import can_ground, discretised, line_kind
-from ..concurrency import LockedLRU
-from .prepared import geometry_key, line_kinds_of, per_case
-from .stretch_params import start_ea
+from ...model import Case
+from ...model.build_network import end_position as case_end_position
+from ...physics.catenary import LegKind
+from ...physics.closed_form import initial_state
+from ...physics.profile import leg_profile
+from ..assembly.prepared import parameter_vector
+from ..lines.line_kinds import can_ground, discretised, line_kind
+from ...concurrency import LockedLRU
+from ..assembly.prepared import geometry_key, line_kinds_of, per_case
+from ..lines.stretch_params import start_ea
 
 #: Closed-form line states by scene (structure and parameters).
 _REST_STATES = LockedLRU(256)
@@ -150,7 +150,7 @@ def _compute_rest_states(case: Case) -> list:
             # the line's plane), the touchdown's vertical force shifted by H t.
             env = case.environment
             if env.seabed.bathymetry is not None:
-                # The first seabed plane's slope (solve/bathymetry.py): the chord to the
+                # The first seabed plane's slope (solve/lines/bathymetry.py): the chord to the
                 # seabed under the upper end.
                 t = (env.seabed_z(upper[0], upper[1]) - env.seabed_z(lower[0], lower[1])) / X
             else:

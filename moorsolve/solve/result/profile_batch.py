@@ -140,7 +140,7 @@ def _grounded(s, H, V, L, w, mu, c) -> dict:
 
 
 def _orient(planar: dict, params: list) -> list:
-    """As :func:`~moorsolve.solve.outcome._orient`, on rows: each planar profile in 3-D
+    """As :func:`~moorsolve.solve.result.outcome._orient`, on rows: each planar profile in 3-D
     from end A."""
     lower = np.array([p["lower"] for p in params], float)
     units = []

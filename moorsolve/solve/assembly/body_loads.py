@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..errors import CaseError
-from ..model import (BodyLoads, DragLoad, DriftCoefficient, Environment, HuTangCurrent,
+from ...errors import CaseError
+from ...model import (BodyLoads, DragLoad, DriftCoefficient, Environment, HuTangCurrent,
                      HuTangDrift, HuTangWind)
-from ..physics.loads import (body_to_global, drag_load_body, drift_coefficient_body,
+from ...physics.loads import (body_to_global, drag_load_body, drift_coefficient_body,
                              hu_tang_current_body, hu_tang_drift_body, hu_tang_wind_body)
 
 #: The body load effects, in the order they are reported.
@@ -162,8 +162,8 @@ def body_loads_3d(loads: BodyLoads, environment: Environment, R, yaw, wind_speed
     """
     import casadi as ca
 
-    from ..physics.kinematics import cross
-    from ..physics.loads import _centre_moment
+    from ...physics.kinematics import cross
+    from ...physics.loads import _centre_moment
 
     planar = body_loads(dataclasses.replace(loads, force=None), environment, yaw,
                         wind_speed, wind_toward, current_speed, current_toward, wave_hs,

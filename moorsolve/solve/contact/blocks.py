@@ -51,12 +51,12 @@ from dataclasses import dataclass
 
 import casadi as ca
 
-from ..constants import HULL_STIFFNESS
-from ..model import Case
-from ..physics.contact import (fender_reaction, fischer_burmeister, friction_force,
+from ...constants import HULL_STIFFNESS
+from ...model import Case
+from ...physics.contact import (fender_reaction, fischer_burmeister, friction_force,
                                natural_residual, plane_gap)
-from ..physics.kinematics import rotation_matrix
-from .layout import hull_behind
+from ...physics.kinematics import rotation_matrix
+from ..assembly.layout import hull_behind
 
 #: Columns of ``EquilibriumProblem.contact_report``: gap and opening [m], reaction [N], the
 #: friction force [N] and the tangential slip [m] (global vectors), the force on the body

@@ -172,7 +172,7 @@ class LegResult:
     seabed_deviation_m: Optional[float] = None
 
     def __repr__(self) -> str:
-        from ..report.notebook import leg_repr
+        from ...report.notebook import leg_repr
         return leg_repr(self)
 
     @property
@@ -382,11 +382,11 @@ class Result:
         raise KeyError(name)
 
     def __repr__(self) -> str:
-        from ..report.notebook import result_repr
+        from ...report.notebook import result_repr
         return result_repr(self)
 
     def _repr_html_(self) -> str:
-        from ..report.notebook import result_html
+        from ...report.notebook import result_html
         return result_html(self)
 
     @property

@@ -14,12 +14,12 @@ import time
 
 import numpy as np
 
-from ..model import Case
-from .layout import LOAD_FACTOR_INDEX
+from ...model import Case
+from ..assembly.layout import LOAD_FACTOR_INDEX
 from .newton import STATUS_TEXT
 from .polish import polish_certified
-from .prepared import geometry_key
-from .stability import pseudo_transient
+from ..assembly.prepared import geometry_key
+from ..stability.static import pseudo_transient
 from .start import initial_point
 
 _LOAD_STEPS = (0.25, 0.5, 0.75, 1.0)

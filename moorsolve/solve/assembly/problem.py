@@ -31,20 +31,20 @@ import threading
 import casadi as ca
 import numpy as np
 
-from ..model import DOFS, Case
-from ..model.line_table import LINE_COLUMNS
-from ..physics.kinematics import cross, rotation_matrix
-from .certify import Certification
-from ..concurrency import SYMBOLIC_LOCK
+from ...model import DOFS, Case
+from ...model.line_table import LINE_COLUMNS
+from ...physics.kinematics import cross, rotation_matrix
+from ..result.certify import Certification
+from ...concurrency import SYMBOLIC_LOCK
 from .nodes import node_balances
-from .numerics import SolverAccess
-from .discrete import discrete_leg
+from ..kernels.numerics import SolverAccess
+from ..lines.discrete import discrete_leg
 from .effects import scene_effects
 from .layout import BODY_PARAMS, ENV_PARAMS, LINE_PARAMS, SEABED_PARAMS, build_layout
-from .contact import add_contacts, contact_points, element_reactions
-from .stretch_params import line_laws
-from .line_kinds import LineKind, line_kinds
-from .lines import closing_force, multi_block, plane_geometry, seabed_height, single_block
+from ..contact.blocks import add_contacts, contact_points, element_reactions
+from ..lines.stretch_params import line_laws
+from ..lines.line_kinds import LineKind, line_kinds
+from ..lines.blocks import closing_force, multi_block, plane_geometry, seabed_height, single_block
 from .prepared import parameter_vector
 
 ROTATIONS = ("roll", "pitch", "yaw")
@@ -187,7 +187,7 @@ class EquilibriumProblem(Certification, SolverAccess):
         for pi, point in enumerate(case.free_points):
             j0 = self.nodes.index(("point", pi, "x"))
             px, py, zeta = x[j0], x[j0 + 1], x[j0 + 2]
-            # On a grid each point rests on its own plane (solve/bathymetry.py).
+            # On a grid each point rests on its own plane (solve/lines/bathymetry.py).
             bed = (dict(zip(SEABED_PARAMS, ca.vertsplit(par(f"point[{point.name}].seabed"))))
                    if grid else seabed)
             pos = ca.vertcat(px, py, seabed_height(bed, px, py) + ca.fmax(zeta, 0))

@@ -14,15 +14,15 @@ import math
 
 import numpy as np
 
-from ..model import Case
-from ..audit import audit_findings
-from ..model.restraint import drifting_bodies
-from .newton import CONVERGED, STATUS_TEXT
-from .prepared import line_facts
-from .problem import LINE_COLUMNS
-from .result import Result
-from .start import end_positions
-from .weathervane import WALKED
+from ...model import Case
+from ...audit import audit_findings
+from ...model.restraint import drifting_bodies
+from ..kernels.newton import CONVERGED, STATUS_TEXT
+from ..assembly.prepared import line_facts
+from ..assembly.problem import LINE_COLUMNS
+from .classes import Result
+from ..kernels.start import end_positions
+from ..stability.weathervane import WALKED
 
 __all__ = ["diagnose", "over_mbl", "over_rated", "pulled_straight", "unbalanced_force",
            "SUCCESS_STATUSES"]

@@ -38,8 +38,8 @@ import time
 import casadi as ca
 import numpy as np
 
-from .newton import FLAT, STEP_LIMIT
-from .stability import _rows, assess
+from ..kernels.newton import FLAT, STEP_LIMIT
+from .static import _rows, assess
 
 #: Heading step of the walk [rad], and the smallest step tried where a held solve fails.
 _STEP = math.radians(10.0)

@@ -11,11 +11,11 @@ import math
 import threading
 from collections import OrderedDict
 
-from ..model import Case
+from ...model import Case
 from .prepared import HashedKey, per_case
 from .prepared import structure_key
 from .problem import EquilibriumProblem
-from .start import scales
+from ..kernels.start import scales
 
 
 class ProblemCache:

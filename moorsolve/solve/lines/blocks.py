@@ -57,12 +57,12 @@ from functools import lru_cache
 
 import casadi as ca
 
-from ..physics.air import air_line
-from ..physics.catenary import LEG_OUTPUTS, air_part, leg_function, weightless_line_function
-from ..physics.segments import (descent_force, lifted_segment_function, straight_segment_function,
+from ...physics.air import air_line
+from ...physics.catenary import LEG_OUTPUTS, air_part, leg_function, weightless_line_function
+from ...physics.segments import (descent_force, lifted_segment_function, straight_segment_function,
                                 surface_leg_function, surface_segment_function)
-from ..physics.sloped import sloped_leg_function
-from ..physics.stretch import Law
+from ...physics.sloped import sloped_leg_function
+from ...physics.stretch import Law
 from .line_kinds import LineKind, SegmentKind
 
 __all__ = ["LineBlock", "closing_force", "plane_geometry", "single_block", "multi_block",
@@ -127,7 +127,7 @@ def single_block(problem, i, kind: LineKind, xs, x, iu, P, seabed, lower, upper)
                 mu=P["friction"])
     law = None
     if block.law is not None:
-        # The stretch law's parameters (solve/stretch_params.py).
+        # The stretch law's parameters (solve/lines/stretch_params.py).
         args["law"] = ca.vertcat(*problem.line_laws[i][0])
         law = Law(block.law, problem.line_laws[i][0])
     if block.air_ends:
@@ -275,7 +275,7 @@ def multi_block(problem, i, kind: LineKind, xs, x, iu, values, P, seabed, lower,
             h = ca.fmax(upper[2] - z_bed, 0)
             d = ca.fmax(-upper[2], 0)
         L, w, c = seg[k]["length"], seg[k]["weight"], seg[k]["ea_inv"]
-        # A stretch law other than Hooke's: its parameters (solve/stretch_params.py).
+        # A stretch law other than Hooke's: its parameters (solve/lines/stretch_params.py).
         law = {} if sk.law is None else {"law": ca.vertcat(*laws[k])}
         if not top:
             bound = None if sk.law is None else Law(sk.law, laws[k])

@@ -31,7 +31,7 @@ import time
 
 import numpy as np
 
-from .result import DeferredStability, Stability
+from ..result.classes import DeferredStability, Stability
 
 #: A mode whose eigenvalue is below this fraction of the largest is examined as zero.
 _ZERO = 1e-7

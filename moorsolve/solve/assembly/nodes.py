@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ..physics.hydrostatics import linear_buoyancy, member_buoyancy, weight
-from ..physics.kinematics import generalized_forces
+from ...physics.hydrostatics import linear_buoyancy, member_buoyancy, weight
+from ...physics.kinematics import generalized_forces
 from . import body_loads as body_load_models
 from .layout import MEMBER_PARAMS
 

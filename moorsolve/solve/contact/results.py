@@ -12,10 +12,10 @@ import math
 
 import numpy as np
 
-from ..model import Case
-from ..model.build_network import rotation
-from ..physics.contact import fender_energy
-from .contact import CONTACT_COLUMNS
+from ...model import Case
+from ...model.build_network import rotation
+from ...physics.contact import fender_energy
+from .blocks import CONTACT_COLUMNS
 
 
 def _rows(problem, x, p) -> list:

@@ -8,10 +8,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ..model import Case, Line
-from ..model.build_network import end_position
-from ..physics.catenary import LegKind
-from ..physics.stretch import StretchModel
+from ...model import Case, Line
+from ...model.build_network import end_position
+from ...physics.catenary import LegKind
+from ...physics.stretch import StretchModel
 from .stretch_params import law_model
 
 #: Columns of ``EquilibriumProblem.segment_report``: per segment of a multi-segment line

@@ -14,16 +14,16 @@ import math
 
 import numpy as np
 
-from ..model import Case
-from ..physics.kinematics import wrap_degrees
-from .bathymetry import plane_slices
-from .contact_results import contact_results, hawser_results
+from ...model import Case
+from ...physics.kinematics import wrap_degrees
+from ..lines.bathymetry import plane_slices
+from ..contact.results import contact_results, hawser_results
 from .fibre import fibre_grounded, fibre_notes
-from .line_kinds import SEGMENT_COLUMNS
-from .prepared import line_facts
+from ..lines.line_kinds import SEGMENT_COLUMNS
+from ..assembly.prepared import line_facts
 from .profile_batch import ProfileBatch
-from .problem import LINE_COLUMNS
-from .result import LegList, Result
+from ..assembly.problem import LINE_COLUMNS
+from .classes import LegList, Result
 from .leg_results import discrete_result, line_notes, multi_result, single_result
 
 _PROFILE_POINTS = 51
@@ -64,7 +64,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
                         for r in seg_table if int(r[0]) == i]
                 lr = multi_result(case, line, kind, row, rows, u)
             else:
-                # On a grid the line's own plane (solve/bathymetry.py) gives its slope.
+                # On a grid the line's own plane (solve/lines/bathymetry.py) gives its slope.
                 plane = p[planes[i]][1:] if grid else None
                 lr = single_result(case, line, kind, row, u, problem.contact_stiffness,
                                     cert, batch, plane)

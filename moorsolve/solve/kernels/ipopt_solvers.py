@@ -19,7 +19,7 @@ import casadi as ca
 import numpy as np
 
 from .bundled_blas import limit_bundled_blas
-from ..concurrency import SYMBOLIC_LOCK
+from ...concurrency import SYMBOLIC_LOCK
 
 __all__ = ["IpoptSolvers", "COMPILE_AFTER"]
 
@@ -114,7 +114,7 @@ class IpoptSolvers:
         functions give the same iterates, so nothing is gained by waiting, and a solve
         that waited would spend its time budget on the compiler.
         """
-        from ..compiled import Library, compile_mode
+        from ...compiled import Library, compile_mode
         from .newton import COMPILE_MAX_UNKNOWNS
         pr = self.problem
         with pr.lock:
@@ -157,7 +157,7 @@ class IpoptSolvers:
         if not self.compiled:
             return [float(v) for v in self.problem.certificate(x, p)]
         if self._certificate is None:
-            from ..compiled import CompiledFunction
+            from ...compiled import CompiledFunction
             self._certificate = CompiledFunction(self.library.fns[-1], self.library.path)
         fn = self._certificate
         fn.inputs[0][:] = x
@@ -199,7 +199,7 @@ def _library_key(problem) -> str:
     """What decides the generated code: the problem's structure, scales and sizes (the
     scales are constants in the graph) and whether, and how, it is smoothed
     (:class:`.compiled.Library` adds the code version)."""
-    from .prepared import structure_key
+    from ..assembly.prepared import structure_key
     return repr(("ipopt-nlp", structure_key(problem.case), problem.force_scale,
                  problem.length_scale, problem.moment_scale, problem.n_x, problem.n_p,
                  problem.smoothed, problem.IPOPT_PROXIMITY))

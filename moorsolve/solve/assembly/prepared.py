@@ -38,9 +38,9 @@ from typing import NamedTuple
 import numpy as np
 
 from . import layout
-from ..model import Body, BodyLoads
-from ..concurrency import LockedLRU
-from .contact import contact_points
+from ...model import Body, BodyLoads
+from ...concurrency import LockedLRU
+from ..contact.blocks import contact_points
 
 # Re-entrant: a case freed while the table is locked calls _forget on the same thread.
 _LOCK = threading.RLock()
@@ -219,7 +219,7 @@ def _kinds_context(case) -> tuple:
 def line_kinds_of(case) -> tuple:
     """:func:`~.line_kinds.line_kinds` of ``case``, as a tuple, computed once per case and per
     lines tuple in the same context."""
-    from .line_kinds import line_kinds
+    from ..lines.line_kinds import line_kinds
 
     key = (id(case.lines), _kinds_context(case))
     hit = _KINDS.get(key)
@@ -316,7 +316,7 @@ def _parameter_parts(case) -> tuple:
     if hit is not None and hit[0] is case.lines:
         lines, laws = hit[1], hit[2]
     else:
-        from .stretch_params import stretch_parameters
+        from ..lines.stretch_params import stretch_parameters
         lines = np.concatenate([layout.line_parameters(case),
                                 layout.segment_parameters(case, kinds)])
         laws = stretch_parameters(case)

@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from ..model.build_network import end_position
+from ...model.build_network import end_position
 
 __all__ = ["PLANE", "initial_planes", "planes_from_legs", "solve_on_grid", "deviation",
            "point_plane", "point_plane_slices"]

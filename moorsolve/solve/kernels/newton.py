@@ -249,7 +249,7 @@ def newton_function(problem, max_iterations: int = MAX_ITERATIONS) -> ca.Functio
     # The stability test of the point reached (1: clearly stable; see .stability), so a
     # sweep judges each point without another call.
     # The condensed stiffness goes out too: a sweep row carries its smallest eigenvalue.
-    from .stability import clearly_stable_graph, stiffness_graph
+    from ..stability.static import clearly_stable_graph, stiffness_graph
     if problem.smoothed:
         n_keep = sum(owner == "body" for owner, _, _ in problem.nodes)
         stable, K = ca.MX(0), ca.MX(ca.DM.nan(n_keep * n_keep, 1))
@@ -275,7 +275,7 @@ def _inverse_step_limits(problem) -> list:
 def kernel_key(problem) -> str:
     """What decides the kernel's generated code: the problem's structure, its scales and
     sizes and the kernel's constants (:class:`.compiled.Library` adds the code version)."""
-    from .prepared import structure_key
+    from ..assembly.prepared import structure_key
     return repr((structure_key(problem.case), problem.force_scale, problem.length_scale,
                  problem.moment_scale, problem.n_x, problem.n_p, MAX_ITERATIONS,
                  _BACKTRACKS, _ARMIJO, STEP_LIMIT, LINE_STEP_LIMIT, _ARROW_NODES))
@@ -296,7 +296,7 @@ class NewtonKernel:
     """
 
     def __init__(self, problem, *, compile: bool = True):
-        from ..compiled import Library
+        from ...compiled import Library
 
         self.problem = problem
         self.function = newton_function(problem)
