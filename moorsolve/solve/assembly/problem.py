@@ -7,7 +7,7 @@ Unknowns, in this order:
   point's ``x, y`` and a signed height ``zeta`` above the seabed: the point is at
   ``z = seabed + max(zeta, 0)`` and the seabed pushes it up with ``max(-zeta, 0)`` times the
   scene's stiffness scale (exact complementarity, the device of the lumped-node lines);
-- then every line's own unknowns (:mod:`.lines`).
+- then every line's own unknowns (:mod:`.lines.blocks`).
 
 Equations: every line's residuals first, then the balance of every node: for a body the
 generalized forces of its free DOFs (:func:`~moorsolve.physics.kinematics.generalized_forces`:
@@ -127,7 +127,7 @@ class EquilibriumProblem(Certification, SolverAccess):
             self.line_offsets.append(len(scale))
             scale += kind.scales(force_scale, length_scale)
         self.leg_offsets = self.line_offsets
-        #: Every contact (fenders, guide pads; :mod:`.contact`), its unknowns after the
+        #: Every contact (fenders, guide pads; :mod:`.contact.blocks`), its unknowns after the
         #: lines'.
         self.contacts = contact_points(case)
         self.contact_offsets = []

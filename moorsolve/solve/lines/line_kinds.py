@@ -1,5 +1,5 @@
 """What each line of a case is: its kind (one segment, several, lumped nodes), which end
-is lower, and the scales of its unknowns (:mod:`.lines` builds its block in the problem;
+is lower, and the scales of its unknowns (:mod:`.blocks` builds its block in the problem;
 see there for the models).
 """
 

@@ -75,8 +75,8 @@ class Certification:
     # -- everything a Result needs, in one evaluation -------------------------------------
     def post_function(self) -> ca.Function:
         """``post(x, p)``: the certificate ``[force, moment, t_max]``, the condensed
-        stiffness of the free body DOFs (:func:`.stability.stiffness_graph`) with its
-        stability test (:func:`.stability.clearly_stable_graph`) and the outputs of
+        stiffness of the free body DOFs (:func:`.static.stiffness_graph`) with its
+        stability test (:func:`.static.clearly_stable_graph`) and the outputs of
         :attr:`report`, :attr:`segment_report` and :attr:`node_report` (see
         :data:`POST_OUTPUTS`), all dense: what certifying, the stability check and the
         Result need from a solved point, in one call. Compiled with the Newton kernel."""

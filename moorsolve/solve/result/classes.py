@@ -351,7 +351,7 @@ class Result:
     #: energy_J, utilisation (compression over rated deflection), overloaded (past it),
     #: height_m (full compression), hull_bears (fully compressed: the hull bears on the
     #: wall), hull_reaction_N, hull_force_N, hull_gap_m, force_N, contact_point_m
-    #: (:mod:`.contact_results`).
+    #: (:mod:`.contact.results`).
     fenders: tuple = ()
     #: Per pile guide: in_contact, reaction_N, force_N, offset_m, height_m, on_pile,
     #: pile_moment_Nm and its pads.

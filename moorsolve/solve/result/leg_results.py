@@ -1,4 +1,4 @@
-"""Each line's part of a :class:`~.result.Result`: its end forces, state, segments or nodes
+"""Each line's part of a :class:`~.classes.Result`: its end forces, state, segments or nodes
 and profile (drawn with the closed forms of :mod:`moorsolve.physics.catenary` in the line's
 vertical plane: multi-segment lines joint by joint, lumped-node lines through their nodes),
 and the notes a line earns.

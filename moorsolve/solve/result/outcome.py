@@ -1,4 +1,4 @@
-"""Turn a solved point into a :class:`~.result.Result`: bodies, points, every line's end
+"""Turn a solved point into a :class:`~.classes.Result`: bodies, points, every line's end
 forces, states and profile, the loads and the notes.
 
 Every reported quantity comes from the same solution vector through the problem's report
@@ -35,7 +35,7 @@ def build_result(problem, case: Case, x, p, cert, certified, solver="ipopt", not
 
     ``post`` is :meth:`EquilibriumProblem.post` at ``x`` when the caller has it. The legs
     are made from its arrays when first read, and a one-segment line's profile when it is
-    first read (:class:`~.result.LegList`, :class:`~.result.LazyProfile`): the same
+    first read (:class:`~.classes.LegList`, :class:`~.classes.LazyProfile`): the same
     numbers, paid for only by a caller that reads them.
     """
     x = np.array(x, dtype=float)        # fresh: the Result's state, non-finite entries 0
