@@ -37,7 +37,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(ROOT))
 
 import moorsolve  # noqa: E402
-from moorsolve.solve.cache import get_problem  # noqa: E402
+from moorsolve.solve.assembly.cache import get_problem  # noqa: E402
 from moorsolve.solve.equilibrium import rest_point  # noqa: E402
 
 SCENES = {

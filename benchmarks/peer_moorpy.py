@@ -61,7 +61,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from moorsolve.model import DEGREES_OF_FREEDOM, BodyLoads, Case, Environment
-from moorsolve.solve.line_kinds import discretised
+from moorsolve.solve.lines.line_kinds import discretised
 
 #: MoorPy release the benchmark was built and checked against.
 MOORPY_VERSION = "1.3.0"

@@ -254,8 +254,8 @@ def time_kernel(scene: BenchScene, loads: list, warm: bool, *, tol: float = 1e-9
     on its outputs. A point the kernel cannot certify counts as not converged here
     (``solve`` and ``sweep`` would hand it to IPOPT).
     """
-    from moorsolve.solve.cache import get_problem
-    from moorsolve.solve.start import initial_point
+    from moorsolve.solve.assembly.cache import get_problem
+    from moorsolve.solve.kernels.start import initial_point
 
     col = Column("moorsolve newton kernel", "moorsolve", warm)
     cases = [scene.with_load(load) for load in loads]

@@ -157,7 +157,7 @@ def time_solves(case, make, loads, options, clock: Clock) -> None:
 
 
 def time_kernel(case, make, loads, clock: Clock) -> None:
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     from moorsolve.solve.equilibrium import rest_point
     cases = [make(case, load) for load in loads]
     problem = get_problem(cases[0])
@@ -190,7 +190,7 @@ def wait_steady(case) -> None:
     IPOPT's functions (a process compiles them after a few solves) and the closed-form
     audit's checks compiled."""
     from moorsolve.audit import closed_form as audit_closed_form
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     problem = get_problem(case)
     if problem._newton is not None:
         problem._newton.wait_compiled()
@@ -344,12 +344,12 @@ SCALING_PROBE = textwrap.dedent("""
     t0 = time.perf_counter()
     import moorsolve
     from run import ring_case
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     case = ring_case({n})
     t1 = time.perf_counter()
     first = moorsolve.solve(case, solver="newton", audit=False)
     t2 = time.perf_counter()
-    from moorsolve.solve.newton import COMPILE_MAX_UNKNOWNS
+    from moorsolve.solve.kernels.newton import COMPILE_MAX_UNKNOWNS
     kernel = get_problem(case).newton()
     compiles = get_problem(case).n_x <= COMPILE_MAX_UNKNOWNS
     compiled_at_first = kernel.compiled

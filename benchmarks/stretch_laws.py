@@ -41,7 +41,7 @@ sys.path.insert(0, str(ROOT))
 import moorsolve  # noqa: E402
 from moorsolve.physics.stretch import NumericLaw, StretchModel  # noqa: E402
 from moorsolve.solve.equilibrium import get_problem, rest_point  # noqa: E402
-from moorsolve.solve.prepared import parameter_vector  # noqa: E402
+from moorsolve.solve.assembly.prepared import parameter_vector  # noqa: E402
 
 CASE = ROOT / "cases" / "fpu_polyester_table.yaml"
 HEADINGS = ("environment.wind.toward_deg", "environment.current.toward_deg")

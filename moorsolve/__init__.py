@@ -27,7 +27,8 @@ _NAMES = {
     "case_to_moordyn": ".io.moordyn_write", "export_moordyn": ".studies.moordyn_export",
     "import_moorpy": ".io.moorpy_yaml", "export_moorpy": ".io.moorpy_yaml",
     "Case": ".model.scene",
-    "Certificate": ".solve.result", "LegResult": ".solve.result", "Result": ".solve.result",
+    "Certificate": ".solve.result.classes", "LegResult": ".solve.result.classes",
+    "Result": ".solve.result.classes",
     "sweep": ".studies.sweep",
     "offset_envelope": ".studies.envelope",
     "sensitivity": ".studies.sensitivity",
@@ -49,7 +50,7 @@ class _Solve:
 
     ``moorsolve.solve`` is both this callable and the :mod:`moorsolve.solve` package: it is
     bound here, after the (light) package, so importing the package's modules later leaves
-    it in place, and its attributes are the package's, so ``import moorsolve.solve.newton
+    it in place, and its attributes are the package's, so ``import moorsolve.solve.kernels.newton
     as newton`` works as for any package.
     """
 

@@ -97,8 +97,8 @@ def code_version() -> str:
     root = Path(__file__).resolve().parent
     digest = hashlib.sha256(ca.__version__.encode())
     for folder in ("solve", "physics", "audit"):
-        for path in sorted((root / folder).glob("*.py")):
-            digest.update(path.name.encode() + path.read_bytes())
+        for path in sorted((root / folder).rglob("*.py")):
+            digest.update(path.relative_to(root).as_posix().encode() + path.read_bytes())
     digest.update(Path(__file__).name.encode() + Path(__file__).read_bytes())
     return digest.hexdigest()
 

@@ -4,7 +4,7 @@ CasADi's symbolic expressions share reference-counted nodes that are not safe to
 destroy from two threads at once, so every construction of a CasADi graph or Function
 (building a problem, its Newton kernel, an IPOPT solver, a derived study function) happens
 under :data:`SYMBOLIC_LOCK`. Evaluating a built Function is guarded per problem
-(:attr:`moorsolve.solve.problem.EquilibriumProblem.lock`); compiled kernels give each
+(:attr:`moorsolve.solve.assembly.problem.EquilibriumProblem.lock`); compiled kernels give each
 thread its own buffers.
 """
 

@@ -95,15 +95,15 @@ def test_solve_stays_the_function_after_its_package_is_imported():
     must not replace the function."""
     out = subprocess.run([sys.executable, "-c", textwrap.dedent("""
         import moorsolve
-        import moorsolve.solve.cache, moorsolve.solve.equilibrium
+        import moorsolve.solve.assembly.cache, moorsolve.solve.equilibrium
         from moorsolve.solve import Result, get_problem
         print(callable(moorsolve.solve), moorsolve.solve.__module__)
-        import moorsolve.solve.newton as newton        # the package's modules, as usual
+        import moorsolve.solve.kernels.newton as newton        # the package's modules, as usual
         from moorsolve.solve import equilibrium
         print(newton.__name__, equilibrium.solve.__module__, moorsolve.solve.stability.__name__)
         print(moorsolve.solve(moorsolve.load_case("cases/buoy_vida.yaml")).converged)
     """)], cwd=ROOT, capture_output=True, text=True, check=True)
-    assert out.stdout.split() == ["True", "moorsolve", "moorsolve.solve.newton",
+    assert out.stdout.split() == ["True", "moorsolve", "moorsolve.solve.kernels.newton",
                                   "moorsolve.solve.equilibrium", "moorsolve.solve.stability",
                                   "True"]
 
@@ -131,10 +131,13 @@ FILE_READERS = {"load_case", "load_study", "load_case_variant", "read_table", "r
 
 
 def _modules(package: str | None = None):
-    """``(dotted name, path, tree)`` of every module of moorsolve (or of one package)."""
+    """``(dotted name, path, tree)`` of every module of moorsolve (or of one package); a
+    package's ``__init__.py`` goes by the package's name, as Python imports it."""
     root = PACKAGE if package is None else PACKAGE / package
     for path in sorted(root.rglob("*.py")):
         parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
         yield ".".join(parts), path, ast.parse(path.read_text(encoding="utf-8"))
 
 
@@ -220,6 +223,10 @@ def test_the_layering_check_sees_what_it_forbids():
     found = _run_time_imports("moorsolve.audit.run", PACKAGE / "audit" / "run.py", tree)
     assert sorted((t, _floor(t)) for t, _ in found) == [("moorsolve.solve.result", "solve"),
                                                         ("typing", None)]
+    # The same import in a package's __init__.py, resolved from the package's own name.
+    name, path, _ = next(m for m in _modules("audit") if m[1].name == "__init__.py")
+    found = _run_time_imports(name, path, ast.parse("from ..solve.result import Result\n"))
+    assert [_floor(t) for t, _ in found] == ["solve"]
 
 
 def test_no_import_cycles():

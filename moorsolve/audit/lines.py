@@ -143,7 +143,7 @@ def line_findings(case, legs, tol_rel: float, boundaries_only: bool) -> list[str
     below_tol, under_plane = tol, np.full(n, -np.inf)
     planes = [leg.seabed_plane for leg in legs]
     if any(p is not None for p in planes):
-        # On a grid each line lies on its own plane (solve/bathymetry.py): on the plane to
+        # On a grid each line lies on its own plane (solve/lines/bathymetry.py): on the plane to
         # the audit's tolerance, off the grid's surface by at most the seabed tolerance;
         # grounded runs are then judged on the plane.
         has = np.array([p is not None for p in planes])

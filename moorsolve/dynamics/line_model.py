@@ -1,7 +1,7 @@
 """One mooring line as lumped masses about its certified static profile.
 
 The line is cut into straight elements between nodes taken on the profile a solve drew
-(:attr:`moorsolve.solve.result.LegResult.profile`, from end A, the anchor, to end B, the
+(:attr:`moorsolve.solve.result.classes.LegResult.profile`, from end A, the anchor, to end B, the
 fairlead; the touchdown and every segment joint are nodes). Each element carries its static
 tension ``T``, and the linearised stiffness of a taut element of chord length ``l`` and
 unit direction ``t`` is the axial spring plus the geometric (string) stiffness of its tension

@@ -194,7 +194,7 @@ def _variables(raw, path: str, case: Case) -> tuple:
         raise CaseError(path, f"{show_value(raw)} must be a mapping of variable names to "
                               "{type, legs, lower, upper}, with at least one variable")
     if case.environment.seabed.bathymetry is not None:
-        # Each line's seabed plane follows its touchdown (solve/bathymetry.py), which the
+        # Each line's seabed plane follows its touchdown (solve/lines/bathymetry.py), which the
         # optimiser's one NLP over design and state does not iterate.
         raise CaseError(path, "design variables on a bathymetry grid are not modelled yet "
                               "(the lines' seabed planes move with the design); give the "

@@ -185,7 +185,7 @@ def check_scene(environment, lines, points, contacts, network: bool) -> None:
     """Refuse what a bathymetry grid does not model yet, naming the field.
 
     Each one-segment line gets its own seabed plane, and each free point the plane touching
-    the grid where it rests (:mod:`moorsolve.solve.bathymetry`); multi-segment and
+    the grid where it rests (:mod:`moorsolve.solve.lines.bathymetry`); multi-segment and
     lumped-node lines and piles read one seabed plane for the whole scene, which a grid
     does not give.
     """

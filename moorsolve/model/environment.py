@@ -90,7 +90,7 @@ class Seabed:
     ``depth`` is the water depth at the origin; ``(0, 0)`` is flat. ``bathymetry`` (a
     :class:`~.bathymetry.Bathymetry` grid, instead of a gradient) gives the seabed's height
     everywhere; ``tolerance`` [m] is then how far below that surface a line may pass (a
-    grounded run lies on one plane per line: :mod:`moorsolve.solve.bathymetry`).
+    grounded run lies on one plane per line: :mod:`moorsolve.solve.lines.bathymetry`).
     """
 
     friction: float = 0.0

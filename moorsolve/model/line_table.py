@@ -1,7 +1,7 @@
 """The per-line report table: the layout the solver writes and the audit reads.
 
 Each row of the table a solved point reports (``EquilibriumProblem.report`` in
-:mod:`moorsolve.solve.problem`) is one line; its columns are :data:`LINE_COLUMNS`. The
+:mod:`moorsolve.solve.assembly.problem`) is one line; its columns are :data:`LINE_COLUMNS`. The
 layout lives here, below both, so that the independent audit (:mod:`moorsolve.audit`) reads
 the table without importing the solver.
 """

@@ -1,6 +1,6 @@
 """The segments of a multi-segment line and the lines bounded by the free surface.
 
-In a line of several segments every joint is a free node (:mod:`moorsolve.solve.lines`). A
+In a line of several segments every joint is a free node (:mod:`moorsolve.solve.lines.blocks`). A
 segment whose lower end is the anchor on the seabed is the leg block of
 :mod:`.catenary`; the others use the blocks here: a sinking segment whose lower end may be
 lifted off the seabed (two-sided touchdown), a buoyant segment or leg held down by the free

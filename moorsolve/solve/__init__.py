@@ -9,8 +9,9 @@ from __future__ import annotations
 
 from .._lazy import lazy_exports
 
-_NAMES = {"solve": ".equilibrium", "get_problem": ".cache", "Result": ".result",
-          "LegResult": ".result", "Certificate": ".result", "Stability": ".result"}
+_NAMES = {"solve": ".equilibrium", "get_problem": ".assembly.cache",
+          "Result": ".result.classes", "LegResult": ".result.classes",
+          "Certificate": ".result.classes", "Stability": ".result.classes"}
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
 __all__ = ["solve", "get_problem", "Result", "LegResult", "Certificate", "Stability"]

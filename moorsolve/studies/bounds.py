@@ -27,7 +27,7 @@ from ..errors import CaseError
 from ..model import Case
 from ..model.stretch import DynamicStiffness, StretchLaw
 from ..solve.equilibrium import solve
-from ..solve.result import Result
+from ..solve.result.classes import Result
 
 __all__ = ["BoundSolution", "BoundsResult", "stiffness_bounds", "BOUNDS"]
 

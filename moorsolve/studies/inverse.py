@@ -32,7 +32,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..physics.catenary import (LegKind, leg_function)
-from ..solve.bundled_blas import limit_bundled_blas
+from ..solve.kernels.bundled_blas import limit_bundled_blas
 
 __all__ = ["InverseResult", "minimum_anchor_distance", "required_chain_length",
            "uplift_at_distance"]

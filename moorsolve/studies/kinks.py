@@ -61,9 +61,9 @@ def contacts_at_first_contact(result) -> tuple:
     (opening within :data:`AT_SLACK_POINT` of the scene's length scale) with no reaction
     (within that fraction of its force scale). Closing them adds their stiffness, opening
     them nothing: the tangent stiffness differs on the two sides there."""
-    from ..solve.bathymetry import result_parameters
-    from ..solve.cache import get_problem
-    from ..solve.contact import CONTACT_COLUMNS
+    from ..solve.lines.bathymetry import result_parameters
+    from ..solve.assembly.cache import get_problem
+    from ..solve.contact.blocks import CONTACT_COLUMNS
 
     problem = get_problem(result.case)
     if not getattr(problem, "contacts", None):

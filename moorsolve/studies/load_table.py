@@ -9,11 +9,11 @@ without one), or a case-file value such as ``"20 kn"`` in a column without a uni
 
 Validating every row as a case file costs about a millisecond a row, more than solving it.
 So the table is validated *by column*, through the parameter layout
-(:mod:`moorsolve.solve.layout`): each column is applied to the case file at its smallest,
+(:mod:`moorsolve.solve.assembly.layout`): each column is applied to the case file at its smallest,
 largest and median value, each validated like a case file (so units, names and ranges are
 checked as always, and a bad value is named by its column and row). Where those probes show
 that the column moves only load entries of the parameter vector (flow speeds, headings and
-wave height, constant forces: :meth:`~moorsolve.solve.layout.ParameterLayout.load_mask`,
+wave height, constant forces: :meth:`~moorsolve.solve.assembly.layout.ParameterLayout.load_mask`,
 entries that act through the load factor and whose validity is a range) and moves them
 affinely, every row's entries are interpolated from the probes: exact to rounding, and
 every value lies between two validated ones. Any other column (a length, a weight, a line

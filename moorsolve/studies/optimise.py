@@ -4,7 +4,7 @@ The problem
 -----------
 Design variables ``d`` (line lengths, anchor distances or radii, each shared by a group of
 legs, continuous and bounded) enter the equilibrium of every load case ``k`` through its
-parameter vector ``p_k(d)`` (:func:`moorsolve.solve.problem.parameter_vector`, with the
+parameter vector ``p_k(d)`` (:func:`moorsolve.solve.assembly.problem.parameter_vector`, with the
 design's entries replaced by expressions of ``d``). Each load case keeps its own copy of the
 equilibrium unknowns ``x_k``. One IPOPT problem
 
@@ -52,11 +52,11 @@ import numpy as np
 from ..model.study import Limits, Study
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
-from ..solve.bundled_blas import limit_bundled_blas
-from ..solve.cache import get_problem
+from ..solve.kernels.bundled_blas import limit_bundled_blas
+from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import solve
-from ..solve.layout import ENV_PARAMS, LEG_PARAMS
-from ..solve.prepared import parameter_vector
+from ..solve.assembly.layout import ENV_PARAMS, LEG_PARAMS
+from ..solve.assembly.prepared import parameter_vector
 from .optimise_design import (_anchor_line, _leg_index, _objective, design_case,
                               load_case_scene, objective_value)
 from .optimise_results import (_KINDS, ACTIVE_TOL, ConstraintResult, Optimisation,

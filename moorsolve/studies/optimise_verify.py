@@ -8,7 +8,7 @@ import math
 from ..errors import CaseError, ConvergenceError
 from ..model import Case
 from ..model.study import Study
-from ..solve.cache import get_problem
+from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import solve
 from .optimise_results import _KINDS, VERIFY_TOL, Verification
 from .optimise_design import design_case, load_case_scene

@@ -1,6 +1,6 @@
 """Exact parametric sensitivities of an equilibrium.
 
-Everything here is derived from the CasADi graph of :mod:`moorsolve.solve.problem` by
+Everything here is derived from the CasADi graph of :mod:`moorsolve.solve.assembly.problem` by
 automatic differentiation and the implicit function theorem on the square residual system
 ``g(x, p) = 0`` of the equilibrium:
 
@@ -8,7 +8,7 @@ automatic differentiation and the implicit function theorem on the square residu
 
 so a derivative costs one factorisation of the Jacobian the solver already used, not a
 re-solve. A named parameter maps onto the parameter vector through the layout
-(:mod:`moorsolve.solve.layout`), as the case defines it: an anchor resting on the seabed
+(:mod:`moorsolve.solve.assembly.layout`), as the case defines it: an anchor resting on the seabed
 follows the seabed when its x or y moves (its height is computed from the seabed in the
 graph), so a derivative on a sloped seabed moves it along the slope. The finite-difference
 checks live in ``tests/studies/test_sensitivity.py``.
@@ -26,11 +26,11 @@ import numpy as np
 
 from ..errors import MoorsolveWarning
 from ..model import Case
-from ..solve.bathymetry import result_parameters
-from ..solve.cache import get_problem
-from ..solve.problem import LINE_COLUMNS
-from ..solve.result import Result
-from ..solve.stretch_params import baranov_n_column, stiffness_scale_column
+from ..solve.lines.bathymetry import result_parameters
+from ..solve.assembly.cache import get_problem
+from ..solve.assembly.problem import LINE_COLUMNS
+from ..solve.result.classes import Result
+from ..solve.lines.stretch_params import baranov_n_column, stiffness_scale_column
 from .stiffness import as_result
 
 #: Line outputs available to :func:`sensitivity`.
@@ -166,7 +166,7 @@ def _parameter_column(case: Case, problem, name: str) -> np.ndarray:
         return col
     m = _TYPE_PATH.match(name)
     if m and m.group(2) in ("stiffness_scale", "n"):
-        # The stretch law of every segment of the type (solve/stretch_params.py).
+        # The stretch law of every segment of the type (solve/lines/stretch_params.py).
         columns = {"stiffness_scale": stiffness_scale_column, "n": baranov_n_column}
         return columns[m.group(2)](case, layout, m.group(1))
     if m:

@@ -7,7 +7,7 @@ re-equilibrating (condensed out: ``K = -(W_q - W_r J_rr^-1 J_rq)``, every block 
 automatic differentiation). Other bodies are held where they are.
 The coupled stiffness of all free degrees of freedom (several bodies, with hydrostatics and
 the loads' own dependence on pose) is the matrix the stability check uses
-(:func:`moorsolve.solve.stability.condensed_stiffness`).
+(:func:`moorsolve.solve.stability.static.condensed_stiffness`).
 """
 
 from __future__ import annotations
@@ -22,11 +22,11 @@ import numpy as np
 from ..errors import MoorsolveWarning
 from ..model import DOFS, Body, BodyLoads, Case, Contacts, End
 from ..model.build_network import rotation
-from ..solve.bathymetry import result_parameters
-from ..solve.cache import get_problem
+from ..solve.lines.bathymetry import result_parameters
+from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import solve
-from ..solve.result import Result
-from ..solve.stability import condensed_stiffness
+from ..solve.result.classes import Result
+from ..solve.stability.static import condensed_stiffness
 from .kinks import (contacts_at_first_contact, lines_at_slack_point, warn_one_sided,
                     with_lines)
 

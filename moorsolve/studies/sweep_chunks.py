@@ -10,11 +10,11 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..physics.kinematics import wrap_degrees
-from ..solve.cache import get_problem
-from ..solve.contact_results import OVER_RATED
-from ..solve.diagnosis import over_mbl, over_rated
+from ..solve.assembly.cache import get_problem
+from ..solve.contact.results import OVER_RATED
+from ..solve.result.diagnosis import over_mbl, over_rated
 from ..solve.equilibrium import solve, turn_jumps
-from ..solve.stability import _layout, assess
+from ..solve.stability.static import _layout, assess
 from .sweep_warnings import NONE, POSE, POST, screen
 
 # ---- solving a chunk ------------------------------------------------------------------------
@@ -104,7 +104,7 @@ def unstable_reason(stability) -> str:
 def _stiffness_minima(problem, K: np.ndarray) -> np.ndarray:
     """The smallest real part of the eigenvalues of each row's homogenised condensed
     stiffness (the kernel's ``stiffness`` output, one flattened matrix a row) [N/m], as
-    :func:`~moorsolve.solve.stability.assess` reports it; NaN where it is not finite."""
+    :func:`~moorsolve.solve.stability.static.assess` reports it; NaN where it is not finite."""
     hh = _layout(problem)[4]
     n = hh.shape[0]
     out = np.full(len(K), np.nan)
@@ -201,7 +201,7 @@ def _leave_warnings(problem, kernel, table, X, P) -> None:
 def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
                 allow_overload):
     """:func:`_solve_fast` for a load table: the kernel from the rest state at every row
-    in one batch (:meth:`~moorsolve.solve.newton.NewtonKernel.run_many`), judged and
+    in one batch (:meth:`~moorsolve.solve.kernels.newton.NewtonKernel.run_many`), judged and
     recorded as arrays. A row is kept when it certifies, no angle turned
     further than a single solve's Newton step takes (:func:`turn_jumps`), and the kernel's
     stability test passes (else the full check, :func:`_stable`)."""
@@ -278,9 +278,9 @@ def _overload(result) -> str:
 
 
 def _stable(problem, x, p):
-    """The :class:`~moorsolve.solve.result.Stability` of the kernel's point, which its own
+    """The :class:`~moorsolve.solve.result.classes.Stability` of the kernel's point, which its own
     stability test did not call clearly stable: the full check
-    (:func:`~moorsolve.solve.stability.assess`)."""
+    (:func:`~moorsolve.solve.stability.static.assess`)."""
     with problem.lock:
         return assess(problem, x, p)
 

@@ -13,7 +13,7 @@ from ..errors import CaseError
 from ..model import Case
 from ..model.paths import concrete_paths
 from ..model.units import KINDS
-from ..solve.prepared import parameter_vector
+from ..solve.assembly.prepared import parameter_vector
 
 
 def _edits(paths: tuple, value) -> dict:

@@ -13,10 +13,10 @@ from ..errors import CaseError
 from ..model import Case
 from ..model.edit import from_source, inline_source
 from ..model.units import recording
-from ..solve.cache import get_problem
+from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import rest_point
-from ..solve.start import initial_point
-from ..solve.prepared import structure_key
+from ..solve.kernels.start import initial_point
+from ..solve.assembly.prepared import structure_key
 from .sweep_chunks import _Table, _kernel_pool, _solve_each, _solve_fast
 from .sweep_grid import (_GridColumn, _axes, _edits, _grid_columns, _label, _numeric, _plain,
                          _plain_grid, _point_vector, _sha, snake_order)

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..solve.prepared import line_facts
-from ..solve.problem import LINE_COLUMNS
+from ..solve.assembly.prepared import line_facts
+from ..solve.assembly.problem import LINE_COLUMNS
 
 #: What the screen needs: nothing, the body poses, or the report at the point.
 NONE, POSE, POST = "none", "pose", "post"

@@ -20,9 +20,9 @@ import moorsolve
 from moorsolve import ConvergenceError, load_case, solve
 from moorsolve.cli import main
 from moorsolve.report.text import format_table
-from moorsolve.solve import leg_results
+from moorsolve.solve.result import leg_results
 from moorsolve.audit import AuditFailure, audit
-from moorsolve.solve.profile_batch import ProfileBatch
+from moorsolve.solve.result.profile_batch import ProfileBatch
 from conftest import ROOT
 
 CASES = ROOT / "cases"

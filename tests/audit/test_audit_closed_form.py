@@ -21,7 +21,7 @@ from moorsolve.model import BodyLoads
 from moorsolve.audit import run as audit_module
 from moorsolve.audit import AuditFailure, closed_form_audit
 from moorsolve.audit.closed_form import closed_form_findings, covers
-from moorsolve.solve.cache import get_problem
+from moorsolve.solve.assembly.cache import get_problem
 from moorsolve.model.line_table import LINE_COLUMNS
 from conftest import ROOT
 

@@ -20,7 +20,7 @@ from moorsolve.audit import run as audit_module
 from moorsolve.audit import AuditFailure
 from moorsolve.audit.bodies import body_findings, one_body_inputs
 from moorsolve.audit.closed_form import closed_form_check, table_end_rows, wait_compiled
-from moorsolve.solve.cache import get_problem
+from moorsolve.solve.assembly.cache import get_problem
 from moorsolve.model.line_table import LINE_COLUMNS
 from conftest import ROOT
 

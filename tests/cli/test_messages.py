@@ -177,7 +177,7 @@ def test_version(capsys):
 
 def test_first_newton_compile_is_announced(tmp_path, monkeypatch, caplog):
     from moorsolve.solve.equilibrium import get_problem
-    from moorsolve.solve.problem import EquilibriumProblem
+    from moorsolve.solve.assembly.problem import EquilibriumProblem
     monkeypatch.setenv("MOORSOLVE_CACHE_DIR", str(tmp_path))
     monkeypatch.delenv("MOORSOLVE_NO_COMPILE", raising=False)
     case = moorsolve.load_case(CASES / "buoy_vida.yaml")

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from moorsolve.errors import CaseError
 from moorsolve.model import (BodyLoads, DragLoad, DriftCoefficient, Environment, Flow,
                              HuTangCurrent, HuTangDrift, HuTangWind, Waves)
-from moorsolve.solve.body_loads import body_loads, effect_names
+from moorsolve.solve.assembly.body_loads import body_loads, effect_names
 from moorsolve.physics.loads import (drag_load_body,
                                      hu_tang_current_kN, hu_tang_drift_kN, hu_tang_wind_kN,
                                      table_coefficients)

@@ -11,7 +11,7 @@ import yaml
 
 from moorsolve import load_case, solve
 from moorsolve.audit import AuditFailure
-from moorsolve.solve.bathymetry import TOUCHDOWN_REL
+from moorsolve.solve.lines.bathymetry import TOUCHDOWN_REL
 from conftest import CASES
 
 
@@ -235,7 +235,7 @@ def test_planes_that_do_not_settle_are_said_so(monkeypatch):
     the note says so, and the deviation measures how far the chain is off the surface."""
     import importlib
 
-    bathymetry = importlib.import_module("moorsolve.solve.bathymetry")
+    bathymetry = importlib.import_module("moorsolve.solve.lines.bathymetry")
     monkeypatch.setattr(bathymetry, "MAX_ROUNDS", 1)
     res = solve(load_case(_one_leg(_bank(0.05), tolerance=1.0)))
     leg = res.legs[0]

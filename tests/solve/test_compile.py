@@ -33,7 +33,7 @@ PROBE = textwrap.dedent("""
     logging.getLogger("moorsolve").addHandler(Keep())
     logging.getLogger("moorsolve").setLevel(logging.INFO)
     import moorsolve
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     scene = json.loads(sys.argv[1])
     case = moorsolve.load_case(scene)
     first = moorsolve.solve(case, solver="newton")
@@ -93,8 +93,8 @@ def test_compile_off_runs_interpreted_with_the_same_answer(tmp_path):
 def test_a_new_structure_gets_its_own_library(tmp_path):
     """The key is the structure (and scales): a third leg means a new library."""
     import moorsolve
-    from moorsolve.solve.cache import get_problem
-    from moorsolve.solve.newton import kernel_key
+    from moorsolve.solve.assembly.cache import get_problem
+    from moorsolve.solve.kernels.newton import kernel_key
 
     two = moorsolve.load_case(SCENE)
     three = dict(SCENE, legs=SCENE["legs"] + [
@@ -105,3 +105,37 @@ def test_a_new_structure_gets_its_own_library(tmp_path):
     key = kernel_key(get_problem(two))
     assert kernel_key(get_problem(moorsolve.load_case(heavier))) == key
     assert kernel_key(get_problem(moorsolve.load_case(three))) != key
+
+
+def test_the_cache_key_reads_every_source_that_builds_the_graphs(monkeypatch):
+    """A compiled library is found by a key that hashes the sources of solve/, physics/ and
+    audit/: every module of theirs, those of their sub-packages (solve/'s rooms) included,
+    else an edit there would load a stale kernel from the disk cache without a word."""
+    from pathlib import Path
+
+    from moorsolve import compiled
+
+    read = []
+    original = Path.read_bytes
+
+    def recording(path):
+        read.append(Path(path).resolve())
+        return original(path)
+
+    monkeypatch.setattr(Path, "read_bytes", recording)
+    first = compiled.code_version.__wrapped__()
+    package = Path(compiled.__file__).resolve().parent
+    expected = {p.resolve() for folder in ("solve", "physics", "audit")
+                for p in (package / folder).rglob("*.py")} | {package / "compiled.py"}
+    assert set(read) == expected
+    assert package / "solve" / "kernels" / "newton.py" in expected    # a room's module
+
+    # The key depends on each source's text and on where it lies.
+    def edited(path, change):
+        monkeypatch.setattr(Path, "read_bytes", lambda p: change(original(p))
+                            if Path(p).resolve() == path else original(p))
+        return compiled.code_version.__wrapped__()
+
+    deep = package / "solve" / "kernels" / "newton.py"
+    assert edited(deep, lambda text: text + b"\n# edited\n") != first
+    assert edited(deep, lambda text: text) == first

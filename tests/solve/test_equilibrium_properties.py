@@ -8,7 +8,7 @@ import pytest
 import yaml
 
 from moorsolve import load_case, solve
-from moorsolve.solve.cache import get_problem
+from moorsolve.solve.assembly.cache import get_problem
 from conftest import ROOT
 
 CASES = ROOT / "cases"

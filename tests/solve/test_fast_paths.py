@@ -18,13 +18,13 @@ import pytest
 
 import moorsolve
 from moorsolve.model import BodyLoads
-from moorsolve.solve import prepared
-from moorsolve.solve.cache import get_problem, problem_key
-from moorsolve.solve.diagnosis import over_mbl
+from moorsolve.solve.assembly import prepared
+from moorsolve.solve.assembly.cache import get_problem, problem_key
+from moorsolve.solve.result.diagnosis import over_mbl
 from moorsolve.solve.equilibrium import rest_point
-from moorsolve.solve.result import DeferredStability
-from moorsolve.solve.stability import assess, condensed_stiffness
-from moorsolve.solve.start import scales
+from moorsolve.solve.result.classes import DeferredStability
+from moorsolve.solve.stability.static import assess, condensed_stiffness
+from moorsolve.solve.kernels.start import scales
 
 from conftest import CASES
 
@@ -193,7 +193,7 @@ def test_held_body_lines_state_is_remembered_and_never_stale():
     is remembered per geometry, so later solves certify it as it stands (no solver
     called); the first solve reports its own solver's work, and a geometry change (the
     body held elsewhere) solves afresh."""
-    from moorsolve.solve.diagnosis import START_CERTIFIED
+    from moorsolve.solve.result.diagnosis import START_CERTIFIED
     spar = moorsolve.load_case(SPAR)
 
     def held_at(dx):      # a geometry of this test's own: none solved before it

@@ -23,7 +23,7 @@ import moorsolve
 from moorsolve.catalog import line_properties
 from moorsolve.cli import main
 from moorsolve.errors import CaseError
-from moorsolve.solve.prepared import structure_key
+from moorsolve.solve.assembly.prepared import structure_key
 
 FPU = CASES / "fpu_polyester_table.yaml"
 

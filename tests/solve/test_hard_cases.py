@@ -13,9 +13,9 @@ import pytest
 import yaml
 
 from moorsolve import ConvergenceError, load_case, solve
-from moorsolve.solve.cache import get_problem
-from moorsolve.solve.diagnosis import pulled_straight
-from moorsolve.solve.problem import LINE_COLUMNS
+from moorsolve.solve.assembly.cache import get_problem
+from moorsolve.solve.result.diagnosis import pulled_straight
+from moorsolve.solve.assembly.problem import LINE_COLUMNS
 from conftest import ROOT
 
 CASES = ROOT / "cases"
@@ -274,7 +274,7 @@ def test_a_run_away_is_not_called_a_line_that_cannot_reach():
     """A best point where inextensible lines that span their ends at the case's pose are
     stretched beyond their length is the solver's excursion, not a scene that cannot
     close; a line too short at the case's pose still cannot reach."""
-    from moorsolve.solve.diagnosis import diagnose
+    from moorsolve.solve.result.diagnosis import diagnose
     case = buoy_with_force(1e3)
     result = solve(case)
     far = [dataclasses.replace(leg, fairlead=(leg.fairlead[0] + 300.0, *leg.fairlead[1:]))

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.solve import ipopt_solvers
-from moorsolve.solve.cache import PROBLEMS, get_problem
+from moorsolve.solve.kernels import ipopt_solvers
+from moorsolve.solve.assembly.cache import PROBLEMS, get_problem
 from conftest import CASES
 
 

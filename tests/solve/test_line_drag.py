@@ -12,8 +12,8 @@ import pytest
 
 from moorsolve import CaseError, load_case, solve
 from moorsolve.physics.drag import current_speed, line_drag
-from moorsolve.solve.cache import get_problem
-from moorsolve.solve.line_kinds import DiscreteLegKind
+from moorsolve.solve.assembly.cache import get_problem
+from moorsolve.solve.lines.line_kinds import DiscreteLegKind
 from conftest import ROOT
 
 CASES = ROOT / "cases"

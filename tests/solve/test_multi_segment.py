@@ -17,10 +17,10 @@ from scipy.integrate import solve_ivp
 
 from moorsolve import load_case, solve
 from moorsolve.physics.catenary import LegKind
-from moorsolve.solve.cache import get_problem
-from moorsolve.solve.layout import ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS
-from moorsolve.solve.prepared import parameter_vector
-from moorsolve.solve.line_kinds import MultiLegKind
+from moorsolve.solve.assembly.cache import get_problem
+from moorsolve.solve.assembly.layout import ENV_PARAMS, LEG_PARAMS, SEABED_PARAMS, BODY_PARAMS
+from moorsolve.solve.assembly.prepared import parameter_vector
+from moorsolve.solve.lines.line_kinds import MultiLegKind
 from conftest import ROOT
 
 CASES = ROOT / "cases"

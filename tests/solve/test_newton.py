@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.solve.cache import get_problem
-from moorsolve.solve.start import initial_point
-from moorsolve.solve.newton import CONVERGED, STALLED, NewtonKernel
+from moorsolve.solve.assembly.cache import get_problem
+from moorsolve.solve.kernels.start import initial_point
+from moorsolve.solve.kernels.newton import CONVERGED, STALLED, NewtonKernel
 from conftest import ROOT, TESTS
 
 CASES = sorted(ROOT.joinpath("cases").glob("*.yaml"))
@@ -85,7 +85,7 @@ def test_newton_falls_back_to_ipopt_and_says_so():
     problem = get_problem(case)
     saved = problem._newton
     try:
-        from moorsolve.solve import newton as newton_module
+        from moorsolve.solve.kernels import newton as newton_module
 
         kernel = NewtonKernel(problem, compile=False)
         kernel.function = newton_module.newton_function(problem, max_iterations=0)

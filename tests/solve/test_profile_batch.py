@@ -1,4 +1,4 @@
-"""A result's one-segment profiles drawn together (``moorsolve.solve.profile_batch``) are the
+"""A result's one-segment profiles drawn together (``moorsolve.solve.result.profile_batch``) are the
 numbers each line's own drawing gives, bit for bit: grounded and hanging lines, with and
 without seabed friction, inextensible, lines whose end A is the upper end (flipped), and a
 touchdown that falls on a grid point (drawn alone)."""
@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from moorsolve import load_case, solve
-from moorsolve.solve import profile_batch
-from moorsolve.solve.profile_batch import ProfileBatch
+from moorsolve.solve.result import profile_batch
+from moorsolve.solve.result.profile_batch import ProfileBatch
 from conftest import ROOT
 
 CASES = ROOT / "cases"

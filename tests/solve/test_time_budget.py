@@ -9,10 +9,10 @@ import time
 import numpy as np
 
 import moorsolve
-from moorsolve.solve.cache import get_problem
-from moorsolve.solve.stability import assess, find_stable, pseudo_transient
-from moorsolve.solve.start import initial_point
-from moorsolve.solve.weathervane import stable_heading
+from moorsolve.solve.assembly.cache import get_problem
+from moorsolve.solve.stability.static import assess, find_stable, pseudo_transient
+from moorsolve.solve.kernels.start import initial_point
+from moorsolve.solve.stability.weathervane import stable_heading
 
 from conftest import CASES
 

@@ -280,11 +280,11 @@ def test_several_weathervaning_bodies_are_walked_in_turn(solver):
 def test_a_scene_stable_at_once_never_walks(path, solver, monkeypatch):
     """The common case pays nothing: a solve whose first point is stable does not enter the
     walk (nor its rest-state look-up)."""
-    from moorsolve.solve import equilibrium
+    from moorsolve.solve.stability import examine
 
     def refuse(*args, **kwargs):
         raise AssertionError("the heading walk was entered")
 
-    monkeypatch.setattr(equilibrium, "_weathervane", refuse)
+    monkeypatch.setattr(examine, "heading_walk", refuse)
     result = solve(load_case(path), solver=solver)
     assert result.stability.stable

@@ -15,8 +15,8 @@ import numpy as np
 
 import moorsolve
 from moorsolve.model.build_network import rotation
-from moorsolve.solve.bathymetry import result_parameters
-from moorsolve.solve.cache import get_problem
+from moorsolve.solve.lines.bathymetry import result_parameters
+from moorsolve.solve.assembly.cache import get_problem
 from moorsolve.studies.stiffness import _points_at, _solved_poses, posed_case
 
 #: Steps [m, rad]: small against every line's length, large against the solve tolerance.
@@ -89,7 +89,7 @@ def resolved_coupled(result, step: float = 1e-4) -> np.ndarray:
     each DOF moved by ``step`` [m, or rad], every other body DOF held, and the lines and
     free points re-solved (Newton on their own rows to 1e-14) before the bodies' generalized
     forces are evaluated."""
-    from moorsolve.solve.stability import _rows, _split
+    from moorsolve.solve.stability.static import _rows, _split
 
     case = result.case
     problem = get_problem(case)

@@ -21,7 +21,7 @@ import pytest
 from scipy.linalg import eigh
 
 import moorsolve
-from moorsolve.solve.cache import get_problem
+from moorsolve.solve.assembly.cache import get_problem
 from moorsolve.studies.stiffness import body_natural_periods, rigid_body_mass
 
 from edge_scenes import tlp, touchdown_at_anchor, vertical_chain_buoy

@@ -168,7 +168,7 @@ def test_two_bodies_on_a_hawser(load, length, ea):
     C, dofs = moorsolve.coupled_stiffness(result)
     C_ref = resolved_coupled(result)
     assert_matrix_close(C, C_ref, label="coupled")
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     problem = get_problem(result.case)
     got = np.sort_complex(np.asarray(result.stability.eigenvalues, dtype=complex))
     ref = homogenised_eigenvalues(C_ref, dofs, problem.moment_scale / problem.force_scale)
@@ -191,7 +191,7 @@ def test_three_platforms_coupled(platforms):
     C, dofs = moorsolve.coupled_stiffness(platforms)
     C_ref = resolved_coupled(platforms)
     assert_matrix_close(C, C_ref, label="coupled")
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     problem = get_problem(platforms.case)
     got = np.sort(np.real(np.asarray(platforms.stability.eigenvalues, dtype=complex)))
     ref = np.sort(homogenised_eigenvalues(C_ref, dofs,
