@@ -5,8 +5,8 @@ whose lines' state certifies as it stands: no solver called), the compiled Newto
 strategy (when asked for), IPOPT's strategy, and where a scene with contacts or hawsers did
 not certify under IPOPT (a smooth NLP solver), the semismooth Newton path built for their
 complementarities (:func:`newton_fallback`). The point is then judged against the
-certificate (:meth:`Attempt.judge`); the stability step (:mod:`..stability.examine`) may
-replace it.
+certificate (:meth:`Attempt.judge`); the stability step
+(:mod:`moorsolve.solve.stability.examine`) may replace it.
 """
 
 from __future__ import annotations
