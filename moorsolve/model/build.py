@@ -67,7 +67,8 @@ Schema (SI units, ``[...]`` lists)::
              line_elements: int 2..400 (default 20)}
     checks: {standard: api-rp-2sk | dnv-os-e301, consequence_class: 1 | 2,
              offset_limit, offset_limit_damaged, min_grounded_length,
-             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool}   optional
+             min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool,
+             fatigue: {...} (moorsolve.model.build_fatigue)}   optional
     moordyn: {...}                             optional; MoorDyn columns moorsolve does not use,
                                                kept for export (moorsolve.model.moordyn_block);
                                                the solver ignores it
@@ -242,7 +243,8 @@ def _compass(m: dict, path: str) -> Compass:
 def _checks(raw, path: str, legs: tuple) -> Checks:
     m = check_mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
                                       "offset_limit_damaged", "min_grounded_length",
-                                      "min_grounded_length_damaged", "anchor", "damaged"))
+                                      "min_grounded_length_damaged", "anchor", "damaged",
+                                      "fatigue"))
     defaults = Checks()
     standard = m.get("standard", defaults.standard)
     if not isinstance(standard, str) or standard not in STANDARDS:
@@ -268,10 +270,15 @@ def _checks(raw, path: str, legs: tuple) -> Checks:
     damaged = m.get("damaged", True)
     if not isinstance(damaged, bool):
         raise CaseError(field_path(path, "damaged"), f"{show_value(damaged)} is not true or false")
+    fatigue = None
+    if m.get("fatigue") is not None:
+        from .build_fatigue import fatigue_spec
+        types = {seg.line_type.name for leg in legs for seg in leg.segments}
+        fatigue = fatigue_spec(m["fatigue"], field_path(path, "fatigue"), sorted(types))
     return Checks(standard=standard, consequence_class=int(cclass), offset_limit=offset,
                   offset_limit_damaged=offset_damaged, min_grounded_length=grounded,
                   min_grounded_length_damaged=grounded_damaged, anchor=anchor,
-                  damaged=damaged)
+                  damaged=damaged, fatigue=fatigue)
 
 
 # ---- solver -----------------------------------------------------------------------------

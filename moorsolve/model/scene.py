@@ -52,6 +52,8 @@ class Checks:
         Default anchor type for legs that do not give their own.
     damaged : bool
         Also run the damaged conditions (each leg removed in turn).
+    fatigue : FatigueSpec or None
+        The fatigue check (:mod:`moorsolve.model.fatigue`), where the case asks for one.
     """
 
     standard: str = "api-rp-2sk"
@@ -62,6 +64,7 @@ class Checks:
     min_grounded_length_damaged: Optional[float] = None
     anchor: AnchorType = field(default_factory=AnchorType)
     damaged: bool = True
+    fatigue: Optional[object] = None
 
 
 @dataclass(frozen=True)
