@@ -36,6 +36,7 @@ _NAMES = {
     "natural_periods": ".studies.stiffness", "one_sided_stiffness": ".studies.one_sided",
     "stiffness_bounds": ".studies.bounds",
     "motions": ".dynamics.motions",
+    "fatigue": ".life.fatigue",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
@@ -105,7 +106,7 @@ def optimise(case, study, **options):
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
            "offset_envelope", "stiffness", "one_sided_stiffness", "coupled_stiffness",
            "body_natural_periods", "restoring_curve", "natural_periods", "motions",
-           "sensitivity", "optimise", "stiffness_bounds",
+           "fatigue", "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
            "MoorsolveError", "CaseError", "ConvergenceError", "MoorsolveWarning",
