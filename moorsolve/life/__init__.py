@@ -6,14 +6,6 @@
   per heading;
 - :mod:`.fatigue`: :func:`fatigue`, damage, life and the design fatigue factor per line end.
 
-The curves are data: :mod:`moorsolve.catalog.fatigue`.
+The curves are data: :mod:`moorsolve.catalog.fatigue`. The entry point is
+``moorsolve.fatigue`` (:func:`moorsolve.life.fatigue.fatigue`).
 """
-
-__all__ = ["fatigue", "FatigueResult"]
-
-
-def __getattr__(name):
-    if name in __all__:
-        from . import fatigue as _module
-        return getattr(_module, name)
-    raise AttributeError(name)

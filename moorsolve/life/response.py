@@ -6,8 +6,10 @@ solved once per distinct heading of the scatter diagram, on one frequency grid c
 every sea state's spectrum. Each line end on a body moves with it,
 ``u = x + (dR/dtheta R^T r) dtheta`` (``r`` the arm from the body origin, global); an end
 on a fixed point does not move. Each line's lumped-mass model is built once; its drag is
-linearised on each sea state's own response (:func:`moorsolve.dynamics.line_dynamics.
-line_response`, ``"spectral"``), so the tension transfer function is the sea state's.
+linearised on each sea state's own response (the spectral linearisation of
+:mod:`moorsolve.dynamics.line_dynamics`, all sea states solved together by
+:func:`moorsolve.dynamics.line_batch.spectral_tensions`), so the tension transfer function
+is the sea state's.
 
 Simulated: the wave-frequency tension about the case's static equilibrium. Not simulated
 (said in the result): the slow-drift (low-frequency) tension and each sea state's own mean
@@ -26,8 +28,10 @@ from ..model.build_network import rotation
 
 __all__ = ["SeaStateTensions", "scatter_tensions", "end_motion_map"]
 
-#: Frequencies of the common grid.
-N_OMEGA = 120
+#: Frequencies of the common grid, and elements per line: on the dock benchmark's 12 lines
+#: and 50 sea states the damage is within 1.1 % of 120 frequencies and 60 elements.
+N_OMEGA = 50
+N_ELEMENTS = 24
 #: Energy of each sea state's spectrum left outside the grid, each side.
 BAND_TAIL = 1e-5
 
@@ -98,7 +102,7 @@ def _grid(states, spectrum, lo, hi, n_omega):
 
 
 def scatter_tensions(result, states, spectrum, *, n_omega: int = N_OMEGA,
-                     n_elements: int = 40, tolerance: float = 1e-3) -> SeaStateTensions:
+                     n_elements: int = N_ELEMENTS, tolerance: float = 1e-3) -> SeaStateTensions:
     """Tension spectra at both ends of every line in every sea state.
 
     Parameters
@@ -116,7 +120,7 @@ def scatter_tensions(result, states, spectrum, *, n_omega: int = N_OMEGA,
         Drag linearisation tolerance (fraction of the largest coefficient).
     """
     from ..dynamics.hydro import BodyHydro
-    from ..dynamics.line_dynamics import SPECTRAL, line_response
+    from ..dynamics.line_batch import spectral_tensions
     from ..dynamics.line_model import line_model
     from ..dynamics.motions import _moving_bodies, _tables
     from ..dynamics.system import System, solved_pose
@@ -168,26 +172,23 @@ def scatter_tensions(result, states, spectrum, *, n_omega: int = N_OMEGA,
                         for ends in maps]
     n_s, n_l = len(states), len(names)
     spectra = np.zeros((n_s, n_l, 2, grid.size))
-    waves = np.zeros((n_s, grid.size))
-    coverage = np.zeros(n_s)
-    iterations = np.zeros((n_s, n_l), int)
+    waves = np.array([_density(spectrum, hs, tp)(grid) for hs, tp, _, _ in states])
     fine = np.linspace(1e-3, 4 * hi, 20001)
-    for i, (hs, tp, toward, _) in enumerate(states):
-        density = _density(spectrum, hs, tp)
-        S = density(grid)
-        waves[i] = S
-        total = np.trapezoid(density(fine), fine)
-        coverage[i] = np.trapezoid(S, grid) / total if total > 0 else 1.0
-        for j, model in enumerate(models):
-            ua, ub = raos[toward][j]
-            if ub is None and ua is None:
-                continue
-            zero = np.zeros((3, grid.size), complex)
-            r = line_response(model, grid, zero if ub is None else ub,
-                              linearisation=SPECTRAL, spectrum=S, motion_a=ua,
-                              tolerance=tolerance)
-            spectra[i, j, 0] = np.abs(r.tension_a) ** 2 * S
-            spectra[i, j, 1] = np.abs(r.tension_b) ** 2 * S
-            iterations[i, j] = r.iterations
+    totals = np.array([np.trapezoid(_density(spectrum, hs, tp)(fine), fine)
+                       for hs, tp, _, _ in states])
+    coverage = np.where(totals > 0, np.trapezoid(waves, grid, axis=1) / np.where(
+        totals > 0, totals, 1.0), 1.0)
+    iterations = np.zeros(n_l, int)
+    zero = np.zeros((3, grid.size), complex)
+    for j, model in enumerate(models):
+        per_state = [raos[s[2]][j] for s in states]
+        if all(ua is None and ub is None for ua, ub in per_state):
+            continue                                      # both ends held: no tension change
+        ub = np.array([zero if b is None else b for _, b in per_state])
+        ua = np.array([zero if a is None else a for a, _ in per_state])
+        t_a, t_b, iterations[j] = spectral_tensions(model, grid, ub, waves, motion_a=ua,
+                                                    tolerance=tolerance)
+        spectra[:, j, 0] = np.abs(t_a) ** 2 * waves
+        spectra[:, j, 1] = np.abs(t_b) ** 2 * waves
     mean = np.array([[legs[n].anchor_tension_N, legs[n].fairlead_tension_N] for n in names])
     return SeaStateTensions(grid, names, spectra, waves, coverage, mean, iterations)
