@@ -164,13 +164,16 @@ def spectral_tensions(model: LineModel, omega, motion_b, spectra, *, motion_a=No
         u[:, :, 0, :] = ua
         return u                                                       # (ns, nw, n, 3)
 
+    w2S = (omega ** 2 * S)[:, :, None]
+
     def coefficients(u):
-        v = 1j * omega[None, :, None, None] * u
-        vt = np.sum(v * tangent, -1)[..., None] * tangent              # tangential part
-        an = np.sum(np.abs(v - vt) ** 2, -1)
-        at = np.sum(np.abs(vt) ** 2, -1)
-        sn = np.sqrt(np.trapezoid(an * S[:, :, None], omega, axis=1))
-        st = np.sqrt(np.trapezoid(at * S[:, :, None], omega, axis=1))
+        # |v|^2 = omega^2 |u|^2, split along the (real, unit) tangent t: |v_t|^2 =
+        # omega^2 |t . u|^2 and |v_n|^2 = |v|^2 - |v_t|^2.
+        ut = np.sum(u * tangent, -1)
+        at = ut.real ** 2 + ut.imag ** 2
+        an = np.maximum(np.sum(u.real ** 2 + u.imag ** 2, -1) - at, 0.0)
+        sn = np.sqrt(np.trapezoid(an * w2S, omega, axis=1))
+        st = np.sqrt(np.trapezoid(at * w2S, omega, axis=1))
         return _SPECTRAL_FACTOR * sn * qn, _SPECTRAL_FACTOR * st * qt
 
     frac = (model.s / model.s[-1])[None, None, :, None]

@@ -6,7 +6,6 @@ Only described and checked here; :mod:`moorsolve.life` computes the damage.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
 
 from .sea import Spectrum
 
