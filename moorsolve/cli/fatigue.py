@@ -15,6 +15,9 @@ def add_commands(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the fatigue result as JSON")
     p.add_argument("--method", choices=("narrow_band", "dirlik"),
                    help="damage from the tension spectrum (default: the case's)")
+    p.add_argument("--series", metavar="FILE.csv",
+                   help="count tension records by rainflow instead: a CSV with time_s and "
+                        "LINE.anchor / LINE.fairlead columns [N], scaled to the design life")
     p.add_argument("--plot", metavar="FILE", help="draw the damage per sea state "
                                                   "(.png, .pdf or .svg)")
     solver_option(p)
@@ -28,9 +31,18 @@ def run_fatigue(args) -> int:
 
     if args.plot:
         check_output(args.plot, "--plot", IMAGE_EXTENSIONS)
+        if args.series is not None:
+            from ..errors import CaseError
+            raise CaseError("--plot", "draws the damage per sea state: a tension record "
+                                      "(--series) has none")
     case = load_case(args.case)
-    result = solve(case, solver=args.solver, tol=args.tol)
-    fr = fatigue(result, method=args.method)
+    if args.series is not None:
+        from ..io.table_file import read_table
+        from ..life.series import series_fatigue
+        fr = series_fatigue(case, read_table(args.series))
+    else:
+        result = solve(case, solver=args.solver, tol=args.tol)
+        fr = fatigue(result, method=args.method)
     if args.plot:
         from ..plot.fatigue import plot_damage_per_sea_state
 

@@ -9,13 +9,16 @@ def fatigue_text(fr) -> str:
     """A :class:`moorsolve.life.fatigue.FatigueResult` as a table: per line end the damage
     over the design life, the life in years and ``DFF x D`` against 1."""
     life = fr.design_life_y
+    source = ("tension records counted by rainflow, scaled to the design life"
+              if fr.method == "rainflow" else f"{len(fr.sea_states)} sea states")
     lines = [f"Fatigue ({fr.method.replace('_', ' ')}): design life {life:.4g} y, "
-             f"{len(fr.sea_states)} sea states, design fatigue factor "
-             f"{fr.design_fatigue_factor:g} (the adjacent-line rule is not applied)",
-             "  wave-frequency tension only: the slow-drift tension and each sea state's "
-             "mean offset are not simulated",
-             f"  {'line':<10} {'end':<9} {'curve':<18} {'mean kN':>9} {'damage':>10} "
-             f"{'life y':>10} {'DFF x D':>8}  result"]
+             f"{source}, design fatigue factor "
+             f"{fr.design_fatigue_factor:g} (the adjacent-line rule is not applied)"]
+    if fr.method != "rainflow":
+        lines.append("  wave-frequency tension only: the slow-drift tension and each sea "
+                     "state's mean offset are not simulated")
+    lines.append(f"  {'line':<10} {'end':<9} {'curve':<18} {'mean kN':>9} {'damage':>10} "
+                 f"{'life y':>10} {'DFF x D':>8}  result")
     for e in fr.ends:
         life_y = "inf" if e.life_y == float("inf") else f"{e.life_y:10.4g}"
         lines.append(f"  {e.line:<10} {e.end:<9} {e.curve.name:<18} {e.mean_N / 1e3:9.1f} "

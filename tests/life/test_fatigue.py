@@ -175,3 +175,30 @@ def test_cli_bad_scatter_diagram_exits_2(cases_dir, tmp_path, capsys):
 def test_a_case_without_fatigue_or_hydrodynamics_is_refused(cases_dir):
     with pytest.raises(CaseError, match="checks.fatigue"):
         fatigue(moorsolve.load_case(cases_dir / "buoy_sea.yaml"))
+
+
+def test_tension_records_by_rainflow(buoy, tmp_path, capsys, cases_dir):
+    """A record of constant-amplitude cycles: n cycles of range 2A in T_record, scaled to
+    the life: D = (T_life / T_record) n (2 A / area)^3 / a_D, counted by rainflow."""
+    from moorsolve.life.series import series_fatigue
+    case, _ = buoy
+    spec = case.checks.fatigue
+    t = np.arange(0.0, 3600.0 + 1e-9, 0.25)
+    amplitude = 30e3
+    x = 40e3 + amplitude * np.sin(2 * np.pi * t / 8.0)          # 450 cycles in an hour
+    fr = series_fatigue(case, {"time_s": t, "L1.fairlead": x})
+    area = 2 * math.pi * 0.050 ** 2 / 4 * 1e6
+    cycles = 3600.0 / 8.0
+    expected = spec.design_life / 3600.0 * cycles * (2 * amplitude / area) ** 3 / 6.0e10
+    assert fr.ends[0].damage == pytest.approx(expected, rel=2e-3)
+    assert fr.method == "rainflow" and "rainflow" in repr(fr)
+    path = tmp_path / "record.csv"
+    np.savetxt(path, np.column_stack([t, x]), delimiter=",", header="time_s,L1.fairlead",
+               comments="")
+    status = main(["fatigue", str(cases_dir / "buoy_fatigue.yaml"), "--series", str(path),
+                   "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert out["ends"][0]["damage"] == pytest.approx(expected, rel=2e-3)
+    assert status == (0 if out["passed"] else 1)
+    with pytest.raises(CaseError, match="LINE.anchor or LINE.fairlead"):
+        series_fatigue(case, {"time_s": t, "L9.fairlead": x})
