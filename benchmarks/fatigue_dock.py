@@ -6,7 +6,7 @@
 5 m, free in surge, sway and yaw) given table hydrodynamics of a long-wave estimate for a
 box (Froude-Krylov excitation, added mass 5 % / 50 % of the displacement in surge / sway,
 5 % of critical damping; this is not a BEM solution: it is there to make the dock move),
-and a 50-row scatter diagram (Hs 0.5-3 m, Tp 4-10 s, five directions; probabilities
+and a 50-row scatter diagram (Hs 0.5-3 m, Tp 5-11 s, five directions; probabilities
 chosen); the typhoon's wind and current are left out (fatigue seas are everyday ones). ``moorsolve.fatigue`` is timed, best of ``--repeats``, after one solve of the
 equilibrium (the hydrodynamics being tables, nothing is computed by a BEM: "cached"). Wall
 and process (CPU) times are both reported: the machine may be shared. Results go to
@@ -67,7 +67,7 @@ def box_hydrodynamics(omega, headings, depth):
 def dock_case(n_states: int = 50) -> dict:
     raw = yaml.safe_load((ROOT / "cases" / "floating_dock.yaml").read_text())
     depth = 20.85
-    omega = np.linspace(0.3, 2.5, 23)
+    omega = np.linspace(0.2, 5.0, 49)
     hydro, mass, izz = box_hydrodynamics(omega, range(0, 360, 30), depth)
     body = raw["body"]
     points, lines = [], []
@@ -82,7 +82,7 @@ def dock_case(n_states: int = 50) -> dict:
     p /= p.sum()
     for i in range(n_states):
         hs = 0.5 + 2.5 * (i % 10) / 9
-        tp = 4.0 + 6.0 * ((i * 7) % 10) / 9
+        tp = 5.0 + 6.0 * ((i * 7) % 10) / 9
         states.append([hs, max(tp, 3.6 * math.sqrt(hs)), [0, 70, 110, 200, 290][i % 5],
                        float(p[i])])
     lt = raw["line_types"]

@@ -21,7 +21,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import CaseError
+import warnings
+
+from ..errors import CaseError, MoorsolveWarning
 from ..model import DOFS
 from ..model.build_network import rotation
 
@@ -31,6 +33,9 @@ __all__ = ["SeaStateTensions", "scatter_tensions", "end_motion_map"]
 #: and 50 sea states the damage is within 1.1 % of 120 frequencies and 60 elements.
 N_OMEGA = 50
 N_ELEMENTS = 24
+#: A sea state whose spectrum the hydrodynamics' frequencies cover less than this is
+#: warned of.
+COVERAGE_WARNING = 0.99
 #: Energy of each sea state's spectrum left outside the grid, each side.
 BAND_TAIL = 1e-5
 
@@ -179,6 +184,14 @@ def scatter_tensions(result, states, spectrum, *, n_omega: int = N_OMEGA,
                        for hs, tp, _, _ in states])
     coverage = np.where(totals > 0, np.trapezoid(waves, grid, axis=1) / np.where(
         totals > 0, totals, 1.0), 1.0)
+    short = [i for i, c in enumerate(coverage) if c < COVERAGE_WARNING]
+    if short:
+        i = min(short, key=lambda k: coverage[k])
+        warnings.warn(MoorsolveWarning(
+            f"checks.fatigue.sea_states.table[{i}]: the hydrodynamics' frequencies "
+            f"[{lo:.4g}, {hi:.4g}] rad/s hold {coverage[i]:.1%} of its spectrum's m0 "
+            f"({len(short)} sea state(s) below {COVERAGE_WARNING:.0%}): their tension "
+            "misses the rest (give the tables over a wider range)"), stacklevel=3)
     iterations = np.zeros(n_l, int)
     zero = np.zeros((3, grid.size), complex)
     for j, model in enumerate(models):

@@ -202,3 +202,12 @@ def test_tension_records_by_rainflow(buoy, tmp_path, capsys, cases_dir):
     assert status == (0 if out["passed"] else 1)
     with pytest.raises(CaseError, match="LINE.anchor or LINE.fairlead"):
         series_fatigue(case, {"time_s": t, "L9.fairlead": x})
+
+
+def test_a_sea_state_outside_the_hydrodynamics_is_warned_of(buoy):
+    """The buoy's tables start at 0.2 rad/s: a 25 s swell holds most of its energy below."""
+    case, result = buoy
+    spec = dataclasses.replace(case.checks.fatigue,
+                               sea_states=((1.0, 6.0, 20.0, 0.5), (1.0, 25.0, 20.0, 0.5)))
+    with pytest.warns(moorsolve.MoorsolveWarning, match=r"sea_states.table\[1\]"):
+        fatigue(result, spec)
