@@ -94,7 +94,7 @@ def test_tension_against_an_independent_chain(buoy):
         ref = tension_statistics(line_model(still, result, leg.name, n_elements=40),
                                  m.omega, u, S)
         sigma = math.sqrt(np.trapezoid(ours.spectra[0, j, 1], ours.omega))
-        assert sigma == pytest.approx(ref.fairlead.sigma_N, rel=0.01)
+        assert sigma == pytest.approx(ref.fairlead.sigma_N, rel=2e-3)   # 3e-4 seen
         assert sigma > 0
 
 
