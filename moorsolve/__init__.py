@@ -38,6 +38,7 @@ _NAMES = {
     "stiffness_bounds": ".studies.bounds",
     "motions": ".dynamics.motions",
     "cost": ".checks.cost",
+    "fatigue": ".life.fatigue",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 
@@ -107,7 +108,7 @@ def optimise(case, study, **options):
 __all__ = ["load_case", "solve", "sweep", "Case", "Result", "LegResult", "Certificate",
            "offset_envelope", "stiffness", "one_sided_stiffness", "coupled_stiffness",
            "body_natural_periods", "restoring_curve", "natural_periods", "motions",
-           "sensitivity", "optimise", "stiffness_bounds",
+           "fatigue", "sensitivity", "optimise", "stiffness_bounds",
            "read_moordyn", "moordyn_to_case_data", "import_moordyn", "case_to_moordyn",
            "export_moordyn", "MoorDynError", "import_moorpy", "export_moorpy",
            "MoorsolveError", "CaseError", "ConvergenceError", "MoorsolveWarning",

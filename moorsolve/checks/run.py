@@ -171,6 +171,8 @@ class CheckReport:
     tolerance: float = math.nan
     #: The case has a sea state (waves with a period).
     sea: bool = False
+    #: The fatigue check (moorsolve.life.fatigue.FatigueResult) where checks.fatigue is given.
+    fatigue: object = None
 
     def __repr__(self) -> str:
         verdict = "PASS" if self.passed else "FAIL"
@@ -184,11 +186,14 @@ class CheckReport:
 
     @property
     def passed(self) -> bool:
-        return all(c.passed for c in self.conditions)
+        return all(c.passed for c in self.conditions) and (
+            self.fatigue is None or self.fatigue.passed)
 
     @property
     def failures(self) -> list:
-        out = []
+        out = [] if self.fatigue is None else [
+            f"fatigue of {e.line} at its {e.end}: DFF x D = {e.utilisation:.3g} > 1 "
+            f"(life {e.life_y:.4g} y)" for e in self.fatigue.ends if not e.passed]
         for c in self.conditions:
             out += [f"{c.name}: {d['message']}" for d in c.drifting]
             if not c.solved:
@@ -244,6 +249,7 @@ class CheckReport:
             "conditions": [c.to_dict() for c in self.conditions],
             "failures": self.failures,
             "warnings": self.warnings,
+            **({} if self.fatigue is None else {"fatigue": self.fatigue.to_dict()}),
         }
 
 
@@ -288,13 +294,18 @@ def run_checks(case: Case, *, standard: str | None = None, tol: float | None = N
         # unchanged, so there is no damaged condition to solve.
         for leg in case.legs:
             conditions.append(_condition(case, checks, leg.name, tol, simulate))
+    intact = conditions[0].result
+    fatigue = None
+    if checks.fatigue is not None and intact is not None:
+        from ..life.fatigue import fatigue as fatigue_of
+        fatigue = fatigue_of(intact, checks.fatigue)
     return CheckReport(case_name=case.name, standard=checks.standard,
                        consequence_class=checks.consequence_class, checks=checks,
                        conditions=conditions, criteria=standard_rows(checks.standard),
                        time_s=time.perf_counter() - t0,
                        tolerance=case.solver.tol if tol is None else float(tol),
                        sea=bool(case.environment.waves is not None
-                                and case.environment.waves.sea_state))
+                                and case.environment.waves.sea_state), fatigue=fatigue)
 
 
 def _condition(case: Case, checks: Checks, removed: str | None, tol,

@@ -12,7 +12,7 @@ import sys
 import warnings
 
 from ..errors import CaseError, ConvergenceError, MoorsolveWarning
-from . import bounds, checks, cost, equilibrium, moordyn, motions, studies
+from . import bounds, checks, cost, equilibrium, fatigue, moordyn, motions, studies
 from .common import EXIT_BAD_INPUT, EXIT_NO_EQUILIBRIUM, EXIT_OK, Parser, bad_input
 
 __all__ = ["main", "EXIT_OK", "EXIT_NO_EQUILIBRIUM", "EXIT_BAD_INPUT"]
@@ -23,7 +23,7 @@ def _parser() -> Parser:
     parser = Parser(prog="moorsolve", description="Static equilibrium of moored bodies.")
     parser.add_argument("--version", action="version", version=f"moorsolve {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
-    for group in (equilibrium, checks, cost, moordyn, studies, bounds, motions):
+    for group in (equilibrium, checks, cost, moordyn, studies, bounds, motions, fatigue):
         group.add_commands(sub)
     return parser
 

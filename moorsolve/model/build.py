@@ -69,8 +69,9 @@ Schema (SI units, ``[...]`` lists)::
              offset_limit, offset_limit_damaged, min_grounded_length,
              min_grounded_length_damaged [m], anchor: ANCHOR, damaged: bool,
              design_life, corrosion, creep (moorsolve.model.build_wear),
-             anchors: {drag | suction | pile | deadweight: DESIGN}}   optional
-                                               (DESIGN: moorsolve.model.build_anchors)
+             anchors: {drag | suction | pile | deadweight: DESIGN}
+                                               (DESIGN: moorsolve.model.build_anchors),
+             fatigue: {...} (moorsolve.model.build_fatigue)}   optional
     moordyn: {...}                             optional; MoorDyn columns moorsolve does not use,
                                                kept for export (moorsolve.model.moordyn_block);
                                                the solver ignores it
@@ -248,7 +249,7 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
     m = check_mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
                                       "offset_limit_damaged", "min_grounded_length",
                                       "min_grounded_length_damaged", "anchor", "damaged",
-                                      "anchors") + WEAR_KEYS)
+                                      "anchors", "fatigue") + WEAR_KEYS)
     defaults = Checks()
     standard = m.get("standard", defaults.standard)
     if not isinstance(standard, str) or standard not in STANDARDS:
@@ -281,10 +282,18 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
         raise CaseError(field_path(path, "damaged"), f"{show_value(damaged)} is not true or false")
     anchors = (() if m.get("anchors") is None
                else build_anchors(m["anchors"], field_path(path, "anchors")))
-    return Checks(anchors=anchors, standard=standard, consequence_class=int(cclass), offset_limit=offset,
-                  offset_limit_damaged=offset_damaged, min_grounded_length=grounded,
-                  min_grounded_length_damaged=grounded_damaged, anchor=anchor,
-                  damaged=damaged, wear=wear_fields(m, path, line_types or {}, legs))
+    fatigue = None
+    if m.get("fatigue") is not None:
+        from .build_fatigue import fatigue_spec
+        types = {seg.line_type.name for leg in legs for seg in leg.segments}
+        fatigue = fatigue_spec(m["fatigue"], field_path(path, "fatigue"), sorted(types),
+                               checks_life=m.get("design_life"),
+                               checks_life_path=field_path(path, "design_life"))
+    return Checks(anchors=anchors, standard=standard, consequence_class=int(cclass),
+                  offset_limit=offset, offset_limit_damaged=offset_damaged,
+                  min_grounded_length=grounded, min_grounded_length_damaged=grounded_damaged,
+                  anchor=anchor, damaged=damaged,
+                  wear=wear_fields(m, path, line_types or {}, legs), fatigue=fatigue)
 
 
 # ---- solver -----------------------------------------------------------------------------

@@ -32,7 +32,8 @@ from ..errors import CaseError
 from .fields import check_list, check_mapping, field_path, quantity
 from .units import show_value
 
-__all__ = ["ZONES", "Corrosion", "Creep", "Wear", "wear_fields", "WEAR_KEYS"]
+__all__ = ["ZONES", "Corrosion", "Creep", "Wear", "wear_fields", "WEAR_KEYS", "design_life_years",
+           "SECONDS_PER_YEAR"]
 
 #: The zones of a line, from the surface down: on and near the surface, hanging free,
 #: lying on the seabed.
@@ -41,7 +42,7 @@ ZONES = ("splash", "catenary", "bottom")
 #: The ``checks`` keys this module reads.
 WEAR_KEYS = ("design_life", "corrosion", "creep")
 
-_SECONDS_PER_YEAR = 365.25 * 86400.0
+SECONDS_PER_YEAR = 365.25 * 86400.0
 _YEAR_WORDS = r"(?:y|yr|yrs|year|years|a)"
 _PER_YEAR = re.compile(rf"^(.*?)\s*/\s*{_YEAR_WORDS}\s*$")
 _YEARS = re.compile(rf"^(.*?)\s*{_YEAR_WORDS}\s*$")
@@ -155,12 +156,14 @@ def _per_year(raw, path: str, kind: str) -> float:
     return value
 
 
-def _years(raw, path: str) -> float:
+def design_life_years(raw, path: str) -> float:
+    """A design life in years: '20 y', '20 years', '25 a', a time ('1000 d') or a plain number
+    of years (seconds would be no design life). Raises CaseError naming ``path``."""
     if isinstance(raw, str):
         m = _YEARS.match(raw.strip())
         text = raw if m is None else m.group(1)
         if m is None and not _NUMBER.match(raw):
-            value = quantity(raw, path, "time") / _SECONDS_PER_YEAR
+            value = quantity(raw, path, "time") / SECONDS_PER_YEAR
         else:
             if not _NUMBER.match(text):
                 raise CaseError(path, f"{raw!r} is not a number of years; give e.g. '20 y'")
@@ -275,11 +278,11 @@ def wear_fields(m: dict, path: str, line_types: dict, lines: tuple) -> Optional[
              else _creep(m["creep"], field_path(path, "creep"), line_types))
     if corrosion is None and creep is None:
         if m.get("design_life") is not None:
-            _years(m["design_life"], field_path(path, "design_life"))
+            design_life_years(m["design_life"], field_path(path, "design_life"))
         return None
     if m.get("design_life") is None:
         raise CaseError(field_path(path, "design_life"),
                         "corrosion and creep act over the design life; give design_life "
                         "(e.g. '20 y')")
-    return Wear(design_life=_years(m["design_life"], field_path(path, "design_life")),
+    return Wear(design_life=design_life_years(m["design_life"], field_path(path, "design_life")),
                 corrosion=corrosion, creep=creep)

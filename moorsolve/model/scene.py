@@ -58,6 +58,8 @@ class Checks:
     anchors : tuple of AnchorDesign
         At most one :class:`~moorsolve.model.anchors.AnchorDesign` per anchor kind: the
         capacity each kind of anchor is checked against, and its mass for the cost.
+    fatigue : FatigueSpec or None
+        The fatigue check (:mod:`moorsolve.model.fatigue`), where the case asks for one.
     """
 
     standard: str = "api-rp-2sk"
@@ -74,6 +76,7 @@ class Checks:
     def anchor_design(self, kind: str):
         """The :class:`~moorsolve.model.anchors.AnchorDesign` of anchor ``kind``, or None."""
         return next((a for a in self.anchors if a.kind == kind), None)
+    fatigue: Optional[object] = None
 
 
 @dataclass(frozen=True)

@@ -72,12 +72,14 @@ def unused_inputs(case: Case) -> list[tuple[str, str]]:
                     else "environment.waves.spectrum",
                     "given but not used by the static solve: no body has hydrodynamics "
                     "(bodies[i].hydrodynamics) to move in the sea state"))
+    fatigue = getattr(getattr(case, "checks", None), "fatigue", None) is not None
     for path, body in bodies:
-        if getattr(body, "hydrodynamics", None) is not None and (
+        if getattr(body, "hydrodynamics", None) is not None and not fatigue and (
                 env.waves is None or not env.waves.sea_state):
             out.append((f"{path}.hydrodynamics",
                         "given but not used: the environment has no sea state (give "
-                        "environment.waves with hs and tp)"))
+                        "environment.waves with hs and tp) and checks.fatigue no "
+                        "scatter diagram"))
     if env.current is not None and env.current.profile and not drag_types:
         out.append(("environment.current.profile",
                     "given but not used: only lines with drag data see the current profile "

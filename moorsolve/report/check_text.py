@@ -94,6 +94,9 @@ def format_check_table(report: CheckReport) -> str:
     lines += berth_check_lines(report, wide)  # hawsers, fenders, guides
     lines += anchor_check_lines(report, wide)
     lines += _design_offset_lines(report, wide)
+    if report.fatigue is not None:
+        from .fatigue import fatigue_text
+        lines += ["", fatigue_text(report.fatigue)]
     lines.append("")
     failures = report.failures
     lines.append(f"result       {'PASS' if report.passed else 'FAIL'}: "

@@ -1,0 +1,199 @@
+"""One line's spectral response in many sea states at once (a scatter diagram).
+
+The same equations as :func:`.line_dynamics.line_response` with the spectral (stochastic)
+drag linearisation, each sea state with its own linearised drag, solved together: the
+line's matrices are block tridiagonal in its nodes (a node couples only with its
+neighbours), so every frequency of every sea state is one block Thomas sweep over the
+nodes, vectorised over all of them (``n_states x n_omega`` 3x3 systems per node) instead of
+a banded solve per frequency. Constrained degrees of freedom (the ends, nodes held on the
+seabed) are kept in the sweep as identity rows with zero right-hand side, their coupling
+to the free ones moved to the right-hand side, which is exactly the reduced system.
+
+Block elimination without pivoting is safe here: each diagonal block carries the node's
+positive axial and geometric stiffness, mass and damping, and the tests check the sweep
+against the banded solve of :mod:`.line_dynamics`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ConvergenceError
+from .line_dynamics import _SPECTRAL_FACTOR, _System
+from .line_model import LineModel
+
+__all__ = ["spectral_tensions"]
+
+
+def _blocks(sys: _System):
+    """Diagonal and upper blocks of K and M over the nodes, constrained DOFs removed
+    (identity in K's diagonal, zero elsewhere), and the free mask ``(n_nodes, 3)``."""
+    n = sys.n_nodes
+    free = np.zeros(sys.ndof, bool)
+    free[sys.free] = True
+    mask = free.reshape(n, 3)
+    outer = mask[:, :, None] & mask[:, None, :]
+    idx = np.arange(n)
+    K4 = sys.K.reshape(n, 3, n, 3).transpose(0, 2, 1, 3)       # (n, n, 3, 3)
+    M4 = sys.M.reshape(n, 3, n, 3).transpose(0, 2, 1, 3)
+    Kd = np.where(outer, K4[idx, idx], 0.0) + np.eye(3) * (~mask)[:, :, None]
+    Md = np.where(outer, M4[idx, idx], 0.0)
+    Ku = np.where(mask[:-1, :, None] & mask[1:, None, :], K4[idx[:-1], idx[1:]], 0.0)
+    rest = sys.K.copy()
+    for i in range(n):
+        for j in (i - 1, i, i + 1):
+            if 0 <= j < n:
+                rest[3 * i:3 * i + 3, 3 * j:3 * j + 3] = 0.0
+    if np.any(rest != 0):
+        raise ValueError("the line's stiffness is not block tridiagonal in its nodes")
+    return Kd, Md, Ku, mask, outer
+
+
+def _inv3(A):
+    """Inverses of 3x3 matrices stored component-first, ``A`` (3, 3, N), by the adjugate:
+    every operation a vector operation over the N systems."""
+    a, b, c = A[0]
+    d, e, f = A[1]
+    g, h, k = A[2]
+    co = np.array([[e * k - f * h, c * h - b * k, b * f - c * e],
+                   [f * g - d * k, a * k - c * g, c * d - a * f],
+                   [d * h - e * g, b * g - a * h, a * e - b * d]])
+    det = a * co[0, 0] + b * co[1, 0] + c * co[2, 0]
+    if not np.all(np.isfinite(det)) or np.any(det == 0):
+        raise np.linalg.LinAlgError("singular block")
+    return co / det
+
+
+def _left(C, X):
+    """``C X`` for a constant real 3x3 ``C`` and component-first ``X`` (3, ..., N)."""
+    return np.array([C[i, 0] * X[0] + C[i, 1] * X[1] + C[i, 2] * X[2] for i in range(3)])
+
+
+def _right(X, C):
+    """``X C`` for component-first ``X`` (3, 3, N) and a constant real 3x3 ``C``."""
+    return np.array([[X[i, 0] * C[0, j] + X[i, 1] * C[1, j] + X[i, 2] * C[2, j]
+                      for j in range(3)] for i in range(3)])
+
+
+def _apply(X, y):
+    """``X y`` for component-first ``X`` (3, 3, N) and ``y`` (3, N)."""
+    return np.array([X[i, 0] * y[0] + X[i, 1] * y[1] + X[i, 2] * y[2] for i in range(3)])
+
+
+def _thomas(D, U, rhs):
+    """Solve the block tridiagonal systems with diagonal blocks ``D`` (n, 3, 3, N), upper
+    blocks ``U`` (n-1, 3, 3) (lower ``U^T``: symmetric coupling) and right-hand sides
+    ``rhs`` (n, 3, N), components first so that each step is a vector operation over the
+    N systems."""
+    n = D.shape[0]
+    inv = np.empty_like(D)
+    rp = np.empty_like(rhs)
+    inv[0] = _inv3(D[0])
+    rp[0] = rhs[0]
+    for i in range(1, n):
+        W = _left(U[i - 1].T, inv[i - 1])
+        inv[i] = _inv3(D[i] - _right(W, U[i - 1]))
+        rp[i] = rhs[i] - _apply(W, rp[i - 1])
+    x = np.empty_like(rhs)
+    x[n - 1] = _apply(inv[n - 1], rp[n - 1])
+    for i in range(n - 2, -1, -1):
+        x[i] = _apply(inv[i], rp[i] - _left(U[i], x[i + 1]))
+    return x
+
+
+def spectral_tensions(model: LineModel, omega, motion_b, spectra, *, motion_a=None,
+                      tolerance: float = 1e-3, max_iterations: int = 200,
+                      relaxation: float = 0.5) -> tuple:
+    """Tension transfer functions at both ends of one line in each of several sea states.
+
+    Parameters
+    ----------
+    model : LineModel
+    omega : array_like (n_omega,)
+        Frequencies [rad/s], > 0.
+    motion_b : array_like (n_states, 3, n_omega) complex
+        Fairlead motion per metre of wave amplitude in each sea state [m/m], global.
+    spectra : array_like (n_states, n_omega)
+        Each sea state's wave spectrum [m^2 s/rad].
+    motion_a : array_like (n_states, 3, n_omega) complex, optional
+        Motion of end A (None: fixed).
+    tolerance, max_iterations, relaxation
+        As :func:`.line_dynamics.line_response` (per sea state).
+
+    Returns
+    -------
+    (tension_a, tension_b, iterations) : (ndarray (n_states, n_omega) complex x 2, int)
+        Tension change per metre of wave amplitude [N/m] at end A and end B.
+    """
+    omega = np.asarray(omega, float)
+    S = np.asarray(spectra, float)
+    ub = np.swapaxes(np.asarray(motion_b, complex), 1, 2)            # (ns, nw, 3)
+    ua = np.zeros_like(ub) if motion_a is None else np.swapaxes(
+        np.asarray(motion_a, complex), 1, 2)
+    sys = _System(model)
+    Kd, Md, Ku, mask, outer = _blocks(sys)
+    n = sys.n_nodes
+    ns, nw = S.shape
+    # Coupling of the prescribed ends to the free DOFs (through K only: M and B are
+    # block diagonal and the ends are constrained whole).
+    K = sys.K
+    rhs = np.zeros((ns, nw, n, 3), complex)
+    rhs_flat = -(ub @ K[:, sys.end_b].T) - (ua @ K[:, sys.end_a].T)   # (ns, nw, ndof)
+    rhs[:] = rhs_flat.reshape(ns, nw, n, 3)
+    rhs *= mask
+    base = Kd[None, :] - (omega ** 2)[:, None, None, None] * Md[None, :]   # (nw, n, 3, 3)
+    qn, qt = model.drag_normal, model.drag_tangential
+    Pn = np.where(outer, sys.Pn, 0.0)
+    Pt = np.where(outer, sys.Pt, 0.0)
+
+    N = ns * nw
+    rhs_c = rhs.transpose(2, 3, 0, 1).reshape(n, 3, N)
+    base_c = base.transpose(1, 2, 3, 0)[:, :, :, None, :]            # (n, 3, 3, 1, nw)
+    tangent = model.tangent
+
+    def motion(bn, bt):
+        B = bn[:, :, None, None] * Pn + bt[:, :, None, None] * Pt     # (ns, n, 3, 3)
+        D = base_c + 1j * omega * B.transpose(1, 2, 3, 0)[..., None]  # (n, 3, 3, ns, nw)
+        try:
+            x = _thomas(D.reshape(n, 3, 3, N), Ku, rhs_c)
+        except np.linalg.LinAlgError:
+            raise ConvergenceError("the line's dynamic stiffness is singular at one of the "
+                                   "frequencies") from None
+        u = x.reshape(n, 3, ns, nw).transpose(2, 3, 0, 1).copy()
+        u[:, :, -1, :] = ub
+        u[:, :, 0, :] = ua
+        return u                                                       # (ns, nw, n, 3)
+
+    w2S = (omega ** 2 * S)[:, :, None]
+
+    def coefficients(u):
+        # |v|^2 = omega^2 |u|^2, split along the (real, unit) tangent t: |v_t|^2 =
+        # omega^2 |t . u|^2 and |v_n|^2 = |v|^2 - |v_t|^2.
+        ut = np.sum(u * tangent, -1)
+        at = ut.real ** 2 + ut.imag ** 2
+        an = np.maximum(np.sum(u.real ** 2 + u.imag ** 2, -1) - at, 0.0)
+        sn = np.sqrt(np.trapezoid(an * w2S, omega, axis=1))
+        st = np.sqrt(np.trapezoid(at * w2S, omega, axis=1))
+        return _SPECTRAL_FACTOR * sn * qn, _SPECTRAL_FACTOR * st * qt
+
+    frac = (model.s / model.s[-1])[None, None, :, None]
+    bn, bt = coefficients(ua[:, :, None, :] + frac * (ub - ua)[:, :, None, :])
+    for it in range(1, max_iterations + 1):
+        u = motion(bn, bt)
+        bn_new, bt_new = coefficients(u)
+        scale = np.maximum(np.maximum(bn_new.max(1), bt_new.max(1)), 1e-300)
+        change = np.maximum(np.abs(bn_new - bn).max(1), np.abs(bt_new - bt).max(1))
+        if np.all(change <= tolerance * scale):
+            u = motion(bn_new, bt_new)
+            break
+        bn = relaxation * bn_new + (1 - relaxation) * bn
+        bt = relaxation * bt_new + (1 - relaxation) * bt
+    else:
+        raise ConvergenceError(f"line {model.name}: the drag linearisation did not converge "
+                               f"in {max_iterations} iterations", iterations=max_iterations)
+    du = np.diff(u, axis=2)                                            # (ns, nw, n-1, 3)
+    first = model.axial[0] * np.einsum("swi,i->sw", du[:, :, 0], model.direction[0])
+    last = model.axial[-1] * np.einsum("swi,i->sw", du[:, :, -1], model.direction[-1])
+    t_a = first - 0.5 * model.weight[0] * du[:, :, 0, 2]
+    t_b = last + 0.5 * model.weight[-1] * du[:, :, -1, 2]
+    return t_a, t_b, it
