@@ -85,6 +85,7 @@ from ..errors import CaseError
 from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
+from .shared import shared_parts
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
 from .build_network import build_network, check_held, end_position
@@ -404,6 +405,8 @@ def build_case(data, default_name: str = "case") -> Case:
     checks = None if m.get("checks") is None else _checks(m["checks"], "checks", lines)
     moordyn = (None if m.get("moordyn") is None
                else validate_moordyn_block(m["moordyn"], "moordyn", line_types, lines))
-    return Case(name=name, environment=environment, line_types=line_types, lines=lines,
-                bodies=bodies, points=points, solver=solver, checks=checks, moordyn=moordyn,
-                form="network" if network else "legs", contacts=contacts)
+    # Equal parts of earlier cases are shared, so what was derived from them is found again.
+    return shared_parts(Case(name=name, environment=environment, line_types=line_types,
+                             lines=lines, bodies=bodies, points=points, solver=solver,
+                             checks=checks, moordyn=moordyn,
+                             form="network" if network else "legs", contacts=contacts))

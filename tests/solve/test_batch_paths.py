@@ -1,0 +1,104 @@
+"""Batches of one structure take the fast paths and get the slow paths' answers.
+
+Separately loaded cases of one scene share their equal parts (model/shared.py), so what a
+solve derives from the lines is found again; each must still get, to 1e-9 of the largest
+tension, what a case that shares nothing gets, a changed line must never be served the
+structure of the unchanged one, and threads loading and solving at once agree.
+"""
+
+from __future__ import annotations
+
+import copy
+import threading
+
+import numpy as np
+import pytest
+import yaml
+
+import moorsolve
+from moorsolve.model import shared as shared_parts
+from moorsolve.solve import prepared
+
+from conftest import CASES
+
+DOCK = CASES / "floating_dock.yaml"
+
+
+def dock_data(force=(0.0, 0.0, 0.0)) -> dict:
+    """The dock as case-file data with a constant force and no flows."""
+    data = yaml.safe_load(DOCK.read_text())
+    for flow in ("wind", "current", "waves"):
+        data["environment"].pop(flow, None)
+    data["body"]["loads"] = {"force": list(force)}
+    return data
+
+
+LOADS = [(1e6, 2e6, 1e7), (-3e6, 5e5, -2e7), (4e6, -1e6, 3e7), (0.0, 0.0, 0.0)]
+
+
+def answers(result) -> np.ndarray:
+    return np.array([result.body["x_m"], result.body["y_m"], result.body["yaw_deg"]]
+                    + [leg.fairlead_tension_N for leg in result.legs]
+                    + [leg.anchor_tension_N for leg in result.legs])
+
+
+def assert_same(a, b, rtol=1e-9):
+    """Poses to 1e-9 m (deg), tensions to ``rtol`` of the largest."""
+    scale = max(np.abs(a[3:]).max(), 1.0)
+    np.testing.assert_allclose(a[:3], b[:3], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(a[3:], b[3:], rtol=0, atol=rtol * scale)
+
+
+def unshared(data):
+    """A case that shares nothing with any earlier one: the slow path."""
+    shared_parts.clear()
+    prepared.clear()
+    return moorsolve.load_case(copy.deepcopy(data))
+
+
+def test_separately_loaded_cases_share_their_lines_and_get_the_unshared_answers():
+    slow = [answers(moorsolve.solve(unshared(dock_data(f)), solver="newton")) for f in LOADS]
+    cases = [moorsolve.load_case(dock_data(f)) for f in LOADS]
+    assert all(c.lines is cases[0].lines and c.environment is cases[0].environment
+               for c in cases)
+    for case, expected in zip(cases, slow):
+        assert_same(answers(moorsolve.solve(case, solver="newton")), expected)
+
+
+def test_a_different_line_length_is_never_served_the_shared_structure():
+    base = moorsolve.load_case(dock_data(LOADS[0]))
+    moorsolve.solve(base, solver="newton")
+    longer = dock_data(LOADS[0])
+    longer["legs"][0]["segments"][0]["length"] *= 1.02
+    changed = moorsolve.load_case(longer)
+    assert changed.lines is not base.lines and changed.lines[0] != base.lines[0]
+    assert not np.array_equal(prepared.case_parameters(changed),
+                              prepared.case_parameters(base))
+    got = answers(moorsolve.solve(changed, solver="newton"))
+    assert_same(got, answers(moorsolve.solve(unshared(longer), solver="newton")))
+    assert np.abs(got - answers(moorsolve.solve(base, solver="newton"))).max() > 1.0
+
+
+def test_four_threads_loading_and_solving_one_structure_agree():
+    forces = [(1e6 * (1 + k % 5), -5e5 * (k % 3), 1e7 * ((k % 7) - 3)) for k in range(24)]
+    slow = {f: answers(moorsolve.solve(unshared(dock_data(f)), solver="newton"))
+            for f in set(forces)}
+    got, errors = {}, []
+
+    def work(part):
+        try:
+            for f in part:
+                got[(f, threading.get_ident())] = (f, answers(moorsolve.solve(
+                    moorsolve.load_case(dock_data(f)), solver="newton")))
+        except Exception as err:        # pragma: no cover - reported below
+            errors.append(err)
+
+    threads = [threading.Thread(target=work, args=(forces[k::4],)) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    assert len(got) >= len(set(forces))
+    for f, value in got.values():
+        assert_same(value, slow[f])
