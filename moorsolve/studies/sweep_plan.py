@@ -19,7 +19,8 @@ from ..solve.start import initial_point
 from ..solve.prepared import structure_key
 from .sweep_chunks import _Table, _kernel_pool, _solve_each, _solve_fast
 from .sweep_grid import (_GridColumn, _axes, _edits, _grid_columns, _label, _numeric, _plain,
-                         _plain_grid, _point_vector, _sha, snake_order)
+                         _plain_grid, _point_vector, _sha, axis_columns, axis_quantities,
+                         snake_order)
 
 _PARALLEL_MIN_POINTS = 64
 _MIN_CHUNK = 64
@@ -28,6 +29,40 @@ _MAX_CHUNKS = 64
 # Guards the plan's shared preparation and the remote plans of a Dask worker.
 _SOLVE_LOCK = threading.RLock()
 
+
+
+def _validated(case, paths, value):
+    """``(what it converted to SI, the case)`` of one grid value validated as a case."""
+    try:
+        with recording() as converted:
+            c = case.with_values(_edits(paths, value), keep_source=False)
+    except CaseError as err:
+        raise CaseError(f"grid[{_label(paths)!r}]", f"value {value!r}: {err}") from None
+    return converted, c
+
+
+def _axis_by_column(case, paths, values):
+    """``(point vectors, same structure, quantities)`` of an axis of numbers validated by
+    column as a load table's columns are (:class:`.load_table.TableAxis`: each column at
+    its extremes and median, load entries interpolated, others per distinct value), or
+    None for an axis validated value by value (strings with units, names, or an edit a
+    column cannot make, such as an item of a force the case does not give)."""
+    from .load_table import TableAxis
+
+    columns = axis_columns(paths, values)
+    if columns is None:
+        return None
+    probe, _ = _validated(case, paths, values[0])
+    quantities = axis_quantities(case.source, paths, values, probe)
+    if quantities is None:
+        return None
+    loads = np.concatenate([get_problem(case).load_mask,
+                            np.zeros(len(case.legs), dtype=bool)])
+    try:
+        vecs, same = TableAxis(columns).vectors(case, _point_vector, structure_key, loads)
+    except CaseError:
+        return None             # validated value by value, which names the value at fault
+    return vecs, same, quantities
 
 
 # ---- the plan: what defines the points ------------------------------------------------------
@@ -84,19 +119,19 @@ class SweepPlan:
             # SI gives the grid's columns (numbers in SI, the unit in the name).
             axis_vectors, same, self._grid = [], [], []
             for paths, values in self.axes:
-                vecs, keys, quantities = [], [], []
-                for value in values:
-                    try:
-                        with recording() as converted:
-                            c = case.with_values(_edits(paths, value), keep_source=False)
-                    except CaseError as err:
-                        raise CaseError(f"grid[{_label(paths)!r}]",
-                                        f"value {value!r}: {err}") from None
-                    quantities.append(converted)
-                    vecs.append(_point_vector(c))
-                    keys.append(structure_key(c) == base_key)
-                axis_vectors.append(np.array(vecs))
-                same.append(all(keys))
+                by_column = _axis_by_column(case, paths, values)
+                if by_column is not None:
+                    vecs, same_k, quantities = by_column
+                else:
+                    vecs, keys, quantities = [], [], []
+                    for value in values:
+                        converted, c = _validated(case, paths, value)
+                        quantities.append(converted)
+                        vecs.append(_point_vector(c))
+                        keys.append(structure_key(c) == base_key)
+                    vecs, same_k = np.array(vecs), all(keys)
+                axis_vectors.append(vecs)
+                same.append(same_k)
                 self._grid.append(_grid_columns(case.source, paths, values, quantities))
 
         # On a bathymetry grid every point re-seats its lines' seabed planes (solve/
@@ -126,6 +161,7 @@ class SweepPlan:
         self.chunks = [order[a:a + chunk_size] for a in range(0, len(order), chunk_size)]
         self._vectors = None
         self._x_rest = None
+        self._rest = None
         self._problem = None
 
     # -- identity ---------------------------------------------------------------------------
@@ -202,10 +238,14 @@ class SweepPlan:
                     self._problem = problem = get_problem(self.case)
                     _kernel_pool(problem)
                     # A table's rows start as single solves do: from the rest state.
-                    self._x_rest = (rest_point(problem, self.case, self.tol,
-                                               problem.newton())
-                                    if self.table is not None
-                                    else initial_point(problem, self.case))
+                    rest = rest_point(problem, self.case, self.tol, problem.newton())
+                    if self.table is None:
+                        # A grid walks from the case's pose; a point nearer to no load
+                        # than to its neighbour starts from rest (sweep_chunks._nearer_rest).
+                        self._rest = (rest, np.asarray(problem.load_mask, bool),
+                                      self._base_vec[:problem.n_p])
+                    self._x_rest = rest if self.table is not None \
+                        else initial_point(problem, self.case)
             self.vectors()
 
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
@@ -220,7 +260,7 @@ class SweepPlan:
             try:
                 _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
                             self.tol, self.case.body is not None, self.allow_overload,
-                            self.table is not None)
+                            self.table is not None, self._rest)
             finally:
                 pool.release(kernel)
             retry = np.flatnonzero(~table.done).tolist()

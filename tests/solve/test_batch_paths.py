@@ -33,6 +33,10 @@ def dock_data(force=(0.0, 0.0, 0.0)) -> dict:
     return data
 
 
+#: Answers reached from different starts agree to the certified tolerance: comparing them
+#: to 1e-9 needs them certified tighter.
+TIGHT = 1e-12
+
 LOADS = [(1e6, 2e6, 1e7), (-3e6, 5e5, -2e7), (4e6, -1e6, 3e7), (0.0, 0.0, 0.0)]
 
 
@@ -102,3 +106,66 @@ def test_four_threads_loading_and_solving_one_structure_agree():
     assert len(got) >= len(set(forces))
     for f, value in got.values():
         assert_same(value, slow[f])
+
+
+# ---- grids: one vector axis of loads, validated by column ---------------------------------
+
+
+def grid_answers(frame) -> np.ndarray:
+    tensions = ([c for c in frame.columns if c.endswith(".fairlead_tension_N")]
+                + [c for c in frame.columns if c.endswith(".anchor_tension_N")])
+    return frame[["x_m", "y_m", "yaw_deg", *tensions]].to_numpy(dtype=float)
+
+
+def random_forces(n, seed=3):
+    rng = np.random.default_rng(seed)
+    f, a = rng.uniform(0.1, 1.0, n) * 8e6, rng.uniform(0, 2 * np.pi, n)
+    return [[float(x), float(y), float(m)] for x, y, m in
+            zip(f * np.cos(a), f * np.sin(a), rng.uniform(-4e7, 4e7, n))]
+
+
+def test_a_vector_axis_of_forces_is_the_table_of_the_same_loads_and_the_slow_grid(
+        monkeypatch):
+    import pandas as pd
+    from moorsolve.studies import sweep_plan
+
+    case = moorsolve.load_case(dock_data())
+    forces = random_forces(80)
+    grid = moorsolve.sweep(case, {"body.loads.force": forces}, tol=TIGHT)
+    table = moorsolve.sweep(case, table=pd.DataFrame(
+        {f"body.loads.force[{i}]": [f[i] for f in forces] for i in range(3)}), tol=TIGHT)
+    assert grid["converged"].all() and (grid["solver"] == "newton").all()
+    assert list(grid.columns[:3]) == [f"body.loads.force[{i}] [{u}]"
+                                      for i, u in enumerate(("N", "N", "N m"))]
+    fast = grid_answers(grid)
+    for other in (grid_answers(table),):
+        for row_a, row_b in zip(fast, other):
+            assert_same(row_a, row_b)
+    # The slow path: every value validated as a case, every point walked from its neighbour.
+    monkeypatch.setattr(sweep_plan, "_axis_by_column", lambda *a: None)
+    monkeypatch.setattr("moorsolve.studies.sweep_chunks._nearer_rest",
+                        lambda P, loads, base: np.zeros(len(P), bool))
+    slow = moorsolve.sweep(case, {"body.loads.force": forces}, tol=TIGHT)
+    assert list(slow.columns) == list(grid.columns)
+    np.testing.assert_array_equal(slow.iloc[:, :3].to_numpy(), grid.iloc[:, :3].to_numpy())
+    for row_a, row_b in zip(fast, grid_answers(slow)):
+        assert_same(row_a, row_b)
+    single = answers(moorsolve.solve(case.with_values({"body.loads.force": forces[7]}),
+                                     solver="newton", tol=TIGHT))
+    assert_same(fast[7], single)
+
+
+def test_a_bad_value_on_an_axis_of_numbers_is_named_by_the_grid():
+    case = moorsolve.load_case(dock_data())
+    with pytest.raises(moorsolve.CaseError, match=r"grid\['environment.water_density'\]"):
+        moorsolve.sweep(case, {"environment.water_density": [1025.0, -3.0]})
+
+
+def test_near_rest_start_depends_on_the_loads_alone():
+    from moorsolve.studies.sweep_chunks import _nearer_rest
+
+    loads = np.array([True, True, False])
+    base = np.array([0.0, 0.0, 7.0])
+    P = np.array([[1.0, 0.0, 7.0], [1.1, 0.0, 7.0], [-1.0, 0.0, 7.0], [0.1, 0.0, 8.0]])
+    # row 1 is next to row 0; row 2 is nearer to no load; row 3 has another geometry.
+    np.testing.assert_array_equal(_nearer_rest(P, loads, base), [False, False, True, False])
