@@ -44,9 +44,9 @@ from .problem import LINE_COLUMNS
 from .result import Certificate, Result
 from .stability import assess, find_stable
 from .start import initial_point
-from .strategies import (YAW_JUMP, ipopt_strategy, judge_point, newton_strategy,
-                         remember_lines, remembered_answer, rest_point, turn_jump,
-                         turn_jumps)
+from .strategies import (YAW_JUMP, budget_status, ipopt_strategy, judge_point,
+                         newton_strategy, ran_out, remember_lines, remembered_answer,
+                         rest_point, turn_jump, turn_jumps)
 from .weathervane import WALKED, stable_heading, yaw_unknowns
 
 log = logging.getLogger(__name__)
@@ -143,7 +143,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         if x is not None:
             stats["status"] = START_CERTIFIED
         elif kernel is not None:
-            x, notes = newton_strategy(problem, case, kernel, p_full, tol, start, stats)
+            x, notes = newton_strategy(problem, case, kernel, p_full, tol, start, stats,
+                                       t0 + opts.max_time_s)
             used = "newton" if x is not None else "ipopt"
         if x is None:
             x = ipopt_strategy(problem, case, p_full, tol, start, stats, t0)
@@ -151,7 +152,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
                 # Contacts and hawsers: where IPOPT (a smooth NLP solver) does not certify,
                 # the semismooth Newton path built for them gets its turn.
                 x_newton, extra = newton_strategy(problem, case, problem.newton(), p_full,
-                                                   tol, start, stats)
+                                                   tol, start, stats, t0 + opts.max_time_s)
                 if x_newton is not None:
                     x, used = x_newton, "newton"
                     notes.append("IPOPT did not certify this point; the Newton path did "
@@ -169,6 +170,7 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             # (no equilibrium near it) while the body has a stable heading elsewhere.
             turned = _weathervane(problem, case, p_full, tol, stats,
                                   t0 + case.solver.max_time_s)
+            ran_out(stats, t0 + opts.max_time_s, "the search for a stable heading")
             if turned is not None:
                 x, assessment, note = turned
                 notes.append("no equilibrium on the branch followed from rest; " + note)
@@ -179,6 +181,10 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             x, assessment, extra = _stable_point(problem, case, x, p_full, tol, stats, post,
                                                  t0 + case.solver.max_time_s)
             notes += extra
+            if not assessment.stable and ran_out(stats, t0 + opts.max_time_s,
+                                                 "the search for a stable equilibrium"):
+                notes.append(f"the time budget (solver.max_time_s = {opts.max_time_s:g} s) "
+                             "ran out in the search for a stable equilibrium")
             if x is not x_found:
                 post = problem.post(_finite(x), p_full)
                 certified, force_res, moment_res, relative = judge_point(problem, x, post, tol)
@@ -189,6 +195,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         elapsed = time.perf_counter() - t0
         stats["status"] = explain_status(stats["status"], certified,
                                          stats.get("polish_steps", 0))
+        if not certified and "out_of_time" in stats:
+            stats["status"] = budget_status(stats, opts.max_time_s, elapsed)
         cert = Certificate(force_N=force_res, moment_Nm=moment_res, relative=relative,
                            tolerance=tol, status=stats["status"],
                            iterations=stats["iterations"], solve_time_s=elapsed,
@@ -200,7 +208,11 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
             # A line whose span cannot be closed by a finite force (an inextensible line
             # pulled straight): report the largest unbalanced force on the bodies instead.
             force_res = unbalanced_force(problem, result.state, p_full)
-        raise ConvergenceError(diagnose(problem, case, result), residual_N=force_res,
+        reason = diagnose(problem, case, result)
+        if "out_of_time" in stats:
+            reason = (f"{stats['status']}; give it longer with solver.max_time_s (where it "
+                      f"stopped: {reason})")
+        raise ConvergenceError(reason, residual_N=force_res,
                                residual_Nm=moment_res, status=stats["status"],
                                iterations=stats["iterations"], result=result)
     if outside:
