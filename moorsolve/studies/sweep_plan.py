@@ -17,7 +17,7 @@ from ..solve.cache import get_problem
 from ..solve.equilibrium import rest_point
 from ..solve.start import initial_point
 from ..solve.prepared import structure_key
-from .sweep_chunks import _Table, _kernel_pool, _solve_each, _solve_fast
+from .sweep_chunks import TEXT_COLUMNS, _Table, _kernel_pool, _solve_each, _solve_fast
 from .sweep_grid import (_GridColumn, _axes, _edits, _grid_columns, _label, _numeric, _plain,
                          _plain_grid, _point_vector, _sha, axis_columns, axis_quantities,
                          snake_order)
@@ -59,10 +59,11 @@ def _axis_by_column(case, paths, values):
     loads = np.concatenate([get_problem(case).load_mask,
                             np.zeros(len(case.legs), dtype=bool)])
     try:
-        vecs, same = TableAxis(columns).vectors(case, _point_vector, structure_key, loads)
+        mask, moved, same = TableAxis(columns).vectors(case, _point_vector, structure_key,
+                                                       loads)
     except CaseError:
         return None             # validated value by value, which names the value at fault
-    return vecs, same, quantities
+    return (mask, moved), same, quantities
 
 
 # ---- the plan: what defines the points ------------------------------------------------------
@@ -109,10 +110,9 @@ class SweepPlan:
             # Validated by column (load_table), not row by row; its columns as given.
             loads = np.concatenate([get_problem(case).load_mask,
                                     np.zeros(len(case.legs), dtype=bool)])
-            vecs, same = self.table.vectors(case, _point_vector, structure_key, loads)
-            axis_vectors, same = [vecs], [same]
-            self._grid = [[_GridColumn(header, [row[j] for row in self.table.rows],
-                                       all(_numeric(row[j]) for row in self.table.rows))
+            mask, moved, same = self.table.vectors(case, _point_vector, structure_key, loads)
+            axis_vectors, same = [(mask, moved)], [same]
+            self._grid = [[_GridColumn(header, self.table.column(j), self.table.numeric[j])
                            for j, header in enumerate(self.table.headers)]]
         else:
             # Each axis value validated once, as a case of its own; what it converted to
@@ -130,6 +130,8 @@ class SweepPlan:
                         vecs.append(_point_vector(c))
                         keys.append(structure_key(c) == base_key)
                     vecs, same_k = np.array(vecs), all(keys)
+                    mask = np.any(vecs != base_vec, axis=0)
+                    vecs = (mask, vecs[:, mask])
                 axis_vectors.append(vecs)
                 same.append(same_k)
                 self._grid.append(_grid_columns(case.source, paths, values, quantities))
@@ -138,10 +140,10 @@ class SweepPlan:
         # bathymetry.py): full solves, not the kernel on fixed parameters.
         fast = (solver == "newton" and all(same)
                 and case.environment.seabed.bathymetry is None)
-        masks = []
+        # Each axis as (the entries it moves, their values per axis value): a point's
+        # vector is made when its chunk runs (vectors), never the whole grid's at once.
+        masks = [mask for mask, _ in axis_vectors]
         if fast:
-            for vecs in axis_vectors:
-                masks.append(np.any(vecs != base_vec, axis=0))
             used = np.zeros_like(base_vec, dtype=bool)
             for m in masks:
                 fast &= not np.any(used & m)
@@ -159,9 +161,9 @@ class SweepPlan:
             raise ValueError(f"chunk_size {chunk_size}: must be >= 1")
         chunk_size = int(chunk_size)
         self.chunks = [order[a:a + chunk_size] for a in range(0, len(order), chunk_size)]
-        self._vectors = None
         self._x_rest = None
         self._rest = None
+        self._plain = self._grid_sha = None
         self._problem = None
 
     # -- identity ---------------------------------------------------------------------------
@@ -186,12 +188,17 @@ class SweepPlan:
         return plan
 
     def _plain_points(self):
-        return self.table.plain() if self.table is not None else _plain_grid(self.grid)
+        if self._plain is None:      # made once: a table's rows are many
+            self._plain = (self.table.plain() if self.table is not None
+                           else _plain_grid(self.grid))
+        return self._plain
 
     def fingerprint(self) -> dict:
         """What a resumed sweep must share with the one that wrote the file."""
+        if self._grid_sha is None:
+            self._grid_sha = _sha(self._plain_points())
         return {"case_sha256": _sha(self.case.source),
-                "grid_sha256": _sha(self._plain_points()),
+                "grid_sha256": self._grid_sha,
                 "solver": self.solver, "tol": self.tol, "n_points": self.n_points,
                 "allow_overload": self.allow_overload}
 
@@ -201,11 +208,28 @@ class SweepPlan:
     def result_columns(self) -> list[str]:
         return list(_Table(0, self.names, self.body_names, self.contacts).columns())
 
+    def column_types(self) -> dict:
+        """The type of each column of the output file as read back: ``float``,
+        ``bool``, ``int`` or ``str`` (text and JSON values)."""
+        types = {"point": int}
+        for columns in self._grid:
+            for col in columns:
+                types[col.name] = float if col.numeric else str
+        for name, value in _Table(1, self.names, self.body_names,
+                                  self.contacts).columns().items():
+            types[name] = (str if name in TEXT_COLUMNS else bool
+                           if np.asarray(value).dtype == bool else int
+                           if np.asarray(value).dtype.kind == "i" else float)
+        return types
+
     def grid_record(self) -> dict:
         """The grid (or the load table) as plain data, for the record beside an output
         file."""
         if self.table is not None:
-            return {"table": self.table.plain()}
+            # Its rows are in the output and their hash in the fingerprint; the record
+            # names the columns (a copy of 100,000 rows cost more than solving them).
+            return {"table": {"columns": list(self.table.headers),
+                              "rows": self.table.n_rows}}
         return {_label(paths): _plain(values) for paths, values in self.axes}
 
     # -- solving ------------------------------------------------------------------------------
@@ -219,16 +243,17 @@ class SweepPlan:
                 edits.update(_edits(paths, values[k]))
         return self.case.with_values(edits, keep_source=False)
 
-    def vectors(self) -> np.ndarray:
-        if self._vectors is None:
-            vectors = np.empty((self.n_points, self._base_vec.size))
-            vectors[:] = self._base_vec
-            index_array = np.array(self.indices, dtype=int).reshape(self.n_points,
-                                                                    len(self.axes))
-            for k, (vecs, mask) in enumerate(zip(self._axis_vectors, self._masks)):
-                vectors[:, mask] = vecs[index_array[:, k]][:, mask]
-            self._vectors = vectors
-        return self._vectors
+    def vectors(self, points=None) -> np.ndarray:
+        """The point vectors of ``points`` (every point by default), one row each."""
+        points = (np.arange(self.n_points) if points is None
+                  else np.asarray(points, dtype=int))
+        vectors = np.tile(self._base_vec, (len(points), 1))
+        index = (points[:, None] if self.table is not None
+                 else np.column_stack(np.unravel_index(points, self.shape)))
+        for k, (mask, moved) in enumerate(self._axis_vectors):
+            if moved.shape[1]:
+                vectors[:, mask] = moved[index[:, k]]
+        return vectors
 
     def prepare(self) -> None:
         """Build (and compile) what the chunks share, once, before they run."""
@@ -246,7 +271,6 @@ class SweepPlan:
                                       self._base_vec[:problem.n_p])
                     self._x_rest = rest if self.table is not None \
                         else initial_point(problem, self.case)
-            self.vectors()
 
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
         """Solve ``points`` (snake order) and return them with their result columns."""
@@ -258,7 +282,9 @@ class SweepPlan:
             pool = _kernel_pool(problem)
             kernel = pool.acquire()
             try:
-                _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
+                # The chunk's own vectors, row k for points[k].
+                _solve_fast(problem, kernel, self._x_rest, self.vectors(points),
+                            np.arange(len(points)), table,
                             self.tol, self.case.body is not None, self.allow_overload,
                             self.table is not None, self._rest)
             finally:
