@@ -9,6 +9,7 @@ structure of the unchanged one, and threads loading and solving at once agree.
 from __future__ import annotations
 
 import copy
+import json
 import threading
 
 import numpy as np
@@ -169,3 +170,43 @@ def test_near_rest_start_depends_on_the_loads_alone():
     P = np.array([[1.0, 0.0, 7.0], [1.1, 0.0, 7.0], [-1.0, 0.0, 7.0], [0.1, 0.0, 8.0]])
     # row 1 is next to row 0; row 2 is nearer to no load; row 3 has another geometry.
     np.testing.assert_array_equal(_nearer_rest(P, loads, base), [False, False, True, False])
+
+
+# ---- the command: a load table in, results out, CSV and Parquet -----------------------------
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_cli_table_round_trip(tmp_path, suffix, capsys):
+    """``moorsolve sweep CASE --table LOADS -o OUT``: every row of the file read back is
+    the in-memory sweep's row (same loads, same answers), with its columns' types."""
+    import pandas as pd
+    from moorsolve.cli import main
+
+    case_file = tmp_path / "dock.yaml"
+    case_file.write_text(yaml.safe_dump(dock_data()))
+    forces = random_forces(90, seed=5)
+    loads = pd.DataFrame({"body.loads.force[0] [kN]": [f[0] / 1e3 for f in forces],
+                          "body.loads.force[1] [kN]": [f[1] / 1e3 for f in forces],
+                          "body.loads.force[2]": [f[2] for f in forces]})
+    table_file = tmp_path / f"loads{suffix}"
+    if suffix == ".csv":
+        loads.to_csv(table_file, index=False)
+    else:
+        loads.to_parquet(table_file, index=False)
+    out = tmp_path / f"out{suffix}"
+    assert main(["sweep", str(case_file), "--table", str(table_file), "-o", str(out),
+                 "--quiet"]) == 0
+    capsys.readouterr()
+    got = pd.read_csv(out) if suffix == ".csv" else pd.read_parquet(out).reset_index()
+    expected = moorsolve.sweep(moorsolve.load_case(case_file), table=loads)
+    assert list(got["point"]) == list(range(90))
+    assert got["converged"].dtype == bool and got["converged"].all()
+    assert list(got["solver"]) == list(expected["solver"])
+    for column in expected.columns:
+        if expected[column].dtype.kind == "f":
+            np.testing.assert_allclose(got[column].to_numpy(), expected[column].to_numpy(),
+                                       rtol=1e-12, atol=0, err_msg=column)
+    # The loads as given, in SI through the header's unit.
+    np.testing.assert_allclose(got["body.loads.force[0] [kN]"], loads.iloc[:, 0])
+    record = json.loads((out.parent / (out.name + ".sweep.json")).read_text())
+    assert record["complete"] and record["grid"]["table"]["rows"] == 90
