@@ -21,6 +21,9 @@ from ..concurrency import LockedLRU
 _FIELDS = ("lines", "environment", "solver", "contacts", "points")
 #: Per field, recently seen values: value -> the same value (the one kept).
 _SEEN = {name: LockedLRU(32) for name in _FIELDS}
+#: The kept values by identity (an identity check costs nothing; a hash of the lines, tens
+#: of microseconds).
+_KEPT = LockedLRU(len(_FIELDS) * 32)
 
 
 def shared_parts(case):
@@ -29,12 +32,15 @@ def shared_parts(case):
     changes = {}
     for name in _FIELDS:
         value = getattr(case, name)
+        if _KEPT.get(id(value)) is value:
+            continue                 # already the kept object: no need to hash it
         try:
             kept = _SEEN[name].get(value)
         except TypeError:            # an unhashable part (a list in a user's subclass)
             continue
         if kept is None:
             _SEEN[name].put(value, value)
+            _KEPT.put(id(value), value)
         elif kept is not value:
             changes[name] = kept
     return dataclasses.replace(case, **changes) if changes else case
@@ -44,6 +50,7 @@ def clear() -> None:
     """Forget the parts seen (for tests)."""
     for seen in _SEEN.values():
         seen.clear()
+    _KEPT.clear()
 
 
 __all__ = ["shared_parts", "clear"]

@@ -121,6 +121,11 @@ def recording():
         _RECORDING.reset(token)
 
 
+def recording_active() -> bool:
+    """Whether a :func:`recording` block is collecting conversions (in this context)."""
+    return _RECORDING.get() is not None
+
+
 def _record(field: str, value: float, kind: str) -> float:
     table = _RECORDING.get()
     if table is not None and field:

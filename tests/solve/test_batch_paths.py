@@ -210,3 +210,33 @@ def test_cli_table_round_trip(tmp_path, suffix, capsys):
     np.testing.assert_allclose(got["body.loads.force[0] [kN]"], loads.iloc[:, 0])
     record = json.loads((out.parent / (out.name + ".sweep.json")).read_text())
     assert record["complete"] and record["grid"]["table"]["rows"] == 90
+
+
+# ---- validation cached by structure -----------------------------------------------------
+
+
+def test_legs_validated_once_are_never_served_for_other_data():
+    good = dock_data(LOADS[0])
+    first = moorsolve.load_case(good)
+    again = moorsolve.load_case(dock_data(LOADS[1]))
+    assert again.lines is first.lines                      # the legs validated once
+    bad = dock_data(LOADS[1])
+    bad["legs"][3]["segments"][0]["length"] = -5.0
+    with pytest.raises(moorsolve.CaseError, match=r"legs\[3\]\.segments\[0\]\.length"):
+        moorsolve.load_case(bad)
+    heavier = dock_data(LOADS[1])
+    heavier["environment"]["gravity"] = 9.7       # the chains' weights (t/m) depend on it
+    changed = moorsolve.load_case(heavier)
+    assert changed.lines is not first.lines
+    fresh = unshared(heavier)
+    assert changed.lines == fresh.lines and changed.line_types == fresh.line_types
+
+
+def test_a_grid_of_repeated_leg_values_still_names_its_unit_column():
+    case = moorsolve.load_case(dock_data((1e6, 0.0, 0.0)))
+    frame = moorsolve.sweep(case, {"legs[*].segments[0].length": ["122.52 m", "12252 cm",
+                                                                   "122.52 m"]})
+    assert "legs[*].segments[0].length [m]" in frame.columns
+    np.testing.assert_allclose(frame["legs[*].segments[0].length [m]"], 122.52)
+    assert frame["converged"].all()
+    assert_same(grid_answers(frame)[0], grid_answers(frame)[2], rtol=1e-9)
