@@ -86,8 +86,7 @@ from ..errors import CaseError
 from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
-from .shared import shared_parts
-from ..concurrency import LockedLRU
+from .shared import LEGS, shared_parts
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
 from .build_network import build_network, check_held, end_position
@@ -351,10 +350,6 @@ def check_tide_on_lines(environment, lines, bodies: tuple) -> None:
                 "fixed points and anchors lowered by it, water_level 0)")
 
 
-#: Validated line types and legs by their case-file data (see :func:`validated_legs`).
-_LEGS = LockedLRU(16)
-
-
 def validated_legs(m, environment, body: bool) -> tuple:
     """``(line_types, legs)`` of the legs form, validated once per distinct case-file data
     of both sections (with the environment and whether a body holds the fairleads): a loop
@@ -372,10 +367,10 @@ def validated_legs(m, environment, body: bool) -> tuple:
         hash(key)
     except (TypeError, ValueError):      # not plain data (numpy values): validate anew
         return build()
-    hit = _LEGS.get(key)
+    hit = LEGS.get(key)
     if hit is None:
         hit = build()
-        _LEGS.put(key, hit)
+        LEGS.put(key, hit)
     return hit
 
 

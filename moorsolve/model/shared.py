@@ -21,6 +21,8 @@ from ..concurrency import LockedLRU
 _FIELDS = ("lines", "environment", "solver", "contacts", "points")
 #: Per field, recently seen values: value -> the same value (the one kept).
 _SEEN = {name: LockedLRU(32) for name in _FIELDS}
+#: Validated line types and legs by their case-file data (model/build.validated_legs).
+LEGS = LockedLRU(16)
 #: The kept values by identity (an identity check costs nothing; a hash of the lines, tens
 #: of microseconds).
 _KEPT = LockedLRU(len(_FIELDS) * 32)
@@ -47,10 +49,11 @@ def shared_parts(case):
 
 
 def clear() -> None:
-    """Forget the parts seen (for tests)."""
+    """Forget the parts seen and the legs validated (for tests)."""
     for seen in _SEEN.values():
         seen.clear()
     _KEPT.clear()
+    LEGS.clear()
 
 
 __all__ = ["shared_parts", "clear"]

@@ -184,6 +184,11 @@ class TableAxis:
                     keys.add(structure_key(probe) == base_key)
                     vecs[v] = point_vector(probe)
                 same &= all(keys)
+                if not all(keys):
+                    # Another structure (its vector may differ in length): every row is
+                    # solved in full, so nothing of it is kept.
+                    blocks.append((np.zeros(base.size, dtype=bool), np.zeros((self.n_rows, 0))))
+                    continue
                 distinct = np.array(list(vecs.values()))
                 mask = np.any(distinct != base, axis=0)
                 where = {v: i for i, v in enumerate(vecs)}

@@ -41,6 +41,13 @@ def _validated(case, paths, value):
     return converted, c
 
 
+def _load_entries(case) -> np.ndarray:
+    """The point-vector entries that are loads: the problem's load entries; none of the
+    limits after them (each line's MBL, each fender's and guide's rated reaction)."""
+    mask = np.asarray(get_problem(case).load_mask, dtype=bool)
+    return np.concatenate([mask, np.zeros(_point_vector(case).size - mask.size, dtype=bool)])
+
+
 def _axis_by_column(case, paths, values):
     """``(point vectors, same structure, quantities)`` of an axis of numbers validated by
     column as a load table's columns are (:class:`.load_table.TableAxis`: each column at
@@ -56,8 +63,7 @@ def _axis_by_column(case, paths, values):
     quantities = axis_quantities(case.source, paths, values, probe)
     if quantities is None:
         return None
-    loads = np.concatenate([get_problem(case).load_mask,
-                            np.zeros(len(case.legs), dtype=bool)])
+    loads = _load_entries(case)
     try:
         mask, moved, same = TableAxis(columns).vectors(case, _point_vector, structure_key,
                                                        loads)
@@ -108,8 +114,7 @@ class SweepPlan:
         base_vec = _point_vector(case)
         if self.table is not None:
             # Validated by column (load_table), not row by row; its columns as given.
-            loads = np.concatenate([get_problem(case).load_mask,
-                                    np.zeros(len(case.legs), dtype=bool)])
+            loads = _load_entries(case)
             mask, moved, same = self.table.vectors(case, _point_vector, structure_key, loads)
             axis_vectors, same = [(mask, moved)], [same]
             self._grid = [[_GridColumn(header, self.table.column(j), self.table.numeric[j])
@@ -129,9 +134,14 @@ class SweepPlan:
                         quantities.append(converted)
                         vecs.append(_point_vector(c))
                         keys.append(structure_key(c) == base_key)
-                    vecs, same_k = np.array(vecs), all(keys)
-                    mask = np.any(vecs != base_vec, axis=0)
-                    vecs = (mask, vecs[:, mask])
+                    same_k = all(keys)
+                    if same_k:
+                        vecs = np.array(vecs)
+                        mask = np.any(vecs != base_vec, axis=0)
+                        vecs = (mask, vecs[:, mask])
+                    else:   # full solves: another structure's vectors are not kept
+                        vecs = (np.zeros(base_vec.size, dtype=bool),
+                                np.zeros((len(values), 0)))
                 axis_vectors.append(vecs)
                 same.append(same_k)
                 self._grid.append(_grid_columns(case.source, paths, values, quantities))

@@ -240,3 +240,17 @@ def test_a_grid_of_repeated_leg_values_still_names_its_unit_column():
     np.testing.assert_allclose(frame["legs[*].segments[0].length [m]"], 122.52)
     assert frame["converged"].all()
     assert_same(grid_answers(frame)[0], grid_answers(frame)[2], rtol=1e-9)
+
+
+def test_a_scene_with_guides_sweeps_by_column_as_a_grid_and_a_table():
+    """The point vector of a contact scene ends with its guides' limits: the load entries'
+    mask must cover them (it stopped at the lines' limits and refused both forms)."""
+    case = moorsolve.load_case(CASES / "pontoon_piles.yaml")
+    levels = [0.0, 0.5, 1.0]
+    grid = moorsolve.sweep(case, {"environment.water_level": levels})
+    table = moorsolve.sweep(case, table={"environment.water_level": levels})
+    assert list(grid["converged"]) == list(table["converged"])
+    reactions = [c for c in grid.columns if c.endswith(".reaction_N")]
+    assert reactions
+    np.testing.assert_allclose(grid[reactions].to_numpy(), table[reactions].to_numpy(),
+                               rtol=1e-6, atol=1e-3)
