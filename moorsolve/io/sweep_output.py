@@ -213,12 +213,22 @@ class _ParquetSink(_Sink):
         import pandas as pd
         if self.path.exists() and not self.parts.exists():
             return pd.read_parquet(self.path)
+        import pyarrow as pa
+        import pyarrow.compute as pc
+        import pyarrow.parquet as pq
+
         files = sorted(self.parts.glob("part-*.parquet"))
-        frame = pd.concat([pd.read_parquet(f) for f in files]) if files else None
-        if frame is None or len(frame) < self.plan.n_points:
-            return frame
-        frame = frame[~frame.index.duplicated()].sort_index()
+        if not files:
+            return None
+        # Assembled in Arrow (no round trip through pandas and back for every part).
+        table = pa.concat_tables([pq.read_table(f) for f in files])
+        if len(table) < self.plan.n_points:
+            return table.to_pandas()
+        if len(pc.unique(table["point"])) < len(table):       # a resume wrote a part twice
+            frame = table.to_pandas()
+            table = pa.Table.from_pandas(frame[~frame.index.duplicated()])
+        table = table.sort_by("point")
         with replacing(self.path) as tmp:
-            frame.to_parquet(tmp)
+            pq.write_table(table, tmp)
         shutil.rmtree(self.parts)
-        return pd.read_parquet(self.path)
+        return table.to_pandas()
