@@ -254,3 +254,16 @@ def test_a_scene_with_guides_sweeps_by_column_as_a_grid_and_a_table():
     assert reactions
     np.testing.assert_allclose(grid[reactions].to_numpy(), table[reactions].to_numpy(),
                                rtol=1e-6, atol=1e-3)
+
+
+def test_edits_share_untouched_data_and_never_change_the_case_they_came_from():
+    base = moorsolve.load_case(dock_data(LOADS[0]))
+    before = copy.deepcopy(base.source)
+    edited = base.with_values({"body.loads.force": list(LOADS[1])})
+    longer = edited.with_values({"legs[0].segments[0].length": 130.0})
+    assert base.source == before
+    assert edited.source["body"]["loads"]["force"] == list(LOADS[1])
+    assert edited.source["legs"][0]["segments"][0]["length"] == 122.52
+    assert longer.source["legs"][0]["segments"][0]["length"] == 130.0
+    assert edited.source["legs"] is base.source["legs"]     # shared, not copied
+    assert longer.lines[0] != base.lines[0] and edited.lines is base.lines
