@@ -77,15 +77,16 @@ def test_plain_case_needs_no_units_solver_or_tables():
                          "moordyn"}
 
 
-def test_units_load_pint_only_when_a_unit_string_is_read():
+def test_units_load_pint_only_when_a_unit_outside_the_common_ones_is_read():
     loaded = _loaded_after("""
         from moorsolve.model.units import to_si
         assert to_si(5.0, "length", "x") == 5.0
+        assert abs(to_si("81 mm", "length", "x") - 0.081) < 1e-15   # a common unit
     """)
     assert "pint" not in loaded
     loaded = _loaded_after("""
         from moorsolve.model.units import to_si
-        assert abs(to_si("81 mm", "length", "x") - 0.081) < 1e-15
+        assert abs(to_si("3 yd", "length", "x") - 2.7432) < 1e-12
     """)
     assert "pint" in loaded
 

@@ -81,6 +81,7 @@ Schema (SI units, ``[...]`` lists)::
 
 from __future__ import annotations
 
+import json
 import math
 import numbers
 from collections.abc import Mapping
@@ -89,6 +90,7 @@ from ..errors import CaseError
 from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
 from .scene import STANDARDS, Case, Checks, SolverOptions
+from .shared import LEGS, shared_parts
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
 from .build_anchors import build_anchors
@@ -104,7 +106,7 @@ from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS
                      nullable_quantity, optional_quantity, quantity)
 from .bathymetry import bathymetry_from_mapping, check_scene as check_bathymetry
 from .moordyn_block import validate_moordyn_block
-from .units import format_si, show_value
+from .units import format_si, recording_active, show_value
 
 __all__ = ["build_case"]
 
@@ -370,6 +372,30 @@ def check_tide_on_lines(environment, lines, bodies: tuple) -> None:
                 "fixed points and anchors lowered by it, water_level 0)")
 
 
+def validated_legs(m, environment, body: bool) -> tuple:
+    """``(line_types, legs)`` of the legs form, validated once per distinct case-file data
+    of both sections (with the environment and whether a body holds the fairleads): a loop
+    that loads one mooring under many loads (``load_case(d)``, ``case.with_values``)
+    validates its legs once. Not while a sweep records what its values convert to."""
+    def build():
+        types = _line_types(m["line_types"], "line_types", environment.gravity,
+                            environment.water_density)
+        return types, _legs(m["legs"], "legs", environment, types, body)
+
+    if recording_active():
+        return build()
+    try:
+        key = (json.dumps([m["line_types"], m["legs"]], sort_keys=True), environment, body)
+        hash(key)
+    except (TypeError, ValueError):      # not plain data (numpy values): validate anew
+        return build()
+    hit = LEGS.get(key)
+    if hit is None:
+        hit = build()
+        LEGS.put(key, hit)
+    return hit
+
+
 def build_case(data, default_name: str = "case") -> Case:
     """The validated :class:`Case` of plain case-file data (see the module notes).
 
@@ -407,18 +433,18 @@ def build_case(data, default_name: str = "case") -> Case:
     # Environment first: gravity converts weights given as mass per length, and depth
     # places anchors given as [x, y].
     environment = _environment(m["environment"], "environment")
-    # A network scene held by contacts alone may have no lines and no line types.
-    line_types = ({} if network and m.get("line_types") is None and not m.get("lines")
-                  else _line_types(m["line_types"], "line_types", environment.gravity,
-                                   environment.water_density))
     contacts = Contacts()
     if network:
+        # A network scene held by contacts alone may have no lines and no line types.
+        line_types = ({} if m.get("line_types") is None and not m.get("lines")
+                      else _line_types(m["line_types"], "line_types", environment.gravity,
+                                       environment.water_density))
         bodies, points, lines = build_network(m, environment, line_types)
         contacts = build_contacts(m, bodies)
         check_held(bodies, lines, contacts)
     else:
         body = None if m.get("body") is None else _body(m["body"], "body")
-        lines = _legs(m["legs"], "legs", environment, line_types, body is not None)
+        line_types, lines = validated_legs(m, environment, body is not None)
         bodies, points = (() if body is None else (body,)), ()
     check_bathymetry(environment, lines, points, contacts, network)
     check_tide_on_lines(environment, lines, bodies)
@@ -427,6 +453,8 @@ def build_case(data, default_name: str = "case") -> Case:
               else _checks(m["checks"], "checks", lines, line_types))
     moordyn = (None if m.get("moordyn") is None
                else validate_moordyn_block(m["moordyn"], "moordyn", line_types, lines))
-    return Case(name=name, environment=environment, line_types=line_types, lines=lines,
-                bodies=bodies, points=points, solver=solver, checks=checks, moordyn=moordyn,
-                form="network" if network else "legs", contacts=contacts)
+    # Equal parts of earlier cases are shared, so what was derived from them is found again.
+    return shared_parts(Case(name=name, environment=environment, line_types=line_types,
+                             lines=lines, bodies=bodies, points=points, solver=solver,
+                             checks=checks, moordyn=moordyn,
+                             form="network" if network else "legs", contacts=contacts))

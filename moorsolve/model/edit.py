@@ -72,14 +72,18 @@ def with_values(case: Case, assignments: Mapping, *, keep_source: bool = True) -
         raise CaseError("case", "edits need the case-file data; load the case with "
                                 "moorsolve.load_case (from a file or a dict)")
     data = set_values(case.source, assignments)
-    return build_with_source(_with_grid(data, case), data, "case", keep_source, stacklevel=4)
+    # ``data`` is this function's own: the edited path copied, the rest shared with
+    # case.source, which nothing edits; so it is kept without a copy.
+    return build_with_source(_with_grid(data, case), data, "case", keep_source, stacklevel=4,
+                             private=True)
 
 
 def build_with_source(built: Mapping, data: Mapping, default_name: str, keep_source: bool,
-                      stacklevel: int) -> Case:
+                      stacklevel: int, private: bool = False) -> Case:
     """The Case of the case-file data ``built``, keeping ``data`` (the same data as the user
-    wrote it) as its source and warning of every input no model uses (at ``stacklevel``,
-    counted from this function), as load_case and edits both do."""
+    wrote it; a copy unless ``private``, data no caller holds) as its source and warning of
+    every input no model uses (at ``stacklevel``, counted from this function), as load_case
+    and edits both do."""
     from .build import build_case
     from .usage import unused_inputs
 
@@ -90,12 +94,25 @@ def build_with_source(built: Mapping, data: Mapping, default_name: str, keep_sou
         raise CaseError("", "the case is nested too deeply") from None
     if not keep_source:
         return case
-    source = copy.deepcopy(dict(data))
+    source = dict(data) if private else plain_copy(dict(data))
     source["name"] = case.name
     case = dataclasses.replace(case, source=source)
     for field, message in unused_inputs(case):
         warnings.warn(UnusedInputWarning(field, message), stacklevel=stacklevel)
     return case
+
+
+def plain_copy(data):
+    """A deep copy of case-file data: dicts, lists and scalars copied by hand (a few
+    times faster than :func:`copy.deepcopy`, which a loop of ``load_case`` paid at every
+    case), anything else by :func:`copy.deepcopy`."""
+    if isinstance(data, dict):
+        return {k: plain_copy(v) for k, v in data.items()}
+    if isinstance(data, list):
+        return [plain_copy(v) for v in data]
+    if isinstance(data, (str, int, float, bool)) or data is None:
+        return data
+    return copy.deepcopy(data)
 
 
 def variant(case: Case, edits: Mapping, path: str = "set") -> Case:

@@ -22,6 +22,7 @@ import reprlib
 import threading
 
 from ..errors import CaseError
+from .common_units import COMMON_UNITS
 
 __all__ = ["registry", "KINDS", "to_si", "weight_per_length_to_si", "format_si", "describe",
            "show_value", "recording"]
@@ -122,6 +123,11 @@ def recording():
         yield table
     finally:
         _RECORDING.reset(token)
+
+
+def recording_active() -> bool:
+    """Whether a :func:`recording` block is collecting conversions (in this context)."""
+    return _RECORDING.get() is not None
 
 
 def _record(field: str, value: float, kind: str) -> float:
@@ -248,6 +254,10 @@ def _string_to_si(raw: str, kinds: tuple, field: str):
     if not unit_text:
         # A bare numeric string is read as SI: PyYAML loads "1e-9" as a string.
         return number, kinds[0]
+    common = COMMON_UNITS.get(unit_text)
+    if common is not None and common[0] in kinds:
+        # A unit every case uses, without pint's registry (model/common_units.py).
+        return _finite(number * common[1], raw, field), common[0]
     units = _parse_units(unit_text, raw, field)
     for kind in kinds:
         if kind == "dimensionless":

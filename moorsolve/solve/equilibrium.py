@@ -125,7 +125,8 @@ def solve(case: Case, *, tol: float | None = None, solver: str = "ipopt",
         if attempt.certified and not outside and not problem.n_q and _planes is None:
             remember_lines(problem, case, attempt.x)
         result = build_result(problem, case, attempt.x, p,
-                              certificate(problem, attempt, p, tol, t0), attempt.certified,
+                              certificate(problem, attempt, p, tol, t0,
+                                          case.solver.max_time_s), attempt.certified,
                               attempt.used, attempt.notes, attempt.assessment, attempt.post)
     refuse(problem, case, result, attempt, p, outside, allow_overload)
     if attempt.assessment is not None and not attempt.assessment.stable:

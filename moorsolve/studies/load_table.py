@@ -108,17 +108,35 @@ class TableAxis:
         self.units = [u for _, u in parsed]
         self.n_rows = lengths.pop()
         self._columns = []
+        #: Per column, whether every cell is a number (int or float, not bool).
+        self.numeric = []
         for header, column in zip(headers, columns):
-            values = [v.item() if isinstance(v, np.generic) else v for v in column]
-            for i, v in enumerate(values):
-                if isinstance(v, float) and not math.isfinite(v):
-                    raise CaseError(f"table[{header!r}]", f"row {i}: {v!r} is not a value")
+            if isinstance(column, np.ndarray) and column.dtype.kind in "iuf":
+                # A column of numbers (a CSV's or Parquet's): converted and checked whole.
+                bad = np.flatnonzero(~np.isfinite(column)) if column.dtype.kind == "f" \
+                    else ()
+                values = column.tolist()
+                numeric = True
+            else:
+                values = [v.item() if isinstance(v, np.generic) else v for v in column]
+                bad = [i for i, v in enumerate(values)
+                       if isinstance(v, float) and not math.isfinite(v)]
+                numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                              for v in values)
+            if len(bad):
+                i = int(bad[0])
+                raise CaseError(f"table[{header!r}]", f"row {i}: {values[i]!r} is not a value")
             self._columns.append(values)
+            self.numeric.append(numeric)
         self.rows = list(zip(*self._columns))
 
     def plain(self) -> dict:
         """The table as plain data (headers and rows), for records and Dask workers."""
         return {"columns": list(self.headers), "rows": [list(r) for r in self.rows]}
+
+    def column(self, k: int) -> list:
+        """The cells of column ``k``, as plain Python values."""
+        return self._columns[k]
 
     def edits(self, row: int) -> dict:
         """``{path: value}`` of one row, values as the case file holds them."""
@@ -128,18 +146,19 @@ class TableAxis:
     # -- validation by column --------------------------------------------------------------
 
     def vectors(self, case, point_vector, structure_key, loads) -> tuple:
-        """Every row's point vector, from validating the columns.
+        """Every row's point vector, from validating the columns, in compact form.
 
         ``point_vector(case)`` is the sweep's per-point vector, ``structure_key`` the
         problem's, and ``loads`` the mask of point-vector entries that are loads.
-        Returns ``(matrix, same_structure)``: one row per table row, and False when a
+        Returns ``(mask, moved, same_structure)``: the entries some column moves, their
+        values row by row (a row's other entries are the case's own), and False when a
         column changes the problem's structure or two columns move the same entry (every
         row is then solved in full).
         """
         base = point_vector(case)
         base_key = structure_key(case)
-        matrix = np.tile(base, (self.n_rows, 1))
         moved = np.zeros(base.size, dtype=bool)
+        blocks = []
         same = True
 
         def validate(k, value):
@@ -154,10 +173,8 @@ class TableAxis:
             return probe
 
         for k, values in enumerate(self._columns):
-            numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                          for v in values)
             mask, rows = None, None
-            if numeric:
+            if self.numeric[k]:
                 mask, rows = self._affine(k, values, validate, point_vector, structure_key,
                                           base, base_key, loads)
             if rows is None:
@@ -167,13 +184,25 @@ class TableAxis:
                     keys.add(structure_key(probe) == base_key)
                     vecs[v] = point_vector(probe)
                 same &= all(keys)
-                rows = np.array([vecs[v] for v in values])
-                mask = np.any(rows != base, axis=0)
+                if not all(keys):
+                    # Another structure (its vector may differ in length): every row is
+                    # solved in full, so nothing of it is kept.
+                    blocks.append((np.zeros(base.size, dtype=bool), np.zeros((self.n_rows, 0))))
+                    continue
+                distinct = np.array(list(vecs.values()))
+                mask = np.any(distinct != base, axis=0)
+                where = {v: i for i, v in enumerate(vecs)}
+                rows = distinct[[where[v] for v in values]][:, mask]
             if np.any(moved & mask):
                 same = False
             moved |= mask
-            matrix[:, mask] = rows[:, mask] if rows.shape[1] == base.size else rows
-        return matrix, bool(same)
+            blocks.append((mask, rows))
+        # The moved entries of every row: the case's own, then each column's.
+        out = np.tile(base[moved], (self.n_rows, 1))
+        position = np.cumsum(moved) - 1
+        for mask, rows in blocks:
+            out[:, position[mask]] = rows
+        return moved, out, bool(same)
 
     def _affine(self, k, values, validate, point_vector, structure_key, base, base_key,
                 loads):

@@ -1,15 +1,18 @@
 """Many solves of one scene: a cartesian grid of case edits, one built problem for all.
 
-``grid`` maps dotted case paths (:mod:`moorsolve.model.paths`) to lists of values. Each axis
-value is applied to the case-file data and validated once (so units and field names work
-as in a case file). A key may also be a tuple of paths whose values are tuples, one value
+``grid`` maps dotted case paths (:mod:`moorsolve.model.paths`) to lists of values. An axis
+of plain numbers (or of lists of numbers: a force per value) is validated by column, as a
+load table's columns are (:mod:`.load_table`); any other axis value is applied to the
+case-file data and validated once (so units and field names work as in a case file). A key may also be a tuple of paths whose values are tuples, one value
 per path: a *zipped* axis (``("environment.wind.toward_deg",
 "environment.current.toward_deg"): [(0, 0), (15, 15), ...]`` turns wind and current
 together). When every edit only changes problem parameters (loads, headings, speeds,
 anchors, lengths, weights, stiffness, friction, breaking loads) and different axes change
 different parameters, the grid's parameter matrix is assembled by indexing and the points
 are solved by the compiled Newton kernel, each warm-started from its neighbour: the grid
-is walked in a snake order (consecutive points differ in one index by one).
+is walked in a snake order (consecutive points differ in one index by one). A point whose
+loads are nearer to none than to its neighbour's (a list of unrelated load cases) starts
+from the rest state instead, batched as a load table's rows are.
 
 The snake order is cut into contiguous *chunks* whose layout depends only on the grid (not
 on the number of workers), so every run of a sweep, local or on a Dask cluster, whole or

@@ -73,6 +73,16 @@ class _Table:
         self.reactions[i] = ([f["reaction_N"] for f in result.fenders]
                              + [g["reaction_N"] for g in result.guides])
 
+    def put(self, rows, part: "_Table") -> None:
+        """Copy every row of ``part`` (a table of ``len(rows)`` points) to ``rows``."""
+        for name, value in vars(part).items():
+            if isinstance(value, np.ndarray):
+                getattr(self, name)[rows] = value
+            elif isinstance(value, list) and name not in ("names", "contacts"):
+                mine = getattr(self, name)
+                for k, row in enumerate(rows.tolist()):
+                    mine[row] = value[k]
+
     def columns(self) -> dict:
         out = {"converged": self.converged, "reason": self.reason, "stable": self.stable,
                "min_eigenvalue": self.min_eigenvalue, "warnings": self.warnings,
@@ -124,17 +134,34 @@ def _kernel_pool(problem):
 
 
 def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
-                allow_overload=False, from_rest=False):
+                allow_overload=False, from_rest=False, rest=None):
     """The kernel at every point: from the previous point's solution (a grid's snake), or
     with ``from_rest`` from the rest state as a single solve starts (a load table's rows,
     which need not be neighbours: run as one batch, :func:`_solve_rows`). A point that
     does not certify, is not clearly stable or (from rest) turns a body far is left for a
-    full solve."""
+    full solve.
+
+    ``rest``, ``(x, load mask, base vector)``: a grid point whose loads are nearer to
+    none than to the previous point's (a list of unrelated load cases on one axis), and
+    whose other parameters are the base case's, starts from the rest state ``x`` instead
+    (:func:`_nearer_rest`)."""
     if from_rest:
         _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
                     allow_overload)
         return
     n_p = problem.n_p
+    use_rest = (_nearer_rest(vectors[np.asarray(points), :n_p], rest[1], rest[2])
+                if rest is not None else np.zeros(len(points), bool))
+    x_from_rest = None
+    if use_rest.any():
+        # Those points start as a load table's rows do: one batch from the rest state.
+        batch = np.flatnonzero(use_rest)
+        part = _Table(len(batch), table.names, table.bodies, table.contacts)
+        x_from_rest = np.full((len(points), rest[0].size), np.nan)
+        x_from_rest[batch] = _solve_rows(problem, kernel, rest[0], vectors,
+                                         np.asarray(points)[batch], part, tol, has_body,
+                                         allow_overload)
+        table.put(batch, part)
     # A certified point may be an unstable equilibrium (a ship turned stern to the wind).
     check_stability = _has_body_nodes(problem)
     x_prev = x_rest.copy()
@@ -142,6 +169,12 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
     states = np.full((len(points), x_rest.size), np.nan) if screen(problem).mode == POST \
         else None
     for row, i in enumerate(points):
+        if use_rest[row]:
+            if table.done[row]:
+                x_prev[:] = x_from_rest[row]
+                if states is not None:
+                    states[row] = x_prev
+            continue
         p = vectors[i, :n_p]
         x, _, iterations, cert, body, tf, ta, reactions, stable, K = kernel.raw(x_prev, p,
                                                                                 tol)
@@ -173,6 +206,26 @@ def _solve_fast(problem, kernel, x_rest, vectors, points, table, tol, has_body,
         rows = np.flatnonzero(np.isfinite(stiffness).all(axis=1))
         table.min_eigenvalue[rows] = _stiffness_minima(problem, stiffness[rows])
     _leave_warnings(problem, kernel, table, states, vectors[np.asarray(points), :n_p])
+
+
+def _nearer_rest(P, loads, base) -> np.ndarray:
+    """Per row of parameters ``P`` (a chunk in its walking order), whether its load entries
+    (mask ``loads``) are nearer to none than to the previous row's, each entry measured in
+    its largest size over the chunk, and its other entries are those of ``base`` (the
+    rest state is the base geometry's). Depends on the chunk alone, so every run of a
+    sweep starts each point alike."""
+    out = np.zeros(len(P), bool)
+    if len(P) < 2 or not loads.any():
+        return out
+    L = P[:, loads]
+    size = np.abs(L).max(axis=0)
+    size[size == 0] = 1.0
+    L = L / size
+    to_rest = np.linalg.norm(L[1:], axis=1)
+    to_previous = np.linalg.norm(L[1:] - L[:-1], axis=1)
+    same_geometry = (P[:, ~loads] == base[~loads]).all(axis=1)
+    out[1:] = (to_rest < to_previous) & same_geometry[1:]
+    return out
 
 
 def _poses(table, rows) -> np.ndarray:
@@ -229,6 +282,7 @@ def _solve_rows(problem, kernel, x_rest, vectors, points, table, tol, has_body,
     _record(table, rows, out["body"][rows], out["fairlead_tension"][rows],
             out["anchor_tension"][rows], out["reactions"][rows],
             vectors[points[rows], n_p:], has_body, allow_overload)
+    return x
 
 
 def _record(table, rows, body, tf, ta, reactions, limits, has_body, allow_overload) -> None:

@@ -17,9 +17,10 @@ from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import rest_point
 from ..solve.kernels.start import initial_point
 from ..solve.assembly.prepared import structure_key
-from .sweep_chunks import _Table, _kernel_pool, _solve_each, _solve_fast
-from .sweep_grid import (_GridColumn, _axes, _edits, _grid_columns, _label, _numeric, _plain,
-                         _plain_grid, _point_vector, _sha, snake_order)
+from .sweep_chunks import TEXT_COLUMNS, _Table, _kernel_pool, _solve_each, _solve_fast
+from .sweep_grid import (_GridColumn, _axes, _edits, _grid_columns, _label, _plain,
+                         _plain_grid, _point_vector, _sha, axis_columns, axis_quantities,
+                         snake_order)
 
 _PARALLEL_MIN_POINTS = 64
 _MIN_CHUNK = 64
@@ -28,6 +29,47 @@ _MAX_CHUNKS = 64
 # Guards the plan's shared preparation and the remote plans of a Dask worker.
 _SOLVE_LOCK = threading.RLock()
 
+
+
+def _validated(case, paths, value):
+    """``(what it converted to SI, the case)`` of one grid value validated as a case."""
+    try:
+        with recording() as converted:
+            c = case.with_values(_edits(paths, value), keep_source=False)
+    except CaseError as err:
+        raise CaseError(f"grid[{_label(paths)!r}]", f"value {value!r}: {err}") from None
+    return converted, c
+
+
+def _load_entries(case) -> np.ndarray:
+    """The point-vector entries that are loads: the problem's load entries; none of the
+    limits after them (each line's MBL, each fender's and guide's rated reaction)."""
+    mask = np.asarray(get_problem(case).load_mask, dtype=bool)
+    return np.concatenate([mask, np.zeros(_point_vector(case).size - mask.size, dtype=bool)])
+
+
+def _axis_by_column(case, paths, values):
+    """``(point vectors, same structure, quantities)`` of an axis of numbers validated by
+    column as a load table's columns are (:class:`.load_table.TableAxis`: each column at
+    its extremes and median, load entries interpolated, others per distinct value), or
+    None for an axis validated value by value (strings with units, names, or an edit a
+    column cannot make, such as an item of a force the case does not give)."""
+    from .load_table import TableAxis
+
+    columns = axis_columns(paths, values)
+    if columns is None:
+        return None
+    probe, _ = _validated(case, paths, values[0])
+    quantities = axis_quantities(case.source, paths, values, probe)
+    if quantities is None:
+        return None
+    loads = _load_entries(case)
+    try:
+        mask, moved, same = TableAxis(columns).vectors(case, _point_vector, structure_key,
+                                                       loads)
+    except CaseError:
+        return None             # validated value by value, which names the value at fault
+    return (mask, moved), same, quantities
 
 
 # ---- the plan: what defines the points ------------------------------------------------------
@@ -72,41 +114,46 @@ class SweepPlan:
         base_vec = _point_vector(case)
         if self.table is not None:
             # Validated by column (load_table), not row by row; its columns as given.
-            loads = np.concatenate([get_problem(case).load_mask,
-                                    np.zeros(len(case.legs), dtype=bool)])
-            vecs, same = self.table.vectors(case, _point_vector, structure_key, loads)
-            axis_vectors, same = [vecs], [same]
-            self._grid = [[_GridColumn(header, [row[j] for row in self.table.rows],
-                                       all(_numeric(row[j]) for row in self.table.rows))
+            loads = _load_entries(case)
+            mask, moved, same = self.table.vectors(case, _point_vector, structure_key, loads)
+            axis_vectors, same = [(mask, moved)], [same]
+            self._grid = [[_GridColumn(header, self.table.column(j), self.table.numeric[j])
                            for j, header in enumerate(self.table.headers)]]
         else:
             # Each axis value validated once, as a case of its own; what it converted to
             # SI gives the grid's columns (numbers in SI, the unit in the name).
             axis_vectors, same, self._grid = [], [], []
             for paths, values in self.axes:
-                vecs, keys, quantities = [], [], []
-                for value in values:
-                    try:
-                        with recording() as converted:
-                            c = case.with_values(_edits(paths, value), keep_source=False)
-                    except CaseError as err:
-                        raise CaseError(f"grid[{_label(paths)!r}]",
-                                        f"value {value!r}: {err}") from None
-                    quantities.append(converted)
-                    vecs.append(_point_vector(c))
-                    keys.append(structure_key(c) == base_key)
-                axis_vectors.append(np.array(vecs))
-                same.append(all(keys))
+                by_column = _axis_by_column(case, paths, values)
+                if by_column is not None:
+                    vecs, same_k, quantities = by_column
+                else:
+                    vecs, keys, quantities = [], [], []
+                    for value in values:
+                        converted, c = _validated(case, paths, value)
+                        quantities.append(converted)
+                        vecs.append(_point_vector(c))
+                        keys.append(structure_key(c) == base_key)
+                    same_k = all(keys)
+                    if same_k:
+                        vecs = np.array(vecs)
+                        mask = np.any(vecs != base_vec, axis=0)
+                        vecs = (mask, vecs[:, mask])
+                    else:   # full solves: another structure's vectors are not kept
+                        vecs = (np.zeros(base_vec.size, dtype=bool),
+                                np.zeros((len(values), 0)))
+                axis_vectors.append(vecs)
+                same.append(same_k)
                 self._grid.append(_grid_columns(case.source, paths, values, quantities))
 
         # On a bathymetry grid every point re-seats its lines' seabed planes (solve/
         # bathymetry.py): full solves, not the kernel on fixed parameters.
         fast = (solver == "newton" and all(same)
                 and case.environment.seabed.bathymetry is None)
-        masks = []
+        # Each axis as (the entries it moves, their values per axis value): a point's
+        # vector is made when its chunk runs (vectors), never the whole grid's at once.
+        masks = [mask for mask, _ in axis_vectors]
         if fast:
-            for vecs in axis_vectors:
-                masks.append(np.any(vecs != base_vec, axis=0))
             used = np.zeros_like(base_vec, dtype=bool)
             for m in masks:
                 fast &= not np.any(used & m)
@@ -124,8 +171,9 @@ class SweepPlan:
             raise ValueError(f"chunk_size {chunk_size}: must be >= 1")
         chunk_size = int(chunk_size)
         self.chunks = [order[a:a + chunk_size] for a in range(0, len(order), chunk_size)]
-        self._vectors = None
         self._x_rest = None
+        self._rest = None
+        self._plain = self._grid_sha = None
         self._problem = None
 
     # -- identity ---------------------------------------------------------------------------
@@ -150,12 +198,17 @@ class SweepPlan:
         return plan
 
     def _plain_points(self):
-        return self.table.plain() if self.table is not None else _plain_grid(self.grid)
+        if self._plain is None:      # made once: a table's rows are many
+            self._plain = (self.table.plain() if self.table is not None
+                           else _plain_grid(self.grid))
+        return self._plain
 
     def fingerprint(self) -> dict:
         """What a resumed sweep must share with the one that wrote the file."""
+        if self._grid_sha is None:
+            self._grid_sha = _sha(self._plain_points())
         return {"case_sha256": _sha(self.case.source),
-                "grid_sha256": _sha(self._plain_points()),
+                "grid_sha256": self._grid_sha,
                 "solver": self.solver, "tol": self.tol, "n_points": self.n_points,
                 "allow_overload": self.allow_overload}
 
@@ -165,11 +218,28 @@ class SweepPlan:
     def result_columns(self) -> list[str]:
         return list(_Table(0, self.names, self.body_names, self.contacts).columns())
 
+    def column_types(self) -> dict:
+        """The type of each column of the output file as read back: ``float``,
+        ``bool``, ``int`` or ``str`` (text and JSON values)."""
+        types = {"point": int}
+        for columns in self._grid:
+            for col in columns:
+                types[col.name] = float if col.numeric else str
+        for name, value in _Table(1, self.names, self.body_names,
+                                  self.contacts).columns().items():
+            types[name] = (str if name in TEXT_COLUMNS else bool
+                           if np.asarray(value).dtype == bool else int
+                           if np.asarray(value).dtype.kind == "i" else float)
+        return types
+
     def grid_record(self) -> dict:
         """The grid (or the load table) as plain data, for the record beside an output
         file."""
         if self.table is not None:
-            return {"table": self.table.plain()}
+            # Its rows are in the output and their hash in the fingerprint; the record
+            # names the columns (a copy of 100,000 rows cost more than solving them).
+            return {"table": {"columns": list(self.table.headers),
+                              "rows": self.table.n_rows}}
         return {_label(paths): _plain(values) for paths, values in self.axes}
 
     # -- solving ------------------------------------------------------------------------------
@@ -183,16 +253,17 @@ class SweepPlan:
                 edits.update(_edits(paths, values[k]))
         return self.case.with_values(edits, keep_source=False)
 
-    def vectors(self) -> np.ndarray:
-        if self._vectors is None:
-            vectors = np.empty((self.n_points, self._base_vec.size))
-            vectors[:] = self._base_vec
-            index_array = np.array(self.indices, dtype=int).reshape(self.n_points,
-                                                                    len(self.axes))
-            for k, (vecs, mask) in enumerate(zip(self._axis_vectors, self._masks)):
-                vectors[:, mask] = vecs[index_array[:, k]][:, mask]
-            self._vectors = vectors
-        return self._vectors
+    def vectors(self, points=None) -> np.ndarray:
+        """The point vectors of ``points`` (every point by default), one row each."""
+        points = (np.arange(self.n_points) if points is None
+                  else np.asarray(points, dtype=int))
+        vectors = np.tile(self._base_vec, (len(points), 1))
+        index = (points[:, None] if self.table is not None
+                 else np.column_stack(np.unravel_index(points, self.shape)))
+        for k, (mask, moved) in enumerate(self._axis_vectors):
+            if moved.shape[1]:
+                vectors[:, mask] = moved[index[:, k]]
+        return vectors
 
     def prepare(self) -> None:
         """Build (and compile) what the chunks share, once, before they run."""
@@ -202,11 +273,14 @@ class SweepPlan:
                     self._problem = problem = get_problem(self.case)
                     _kernel_pool(problem)
                     # A table's rows start as single solves do: from the rest state.
-                    self._x_rest = (rest_point(problem, self.case, self.tol,
-                                               problem.newton())
-                                    if self.table is not None
-                                    else initial_point(problem, self.case))
-            self.vectors()
+                    rest = rest_point(problem, self.case, self.tol, problem.newton())
+                    if self.table is None:
+                        # A grid walks from the case's pose; a point nearer to no load
+                        # than to its neighbour starts from rest (sweep_chunks._nearer_rest).
+                        self._rest = (rest, np.asarray(problem.load_mask, bool),
+                                      self._base_vec[:problem.n_p])
+                    self._x_rest = rest if self.table is not None \
+                        else initial_point(problem, self.case)
 
     def solve_chunk(self, points: Sequence[int]) -> tuple[np.ndarray, dict]:
         """Solve ``points`` (snake order) and return them with their result columns."""
@@ -218,9 +292,11 @@ class SweepPlan:
             pool = _kernel_pool(problem)
             kernel = pool.acquire()
             try:
-                _solve_fast(problem, kernel, self._x_rest, self.vectors(), points, table,
+                # The chunk's own vectors, row k for points[k].
+                _solve_fast(problem, kernel, self._x_rest, self.vectors(points),
+                            np.arange(len(points)), table,
                             self.tol, self.case.body is not None, self.allow_overload,
-                            self.table is not None)
+                            self.table is not None, self._rest)
             finally:
                 pool.release(kernel)
             retry = np.flatnonzero(~table.done).tolist()

@@ -18,6 +18,7 @@ import pytest
 
 import moorsolve
 from moorsolve.model import BodyLoads
+from moorsolve.model import shared as shared_parts
 from moorsolve.solve.assembly import prepared
 from moorsolve.solve.assembly.cache import get_problem, problem_key
 from moorsolve.solve.result.diagnosis import over_mbl
@@ -328,6 +329,7 @@ def test_cases_sharing_lines_get_their_own_answers():
     base = moorsolve.load_case(DOCK)
     for load in random_loads(4, 5e6, 3e7, seed=11):
         shared = with_force(base, load)
+        shared_parts.clear()          # a case loaded anew that shares nothing with base
         fresh = with_force(moorsolve.load_case(DOCK), load)
         assert shared.lines is base.lines and fresh.lines is not base.lines
         assert_same_answer(moorsolve.solve(fresh, solver="newton"),
@@ -346,6 +348,7 @@ def test_a_case_differing_only_in_its_forces_derives_what_a_fresh_case_does(path
     what a case loaded from scratch derives, and the parameter vector its own."""
     base = moorsolve.load_case(path)
     first, second = with_force(base, loads[0]), with_force(base, loads[1])
+    shared_parts.clear()              # a case loaded anew that shares nothing with base
     fresh = with_force(moorsolve.load_case(path), loads[1])
     derived = (prepared.line_kinds_of, prepared.structure_key, prepared.geometry_key,
                scales, problem_key)

@@ -74,7 +74,8 @@ def reach(problem, case, kernel, p, tol: float, start, t0: float,
           remembered: bool = True) -> Attempt:
     """The first point of a solve, judged: the remembered answer (where ``remembered``),
     else the Newton kernel's strategy (where ``kernel`` is given), else IPOPT's, with the
-    Newton fallback for contacts; ``t0`` is the solve's start (IPOPT's time budget)."""
+    Newton fallback for contacts; ``t0`` is the solve's start: IPOPT's time budget, and the
+    Newton paths stop at ``t0 + case.solver.max_time_s``."""
     stats = dict(iterations=0, status="not run")
     notes = []
     x, post = (remembered_answer(problem, case, p, tol, start) if remembered
@@ -84,12 +85,14 @@ def reach(problem, case, kernel, p, tol: float, start, t0: float,
         stats["status"] = START_CERTIFIED
         used = "ipopt" if kernel is None else "newton"    # the solver asked for; none ran
     elif kernel is not None:
-        x, notes = newton_strategy(problem, case, kernel, p, tol, start, stats)
+        x, notes = newton_strategy(problem, case, kernel, p, tol, start, stats,
+                                   t0 + case.solver.max_time_s)
         used = "newton" if x is not None else "ipopt"
     if x is None:
         x = ipopt_strategy(problem, case, p, tol, start, stats, t0)
         if problem.smoothed and kernel is None and not problem.certify(x, p, tol)[0]:
-            x, used = newton_fallback(problem, case, x, p, tol, start, stats, notes)
+            x, used = newton_fallback(problem, case, x, p, tol, start, stats, notes,
+                                      t0 + case.solver.max_time_s)
     attempt = Attempt(x=x, used=used, stats=stats, notes=notes)
     attempt.judge(problem, p, tol, post)
     if attempt.certified and stats["status"] in FAILED_STATUSES:
@@ -99,11 +102,13 @@ def reach(problem, case, kernel, p, tol: float, start, t0: float,
 
 
 def newton_fallback(problem, case, x, p, tol: float, start, stats: dict,
-                    notes: list) -> tuple:
+                    notes: list, deadline: float | None = None) -> tuple:
     """Contacts and hawsers: where IPOPT (a smooth NLP solver) does not certify, the
     semismooth Newton path built for them gets its turn. ``(x, solver used)``: the Newton
-    path's point where it certifies (with a note), else IPOPT's ``x``."""
-    x_newton, _ = newton_strategy(problem, case, problem.newton(), p, tol, start, stats)
+    path's point where it certifies (with a note), else IPOPT's ``x``; it stops at
+    ``deadline`` [s, ``time.perf_counter``]."""
+    x_newton, _ = newton_strategy(problem, case, problem.newton(), p, tol, start, stats,
+                                  deadline)
     if x_newton is None:
         return x, "ipopt"
     notes.append("IPOPT did not certify this point; the Newton path did "

@@ -24,6 +24,28 @@ from .start import initial_point
 
 _LOAD_STEPS = (0.25, 0.5, 0.75, 1.0)
 
+#: The status of a solve that did not certify and whose time budget ran out on its way;
+#: the rest of the status names the path that stopped (:func:`ran_out`).
+BUDGET_EXHAUSTED = "budget_exhausted"
+
+
+def ran_out(stats: dict, deadline, path: str) -> bool:
+    """Whether the solve's time budget (``deadline``, a :func:`time.perf_counter` time) has
+    passed; if so the first ``path`` it stopped is noted in ``stats`` (the status of a
+    solve that then does not certify names it)."""
+    if deadline is None or time.perf_counter() < deadline:
+        return False
+    stats.setdefault("out_of_time", path)
+    return True
+
+
+def budget_status(stats: dict, max_time_s: float, elapsed: float) -> str:
+    """The status of an uncertified solve whose budget ran out (see :func:`ran_out`)."""
+    return (f"{BUDGET_EXHAUSTED}: the time budget (solver.max_time_s = {max_time_s:g} s) "
+            f"ran out in {stats['out_of_time']}; stopped after {elapsed:.3g} s "
+            f"({stats['status']})")
+
+
 def run_ipopt(problem, solver, x0, p, lb, ub, stats) -> np.ndarray:
     """IPOPT from ``x0``; where the scene has complementarities, once per smoothing of
     :meth:`EquilibriumProblem.ipopt_smoothings`, each from the last (a continuation toward
@@ -118,9 +140,10 @@ def remember_lines(problem, case: Case, x: np.ndarray) -> None:
 
 
 
-def newton_strategy(problem, case, kernel, p_full, tol, start, stats):
+def newton_strategy(problem, case, kernel, p_full, tol, start, stats, deadline=None):
     """The compiled kernel from the warm start or the rest state, then from the closed-form
-    state; ``(x or None, notes)``."""
+    state, then its load continuation (which stops at ``deadline``); ``(x or None,
+    notes)``."""
     notes = []
     x0 = np.asarray(start, float) if start is not None else rest_point(problem, case, tol,
                                                                         kernel)
@@ -139,7 +162,7 @@ def newton_strategy(problem, case, kernel, p_full, tol, start, stats):
     if start is None:
         # A large turn (or no certified point) from rest: follow the load up from rest
         # with the kernel, the quasi-static branch the IPOPT strategy's load steps follow.
-        x = _newton_continuation(problem, case, kernel, p_full, tol, stats)
+        x = _newton_continuation(problem, case, kernel, p_full, tol, stats, deadline)
         if x is not None:
             return x, notes
     if certified:
@@ -158,20 +181,23 @@ def newton_strategy(problem, case, kernel, p_full, tol, start, stats):
 _CONTINUATION_STEP = (0.25, 1.0 / 256)
 
 
-def _newton_continuation(problem, case, kernel, p_full, tol, stats):
+def _newton_continuation(problem, case, kernel, p_full, tol, stats, deadline=None):
     """The load factor raised from 0 (the rest state) to 1 with the compiled kernel, each
     step warm-started from the last, so the solve follows the quasi-static branch.
 
     A step is accepted when it certifies and turns no body more than :data:`YAW_JUMP`
     from the step before; otherwise it is halved (down to :data:`_CONTINUATION_STEP`'s
     smallest). So a body that turns round under its load, by any angle, is followed in
-    turns of at most ``YAW_JUMP`` each. Returns the point at load factor 1, or None.
+    turns of at most ``YAW_JUMP`` each. Returns the point at load factor 1, or None (also
+    when ``deadline`` passes).
     """
     largest, smallest = _CONTINUATION_STEP
     x = rest_point(problem, case, tol, kernel)
     p = p_full.copy()
     factor, step = 0.0, largest
     while factor < 1.0:
+        if ran_out(stats, deadline, "the Newton load continuation"):
+            return None
         target = min(1.0, factor + step)
         p[LOAD_FACTOR_INDEX] = target
         out = kernel.solve(x, p, tol)
@@ -199,12 +225,15 @@ def ipopt_strategy(problem, case, p_full, tol, start, stats, t0):
     lb, ub = problem.bounds()
 
     def run(x0, p):
-        if time.perf_counter() >= deadline:
+        if ran_out(stats, deadline, "the IPOPT strategy (warm start, rest state, "
+                                    "closed-form state, load steps)"):
             return x0, False
         # Each IPOPT run is capped at the whole budget; the deadline check above stops
         # further stages, so a solve ends within about twice the budget at worst.
         solver = problem.ipopt(ipopt_tol, opts.max_iter, opts.max_time_s)
         x = run_ipopt(problem, solver, x0, p, lb, ub, stats)
+        if stats.get("status") == "Maximum_WallTime_Exceeded":
+            stats.setdefault("out_of_time", "IPOPT")
         stats["polish_steps"] = 0
         return polish_certified(problem, x, p, lb, ub, stats, tol)
 
@@ -244,9 +273,11 @@ def _drift(problem, x_rest, p, lb, ub, stats, tol, fallback, deadline):
     from. Returns ``fallback`` when it does not certify; the motion stops at ``deadline``
     (the solve's time budget, which IPOPT may already have spent), where the polish and
     the certificate judge the point it reached."""
-    if not problem.n_q or time.perf_counter() >= deadline:
+    if not problem.n_q or ran_out(stats, deadline, "the pseudo-transient fallback (not "
+                                                   "started: IPOPT had spent the budget)"):
         return fallback
     x = pseudo_transient(problem, x_rest, p, steps=2000, deadline=deadline)
+    ran_out(stats, deadline, "the pseudo-transient fallback")
     if x is None:
         return fallback
     x, certified = polish_certified(problem, x, p, lb, ub, stats, tol)

@@ -18,6 +18,7 @@ from ...audit import result_warnings
 from ...errors import ConvergenceError
 from ..assembly.prepared import line_facts
 from ..assembly.problem import LINE_COLUMNS
+from ..kernels.strategies import budget_status
 from .classes import Certificate
 from .diagnosis import (SUCCESS_STATUSES, diagnose, over_mbl, over_rated, pulled_straight,
                         unbalanced_force)
@@ -34,14 +35,16 @@ def out_of_range(problem, case, attempt, p) -> list:
             + pulled_straight(problem, case, attempt.post))
 
 
-def certificate(problem, attempt, p, tol: float, t0: float) -> Certificate:
+def certificate(problem, attempt, p, tol: float, t0: float, max_time_s: float) -> Certificate:
     """The certificate of ``attempt``'s point, its solver status explained where it is not
-    a success but the point certifies; ``t0`` is the solve's start
-    [s, ``time.perf_counter``]."""
+    a success but the point certifies, or the path where the time budget ``max_time_s`` [s]
+    ran out where it did not; ``t0`` is the solve's start [s, ``time.perf_counter``]."""
     elapsed = time.perf_counter() - t0
     stats = attempt.stats
     stats["status"] = explain_status(stats["status"], attempt.certified,
                                      stats.get("polish_steps", 0))
+    if not attempt.certified and "out_of_time" in stats:
+        stats["status"] = budget_status(stats, max_time_s, elapsed)
     return Certificate(force_N=attempt.force_N, moment_Nm=attempt.moment_Nm,
                        relative=attempt.relative, tolerance=tol, status=stats["status"],
                        iterations=stats["iterations"], solve_time_s=elapsed,
@@ -71,7 +74,11 @@ def refuse(problem, case, result, attempt, p, outside: list, allow_overload: boo
             # A line whose span cannot be closed by a finite force (an inextensible line
             # pulled straight): report the largest unbalanced force on the bodies instead.
             force_N = unbalanced_force(problem, result.state, p)
-        raise ConvergenceError(diagnose(problem, case, result), residual_N=force_N,
+        reason = diagnose(problem, case, result)
+        if "out_of_time" in attempt.stats:
+            reason = (f"{status}; give it longer with solver.max_time_s (where it "
+                      f"stopped: {reason})")
+        raise ConvergenceError(reason, residual_N=force_N,
                                residual_Nm=moment_Nm, status=status,
                                iterations=iterations, result=result)
     if outside:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from ..kernels.polish import polish
-from ..kernels.strategies import rest_point
+from ..kernels.strategies import ran_out, rest_point
 from .static import assess, find_stable
 from .weathervane import WALKED, stable_heading, yaw_unknowns
 
@@ -23,6 +23,7 @@ def examine(attempt, problem, case, p, tol: float, deadline: float, walk: bool =
     [s, ``time.perf_counter``]."""
     if not attempt.certified and walk:
         turned = heading_walk(problem, case, p, tol, attempt.stats, deadline)
+        ran_out(attempt.stats, deadline, "the search for a stable heading")
         if turned is not None:
             attempt.x, attempt.assessment, note = turned
             attempt.notes.append("no equilibrium on the branch followed from rest; " + note)
@@ -32,6 +33,11 @@ def examine(attempt, problem, case, p, tol: float, deadline: float, walk: bool =
         x, attempt.assessment, extra = stable_point(problem, case, x_found, p, tol,
                                                     attempt.stats, attempt.post, deadline)
         attempt.notes += extra
+        if not attempt.assessment.stable and ran_out(attempt.stats, deadline,
+                                                     "the search for a stable equilibrium"):
+            attempt.notes.append(f"the time budget (solver.max_time_s = "
+                                 f"{case.solver.max_time_s:g} s) ran out in the search for "
+                                 "a stable equilibrium")
         if x is not x_found:
             attempt.x = x
             attempt.judge(problem, p, tol)
