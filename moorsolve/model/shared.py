@@ -36,16 +36,27 @@ def shared_parts(case):
         value = getattr(case, name)
         if _KEPT.get(id(value)) is value:
             continue                 # already the kept object: no need to hash it
+        key = (value, _uncompared(value)) if name == "environment" else value
         try:
-            kept = _SEEN[name].get(value)
+            kept = _SEEN[name].get(key)
         except TypeError:            # an unhashable part (a list in a user's subclass)
             continue
         if kept is None:
-            _SEEN[name].put(value, value)
+            _SEEN[name].put(key, value)
             _KEPT.put(id(value), value)
         elif kept is not value:
             changes[name] = kept
     return dataclasses.replace(case, **changes) if changes else case
+
+
+def _uncompared(environment) -> tuple:
+    """What equality of two environments leaves out: where a bathymetry grid was read from
+    (``Bathymetry.source``, the one field of the model compared by value only). Two
+    environments equal but for it are not the same part to hand on: the case would report
+    the other file."""
+    seabed = getattr(environment, "seabed", None)
+    grid = getattr(seabed, "bathymetry", None)
+    return () if grid is None else (grid.source,)
 
 
 def clear() -> None:

@@ -267,3 +267,21 @@ def test_edits_share_untouched_data_and_never_change_the_case_they_came_from():
     assert longer.source["legs"][0]["segments"][0]["length"] == 130.0
     assert edited.source["legs"] is base.source["legs"]     # shared, not copied
     assert longer.lines[0] != base.lines[0] and edited.lines is base.lines
+
+
+def test_equal_grids_from_two_files_keep_their_own_source(tmp_path):
+    """Two environments equal but for where their bathymetry grid was read from are not
+    shared: each case reports its own file (equality leaves the source out)."""
+    import yaml
+    raw = yaml.safe_load((CASES / "dock_bathymetry.yaml").read_text())
+    grid = moorsolve.load_case(CASES / "dock_bathymetry.yaml").environment.seabed.bathymetry
+    inline = dict(raw)
+    inline["environment"] = dict(raw["environment"])
+    inline["environment"]["seabed"] = dict(raw["environment"]["seabed"],
+                                           bathymetry={"x": list(grid.x), "y": list(grid.y),
+                                                       "depth": [list(r) for r in grid.depth]})
+    first = moorsolve.load_case(inline)
+    second = moorsolve.load_case(CASES / "dock_bathymetry.yaml")
+    assert first.environment.seabed.bathymetry == second.environment.seabed.bathymetry
+    assert first.environment.seabed.bathymetry.source == "inline"
+    assert second.environment.seabed.bathymetry.source.endswith("dock_bathymetry_seafloor.txt")
