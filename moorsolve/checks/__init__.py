@@ -12,7 +12,7 @@ from .._lazy import lazy_exports
 from ..model.scene import STANDARDS
 
 _NAMES = {"Criterion": ".criteria", "criteria_table": ".criteria", "criterion": ".criteria",
-          "CheckItem": ".items", "CheckReport": ".run", "ConditionResult": ".run",
+          "CheckItem": ".items", "CheckReport": ".outcome", "ConditionResult": ".outcome",
           "run_checks": ".run"}
 __getattr__, __dir__ = lazy_exports(__name__, _NAMES, globals())
 

@@ -51,12 +51,16 @@ class Criterion:
         """The least MBL / tension that passes."""
         return self.factor / self.capacity_factor
 
-    def describe(self) -> str:
+    def describe(self, dynamic: bool = False) -> str:
+        """The criterion in one line; ``dynamic``: with DNV's factor on the dynamic
+        tension."""
         if self.standard == "api-rp-2sk":
-            return f"{self.standard} {self.condition}: MBL/T >= {self.factor:.2f}"
+            method = "" if self.analysis == "quasi-static" else f" ({self.analysis})"
+            return f"{self.standard} {self.condition}{method}: MBL/T >= {self.factor:.2f}"
+        dyn = f" + {self.gamma_dyn:.2f} T_dyn" if dynamic and self.gamma_dyn else ""
         return (f"{self.standard} CC{self.consequence_class} "
-                f"{'ULS' if self.condition == 'intact' else 'ALS'}: {self.factor:.2f} T_mean "
-                f"<= {self.capacity_factor:.2f} MBL")
+                f"{'ULS' if self.condition == 'intact' else 'ALS'}: {self.factor:.2f} T_mean"
+                f"{dyn} <= {self.capacity_factor:.2f} MBL")
 
 
 @lru_cache(maxsize=1)

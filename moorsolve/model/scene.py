@@ -15,6 +15,9 @@ from .contact import Contacts
 DEGREES_OF_FREEDOM = DOFS
 #: Criteria tables known to ``moorsolve.checks`` (``checks.standard``).
 STANDARDS = ("api-rp-2sk", "dnv-os-e301")
+#: How a check takes the dynamic part of the line tension (``checks.method``) and how the
+#: lines respond in a sea state (``analysis.lines``).
+METHODS = ("quasi_static", "dynamic")
 
 
 @dataclass(frozen=True)
@@ -52,6 +55,11 @@ class Checks:
         Default anchor type for legs that do not give their own.
     damaged : bool
         Also run the damaged conditions (each leg removed in turn).
+    method : str or None
+        How the dynamic part of the line tension is had in a sea state: ``quasi_static``
+        (the lines re-solved with the bodies held at their design offset) or ``dynamic``
+        (the lines' own dynamics driven by the bodies' motions); None follows
+        ``analysis.lines``. API RP 2SK's factors depend on it (2.00 / 1.43 or 1.67 / 1.25).
     """
 
     standard: str = "api-rp-2sk"
@@ -62,6 +70,37 @@ class Checks:
     min_grounded_length_damaged: Optional[float] = None
     anchor: AnchorType = field(default_factory=AnchorType)
     damaged: bool = True
+    method: Optional[str] = None
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """What the scene simulates beyond the statics (the case file's ``analysis``).
+
+    Attributes
+    ----------
+    lines : str or None
+        ``dynamic``: each line's own dynamics (lumped masses, drag linearised) driven by the
+        bodies' motions in the sea state; ``quasi_static``: the lines follow the bodies
+        statically. None: ``dynamic`` where the scene has a sea state and a body with
+        hydrodynamics, ``quasi_static`` otherwise (:meth:`lines_in`).
+    """
+
+    lines: Optional[str] = None
+
+    def lines_in(self, case) -> str:
+        """The line model in effect for ``case``."""
+        if self.lines is not None:
+            return self.lines
+        return "dynamic" if moves_in_sea(case) else "quasi_static"
+
+
+def moves_in_sea(case) -> bool:
+    """Whether ``case`` has a sea state (waves with a period) and a body with
+    hydrodynamics to move in it."""
+    waves = case.environment.waves
+    return bool(waves is not None and waves.sea_state
+                and any(getattr(b, "hydrodynamics", None) is not None for b in case.bodies))
 
 
 @dataclass(frozen=True)
@@ -81,6 +120,8 @@ class Case:
     solver: SolverOptions = field(default_factory=SolverOptions)
     checks: Optional[Checks] = None
     form: str = "legs"
+    #: What the scene simulates beyond the statics (``analysis`` in the case file).
+    analysis: Analysis = field(default_factory=Analysis)
     #: Walls, piles, fenders and pile guides (network form; :mod:`.contact`).
     contacts: Contacts = field(default_factory=Contacts)
     #: What a MoorDyn input file held that moorsolve does not use (the case file's ``moordyn``
