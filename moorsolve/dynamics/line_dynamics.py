@@ -97,21 +97,19 @@ class LineResponse:
 
 
 class _System:
-    """The matrices of one line, restricted to its free degrees of freedom."""
+    """The matrices of one line as 3x3 blocks per node (a node couples only with its
+    neighbours: the dynamic stiffness is block tridiagonal)."""
 
     def __init__(self, model: LineModel):
         n = model.n_elements
         ndof = 3 * (n + 1)
+        N = n + 1
         self.K = model.stiffness()
         t = model.tangent
         self.Pt = t[:, :, None] * t[:, None, :]                    # (n+1, 3, 3)
         self.Pn = np.eye(3) - self.Pt
-        M_blocks = (model.mass[:, None, None] * np.eye(3)
-                    + model.added_mass[:, None, None] * self.Pn)
-        i, a, b = np.meshgrid(np.arange(n + 1), np.arange(3), np.arange(3), indexing="ij")
-        self.rows, self.cols = (3 * i + a).ravel(), (3 * i + b).ravel()
-        self.M = np.zeros((ndof, ndof))
-        self.M[self.rows, self.cols] = M_blocks.ravel()
+        self.M_blocks = (model.mass[:, None, None] * np.eye(3)
+                         + model.added_mass[:, None, None] * self.Pn)
         fixed = np.zeros(ndof, bool)
         fixed[:3] = True                                           # end A
         fixed[-3:] = True                                          # end B, prescribed
@@ -125,56 +123,64 @@ class _System:
         held = model.grounded & (T[:-1] <= loose) & (T[1:] <= loose)
         for k in range(2):
             fixed[3 * np.flatnonzero(held) + k] = True
-        self.free = f = np.flatnonzero(~fixed)
+        self.fixed = fixed.reshape(N, 3)
         self.end_b = np.arange(ndof - 3, ndof)
-        self.n_nodes = n + 1
+        self.n_nodes = N
         self.ndof = ndof
-        # The free-free matrices are banded (a node couples only with its neighbours):
-        # each frequency is a banded solve, O(n) instead of the O(n^3) of a dense one.
-        nf = len(f)
-        where = -np.ones(ndof, int)
-        where[f] = np.arange(nf)
-        Kff, Mff = self.K[np.ix_(f, f)], self.M[np.ix_(f, f)]
-        i, j = np.nonzero((Kff != 0) | (Mff != 0))
-        bi, bj = where[self.rows], where[self.cols]
-        self.b_keep = (bi >= 0) & (bj >= 0)
-        bi, bj = bi[self.b_keep], bj[self.b_keep]
-        self.band = band = int(max(np.max(np.abs(i - j), initial=0),
-                                   np.max(np.abs(bi - bj), initial=0)))
-        i, j = np.nonzero(np.abs(np.subtract.outer(np.arange(nf), np.arange(nf))) <= band)
-        self.ab_index = (band + i - j, j)
-        self.K_band, self.M_band = Kff[i, j], Mff[i, j]
-        self.b_index = (band + bi - bj, bj)
-        self.end_a = np.arange(3)
-        self.K_fb = self.K[np.ix_(f, self.end_b)]
-        self.K_fa = self.K[np.ix_(f, self.end_a)]
+        node = np.arange(N)
+        K4 = self.K.reshape(N, 3, N, 3)
+        self.K_diag = K4[node, :, node, :].copy()                  # (N, 3, 3)
+        self.K_upper = K4[node[:-1], :, node[1:], :].copy()        # row i, column i + 1
+        # A prescribed DOF's equation is u = its motion: its row of the blocks is the
+        # identity's, so that the system stays block tridiagonal.
+        free = (~self.fixed).astype(float)
+        self.K_upper *= free[:-1, :, None]
+        self.K_lower = np.transpose(K4[node[1:], :, node[:-1], :], (0, 1, 2)).copy()
+        self.K_lower *= free[1:, :, None]
+        self.free_rows = free
 
     def solve(self, omega, u_a, u_b, bn, bt):
         """Node displacements ``(n_omega, n_nodes, 3)`` for end motions ``u_a``, ``u_b``
         ``(n_omega, 3)`` and drag coefficients per node ``bn``, ``bt``
-        ``(n_omega, n_nodes)``."""
-        from scipy.linalg import solve_banded
-
-        nw, band, nf = len(omega), self.band, len(self.free)
+        ``(n_omega, n_nodes)``: block Gaussian elimination down the line (the block
+        Thomas algorithm), every frequency at once."""
+        nw, N = len(omega), self.n_nodes
+        w = omega[:, None, None, None]
         B_blocks = bn[:, :, None, None] * self.Pn + bt[:, :, None, None] * self.Pt
-        ab = np.zeros((nw, 2 * band + 1, nf), complex)
-        ab[:, self.ab_index[0], self.ab_index[1]] = (
-            self.K_band[None, :] - (omega ** 2)[:, None] * self.M_band[None, :])
-        ab[:, self.b_index[0], self.b_index[1]] += (
-            1j * omega[:, None] * B_blocks.reshape(nw, -1)[:, self.b_keep])
-        rhs = -(u_b @ self.K_fb.T) - (u_a @ self.K_fa.T)
-        u = np.zeros((nw, self.ndof), complex)
+        Z = (self.K_diag[None] - w ** 2 * self.M_blocks[None] + 1j * w * B_blocks)
+        rows = self.free_rows[None, :, :, None]
+        Z = Z * rows + (1 - rows) * np.eye(3)                      # (nw, N, 3, 3)
+        rhs = np.zeros((nw, N, 3), complex)
+        rhs[:, 0] = u_a
+        rhs[:, -1] = u_b
+        held = self.fixed[1:-1]
+        rhs[:, 1:-1][:, held] = 0.0
+        C = np.zeros((nw, N - 1, 3, 3), complex)
+        d = np.zeros((nw, N, 3), complex)
         try:
-            u[:, self.free] = [solve_banded((band, band), ab[w], rhs[w], check_finite=False)
-                               for w in range(nw)]
+            upper = np.broadcast_to(self.K_upper[0], (nw, 3, 3))
+            sol = np.linalg.solve(Z[:, 0], np.concatenate([upper, rhs[:, 0, :, None]], -1))
+            C[:, 0], d[:, 0] = sol[..., :3], sol[..., 3]
+            for i in range(1, N):
+                L = self.K_lower[i - 1]
+                den = Z[:, i] - L @ C[:, i - 1]
+                r = rhs[:, i] - np.einsum("ij,wj->wi", L, d[:, i - 1])
+                if i < N - 1:
+                    upper = np.broadcast_to(self.K_upper[i], (nw, 3, 3))
+                    sol = np.linalg.solve(den, np.concatenate([upper, r[..., None]], -1))
+                    C[:, i], d[:, i] = sol[..., :3], sol[..., 3]
+                else:
+                    d[:, i] = np.linalg.solve(den, r[..., None])[..., 0]
         except np.linalg.LinAlgError:
             raise ConvergenceError(
                 "the line's dynamic stiffness is singular at one of the frequencies (a node "
                 "with neither tension nor mass to hold it, or omega = 0 on a line without "
                 "tension)") from None
-        u[:, self.end_b] = u_b
-        u[:, self.end_a] = u_a
-        return u.reshape(nw, self.n_nodes, 3)
+        u = np.empty((nw, N, 3), complex)
+        u[:, -1] = d[:, -1]
+        for i in range(N - 2, -1, -1):
+            u[:, i] = d[:, i] - np.einsum("wij,wj->wi", C[:, i], u[:, i + 1])
+        return u
 
     def split_velocity(self, v):
         """Magnitudes of the normal and tangential parts of node velocities ``v``
