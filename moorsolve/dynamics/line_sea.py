@@ -28,9 +28,11 @@ The statistics per end (DNV-OS-E301 (2010) Ch.2 Sec.2 [2.4]; DNV-RP-C205 (2010) 
 and each part's significant value ``2 sigma`` and most probable maximum ``sigma sqrt(2 ln
 (duration / T_z))`` for API RP 2SK's combination (:mod:`moorsolve.checks.dynamic`).
 
-The wave-frequency line response is computed on a grid of its own: half of it uniform over
-the band holding all but 1e-6 of the ends' motion energy, half at the quantiles of that
-energy (so a resonance of the bodies keeps its points), the motions interpolated onto it.
+The wave-frequency line response is computed on a grid of its own, one for all the lines of
+the scene (they are solved together): half of it uniform over the band holding all but 1e-6
+of the ends' motion energy, half at the quantiles of that energy (so a resonance of the
+bodies keeps its points), the motions interpolated onto it. At the default 64 frequencies
+the dock's tension sigma is within 1 % of a 256-frequency run (3 % at 48, 8 % at 32).
 """
 
 from __future__ import annotations
@@ -60,6 +62,9 @@ _ANGLE_STEP = 1e-6
 #: Under-relaxation of the drag linearisation: 0.7 converges in about 8 iterations where
 #: 0.5 takes 15, to the same answer (1e-8 of sigma on the dock).
 _RELAXATION = 0.7
+#: The drag coefficients' convergence: 1e-3 of the largest changes sigma by 1e-11 of
+#: itself from 1e-4 on the dock, two iterations sooner.
+_TOLERANCE = 1e-3
 
 
 @dataclass(frozen=True)
@@ -291,7 +296,7 @@ def line_tensions(motions, *, n_omega: int = LINE_FREQUENCIES,
                       for d in drives_all],
         motions_a=[None if d[0] is None else _interp_complex(grid, omega_all, d[0])
                    for d in drives_all],
-        linearisation=SPECTRAL, spectrum=S, relaxation=_RELAXATION)
+        linearisation=SPECTRAL, spectrum=S, relaxation=_RELAXATION, tolerance=_TOLERANCE)
     gradients = _lf_gradients(case, result, chosen, maps, extra, waves)
     out = {}
     for line, r, gradient in zip(chosen, responses, gradients):

@@ -86,6 +86,7 @@ class LineStack:
         self.free = free
         self.K_upper *= free[:, :-1, :, None]        # a prescribed row couples to nothing
         self.K_lower *= free[:, 1:, :, None]
+        self._static = None
 
     def solve(self, omega, u_a, u_b, bn, bt) -> np.ndarray:
         """Node displacements ``(lines, n_omega, nodes, 3)`` for end motions ``u_a``,
@@ -93,10 +94,15 @@ class LineStack:
         ``(lines, n_omega, nodes)``."""
         L, N, nw = self.n_lines, self.n_nodes, len(omega)
         w = omega[None, :, None, None, None]
-        B = bn[..., None, None] * self.Pn[:, None] + bt[..., None, None] * self.Pt[:, None]
-        Z = self.K_diag[:, None] - w ** 2 * self.M[:, None] + 1j * w * B
         rows = self.free[:, None, :, :, None]
-        Z = Z * rows + (1 - rows) * np.eye(3)                 # (L, nw, N, 3, 3)
+        if self._static is None or self._static[0] is not omega:
+            # The part the drag iteration does not change, built once per frequency set.
+            Z0 = (self.K_diag[:, None] - w ** 2 * self.M[:, None]) * rows \
+                + (1 - rows) * np.eye(3)
+            self._static = (omega, Z0, 1j * w * rows)
+        _, Z0, iw = self._static
+        Z = Z0 + iw * (bn[..., None, None] * self.Pn[:, None]
+                       + bt[..., None, None] * self.Pt[:, None])   # (L, nw, N, 3, 3)
         rhs = np.zeros((L, nw, N, 3), complex)
         rhs[:, :, 0] = u_a
         rhs[np.arange(L), :, self.sizes - 1] = u_b

@@ -136,7 +136,8 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
     case : moorsolve.model.Case
     images : dict
         ``name -> PNG bytes``; ``"intact"``, ``"governing"`` (the views of the intact and
-        of the worst damaged condition) and ``"utilisation"`` are placed.
+        of the worst damaged condition), ``"utilisation"`` and ``"sea"`` (the intact
+        condition's sea, RAOs and tension spectra, with line dynamics) are placed.
     case_file : str or path, optional
         The case file checked: its path and SHA-256 are stated.
     created : datetime.datetime, optional
@@ -203,6 +204,11 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
         parts.append(f'<p class="note">{_e(title)}.</p>')
         parts.append(_table(header, rows, left=3))
     parts += [f'<p class="note">{_e(n)}.</p>' for n in report.notes]
+    if "sea" in images:
+        parts.append(_figure(images["sea"], "Intact condition: the wave spectrum, the "
+                                            "body's RAOs, and every line's wave- and "
+                                            "low-frequency tension spectra at its end of "
+                                            "larger sigma."))
     if report.failures:
         parts.append("<p><b>Failures</b></p><ul>" + "".join(
             f"<li>{_e(f)}</li>" for f in report.failures) + "</ul>")
@@ -406,5 +412,8 @@ def write_html_report(report: CheckReport, case, path: str, *, case_file=None) -
             governing.result, layout="portrait", removed_from=intact.result), dpi=110)
         images["governing_name"] = governing.name
     images["utilisation"] = figure_png(utilisation_figure(report), dpi=130)
+    if intact.tensions:
+        from ..plot.line_tension import sea_check_figure
+        images["sea"] = figure_png(sea_check_figure(intact), dpi=100)
     text = render_html(report, case, images, case_file=case_file)
     write_text(path, text)

@@ -240,6 +240,22 @@ def test_cli_text_json_and_report_carry_the_dynamic_figures(tmp_path, capsys):
     assert html_escape(METHOD_DYNAMIC["api-rp-2sk"]) in page
     first = data["conditions"][0]["lines"][0]
     assert f"{first['design_N'] / 1e3:.1f}" in page and "T dyn kN" in page
+    assert "low-frequency tension spectra" in page and "data:image/png;base64" in page
+
+
+def test_sea_check_figure_draws_every_line(buoy):
+    import matplotlib
+    matplotlib.use("Agg")
+    from moorsolve.plot.line_tension import sea_check_figure
+    cond = run_checks(buoy, damaged=False).conditions[0]
+    fig = sea_check_figure(cond)
+    wave, rao, wf, lf = fig.axes[:4]
+    assert len(wf.get_lines()) == len(lf.get_lines()) == 3
+    # The plotted WF spectrum is the line's, in kN^2 s/rad.
+    t = cond.tensions["L1"]
+    k = int(t.fairlead.sigma_N >= t.anchor.sigma_N)
+    y = wf.get_lines()[0].get_ydata()
+    assert np.allclose(y, t.wf_spectrum[k] / 1e6)
 
 
 # ---- the 12-chain dock with a sea state, intact and every chain removed -------------------
