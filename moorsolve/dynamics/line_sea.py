@@ -51,10 +51,13 @@ from .line_model import line_model
 from .line_spectral import STORM_DURATION_S
 
 __all__ = ["EndSeaTension", "LineSeaTension", "line_tensions", "end_motion_map",
-           "LINE_FREQUENCIES"]
+           "LINE_FREQUENCIES", "LINE_ELEMENTS"]
 
 #: Frequencies of the wave-frequency line response.
 LINE_FREQUENCIES = 64
+#: Elements of each line: on the dock the tension sigma is within 0.1 % of a 120-element
+#: model's at 40 (0.05 % at 60, for 1.5 times the work), below the frequency grid's 1 %.
+LINE_ELEMENTS = 40
 #: Energy of the ends' motion left outside the line's wave-frequency band.
 _BAND_TAIL = 1e-6
 #: Step of the central difference of the rotation matrix [rad].
@@ -229,7 +232,7 @@ def _end(omega, wf, lf_omega, lf, duration) -> EndSeaTension:
 
 
 def line_tensions(motions, *, n_omega: int = LINE_FREQUENCIES,
-                  n_elements: Optional[int] = None, lines=None) -> dict:
+                  n_elements: int = LINE_ELEMENTS, lines=None) -> dict:
     """The dynamic tension of every line (or of ``lines``) in the motions' sea state.
 
     Parameters
@@ -239,8 +242,8 @@ def line_tensions(motions, *, n_omega: int = LINE_FREQUENCIES,
         are linearised about.
     n_omega : int
         Frequencies of the wave-frequency line response (module notes).
-    n_elements : int, optional
-        Elements of each line's lumped-mass model (default :data:`.line_model.DEFAULT_ELEMENTS`).
+    n_elements : int
+        Elements of each line's lumped-mass model (:data:`LINE_ELEMENTS`).
     lines : iterable of str, optional
         The lines to compute (default all).
 
@@ -267,7 +270,7 @@ def line_tensions(motions, *, n_omega: int = LINE_FREQUENCIES,
     S_all = np.asarray(motions.spectrum, float)
     X = np.asarray(motions.wf_response)                     # (m, n)
     wanted = None if lines is None else set(lines)
-    extra = {} if n_elements is None else {"n_elements": int(n_elements)}
+    extra = {"n_elements": int(n_elements)}
     chosen, maps, drives_all = [], [], []
     for line in case.lines:
         if wanted is not None and line.name not in wanted:
