@@ -338,3 +338,9 @@ def test_dock_mean_drift_comes_from_the_tables(dock_report):
     m = dock_report.conditions[0].sea.motions
     assert "mean_drift" in m.sea["simulated"] and "slow_drift" in m.sea["simulated"]
     assert np.linalg.norm(m.body("dock").mean_drift[:2]) > 0
+
+
+def test_notebook_view_says_what_the_tension_check_covered(buoy):
+    report = run_checks(buoy, damaged=False)
+    page = report._repr_html_()
+    assert html_escape(f"Line tension: {report.method}.") in page
