@@ -73,3 +73,12 @@ def test_cylinder_buoy_hydrodynamics(capsys, monkeypatch):
     table = yaml.safe_load(out)["hydrodynamics"]
     case = yaml.safe_load((ROOT / "cases" / "buoy_sea.yaml").read_text())
     assert table == case["bodies"][0]["hydrodynamics"]
+
+
+def test_box_dock_hydrodynamics(capsys, monkeypatch):
+    # The example writes the table the shipped dock case carries, value for value.
+    import yaml
+    out = run_example("box_dock_hydrodynamics.py", [], capsys, monkeypatch)
+    table = yaml.safe_load(out)["hydrodynamics"]
+    case = yaml.safe_load((ROOT / "cases" / "dock_sea.yaml").read_text())
+    assert table == case["bodies"][0]["hydrodynamics"]

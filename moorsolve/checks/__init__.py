@@ -14,7 +14,7 @@ from .._lazy import lazy_exports
 from ..model.scene import STANDARDS
 
 _NAMES = {"Criterion": ".criteria", "criteria_table": ".criteria", "criterion": ".criteria",
-          "CheckItem": ".items", "CheckReport": ".run", "ConditionResult": ".run",
+          "CheckItem": ".items", "CheckReport": ".outcome", "ConditionResult": ".outcome",
           "run_checks": ".run", "EndOfLifeReport": ".end_of_life",
           "end_of_life_case": ".end_of_life", "run_end_of_life": ".end_of_life",
           "fatigue_diameter": ".wear"}

@@ -1,8 +1,9 @@
 """The line-tension criteria of each standard, read from ``criteria.csv`` (data with citations).
 
-A line passes when ``factor * T <= capacity_factor * MBL``. moorsolve's solution is
-quasi-static, so the checks use the ``quasi-static`` rows; the dynamic rows are kept in the
-table (and printed in the report) for reference.
+A line passes when ``factor * T <= capacity_factor * MBL`` (DNV with a dynamic part:
+``factor T_mean + gamma_dyn T_dyn <= capacity_factor MBL``). API RP 2SK's ``dynamic`` rows
+apply where the check runs the lines' dynamics (:mod:`.dynamic`), the ``quasi-static`` rows
+otherwise; DNV's factors do not depend on the method.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from functools import lru_cache
 from importlib import resources
 
 #: Standards with a criteria table, as accepted by ``checks.standard`` and ``--standard``.
-#: The analysis type moorsolve performs.
+#: The analysis type of a check without line dynamics.
 ANALYSIS = "quasi-static"
 
 
@@ -51,12 +52,16 @@ class Criterion:
         """The least MBL / tension that passes."""
         return self.factor / self.capacity_factor
 
-    def describe(self) -> str:
+    def describe(self, dynamic: bool = False) -> str:
+        """The criterion in one line; ``dynamic``: with DNV's factor on the dynamic
+        tension."""
         if self.standard == "api-rp-2sk":
-            return f"{self.standard} {self.condition}: MBL/T >= {self.factor:.2f}"
+            method = "" if self.analysis == "quasi-static" else f" ({self.analysis})"
+            return f"{self.standard} {self.condition}{method}: MBL/T >= {self.factor:.2f}"
+        dyn = f" + {self.gamma_dyn:.2f} T_dyn" if dynamic and self.gamma_dyn else ""
         return (f"{self.standard} CC{self.consequence_class} "
-                f"{'ULS' if self.condition == 'intact' else 'ALS'}: {self.factor:.2f} T_mean "
-                f"<= {self.capacity_factor:.2f} MBL")
+                f"{'ULS' if self.condition == 'intact' else 'ALS'}: {self.factor:.2f} T_mean"
+                f"{dyn} <= {self.capacity_factor:.2f} MBL")
 
 
 @lru_cache(maxsize=1)

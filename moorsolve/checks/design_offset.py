@@ -19,7 +19,13 @@ hydrodynamics, the check of one condition (intact, or one line removed) is:
    taken from that solve.
 
 Without a sea state (or without a body that moves in it) the check covers the mean tension
-only. DNV-OS-E301's factors need a dynamic tension, which the check does not compute yet.
+only. With ``checks.method: dynamic`` (the default where the lines' dynamics run) the
+tension comes from the lines' dynamics instead (:mod:`.dynamic`); the offset, anchor uplift
+and grounded length are still checked at the design offset.
+
+The design offset is along each condition's own mean offset: in a damaged condition the
+body's mean position has moved away from the lost line's anchor (the side that lost its
+restoring), and the design offset follows it there, not the intact direction.
 """
 
 from __future__ import annotations
@@ -32,31 +38,35 @@ import numpy as np
 from ..dynamics.motions import Motions, motions
 from ..solve import Result, solve
 from ..studies.stiffness import posed_case
-from .criteria import Criterion
-from .design_tension import DesignTension, design_tension
+from .design_tension import design_tension
 
-__all__ = ["DesignOffsetSolve", "METHOD_DESIGN_OFFSET", "MEAN_ONLY", "MEAN_ONLY_DNV",
-           "design_offset_solve", "design_offset_tension", "mean_tension", "sea_simulated"]
+__all__ = ["DesignOffsetSolve", "METHOD_DESIGN_OFFSET", "MEAN_ONLY", "design_offset_solve",
+           "mean_tension", "sea_method"]
 
 #: What the check says it did, in the text, the JSON and the HTML report.
-METHOD_DESIGN_OFFSET = "API RP 2SK quasi-static method at the design offset"
+METHOD_DESIGN_OFFSET = {
+    "api-rp-2sk": "API RP 2SK quasi-static method at the design offset",
+    "dnv-os-e301": ("DNV-OS-E301 with a quasi-static line tension: T_dyn = the tension at "
+                    "the design offset less the mean, gamma_mean T_mean + gamma_dyn T_dyn "
+                    "<= 0.95 MBS"),
+}
 MEAN_ONLY = ("the mean tension only: no sea state is simulated (waves with a period and "
              "bodies with hydrodynamics), so the standard's factors apply to the mean "
              "tension of the static equilibrium")
-MEAN_ONLY_DNV = ("the mean tension only: DNV-OS-E301's dynamic method (a dynamic line "
-                 "tension) is not wired into the check yet, so its factors apply to the mean "
-                 "tension of the static equilibrium, without the sea state's motions")
-
 #: A mean horizontal offset below this [m] has no direction: the design offset is then
 #: taken along global x, as :func:`moorsolve.motions` takes it.
 _NO_DIRECTION_M = 1e-9
 
 
-def sea_simulated(case, standard: str) -> bool:
-    """Whether the check tries the quasi-static method: API RP 2SK and a sea state with a
-    period (whether a body moves in it is known only once the motions are computed)."""
+def sea_method(case, checks) -> str | None:
+    """How the check of ``case`` takes the dynamic part of the line tension: None without
+    a sea state (waves with a period: the mean tension only), else ``checks.method``, or
+    the line model of ``analysis.lines`` where the case does not say (whether a body moves
+    in the sea state is known once the motions are computed)."""
     waves = case.environment.waves
-    return standard == "api-rp-2sk" and waves is not None and bool(waves.sea_state)
+    if waves is None or not waves.sea_state:
+        return None
+    return checks.method or case.analysis.lines_in(case)
 
 
 @dataclass(frozen=True)
@@ -133,29 +143,7 @@ def _ends(lr) -> tuple:
     return (("anchor", lr.anchor_tension_N), ("fairlead", lr.fairlead_tension_N))
 
 
-def design_offset_tension(mean_leg, held_leg, crit: Criterion) -> tuple:
-    """``(end, DesignTension)`` of one line by API RP 2SK's quasi-static method: the
-    tension at the design offset against ``MBL / SF``, at the end where it is larger.
-
-    A line that slackens at the design offset (leeward of the mean offset) is checked at no
-    less than its mean tension: the body swings back through the mean and beyond it, so
-    its largest tension in the storm is at least that. ``t_max_N`` is the larger of the
-    two and ``t_dyn_N = t_max_N - t_mean_N >= 0``.
-    """
-    mean = dict(_ends(mean_leg))
-    end, t_offset = max(_ends(held_leg), key=lambda e: e[1])
-    t_mean = mean[end]
-    t_max = max(t_offset, t_mean)
-    design = crit.factor * t_max
-    capacity = crit.capacity_factor * held_leg.mbl_N
-    return end, DesignTension(standard=crit.standard, condition=crit.condition,
-                              method="quasi_static", consequence_class=None, t_mean_N=t_mean,
-                              t_dyn_N=t_max - t_mean, t_max_N=t_max, design_N=design,
-                              capacity_N=capacity, utilisation=design / capacity,
-                              criterion=crit)
-
-
-def mean_tension(leg, crit: Criterion) -> tuple:
+def mean_tension(leg, crit) -> tuple:
     """``(end, DesignTension)`` of one line on its mean tension alone (no dynamic part)."""
     end, t = max(_ends(leg), key=lambda e: e[1])
     return end, design_tension(standard=crit.standard, condition=crit.condition, t_mean=t,

@@ -16,6 +16,10 @@ def add_commands(sub) -> None:
     p.add_argument("case", help="case file (YAML)")
     p.add_argument("--standard", choices=STANDARDS, default=None,
                    help="criteria table (default: the case's checks.standard, else api-rp-2sk)")
+    p.add_argument("--method", choices=("quasi_static", "dynamic"), default=None,
+                   help="in a sea state, the line tension's dynamic part from the lines "
+                        "re-solved at the design offset (quasi_static) or from the lines' "
+                        "dynamics (dynamic; default where the case's lines are dynamic)")
     p.add_argument("--json", action="store_true", help="print the check as JSON")
     p.add_argument("--report", default=None, help="write a self-contained HTML report")
     p.add_argument("--no-damaged", action="store_true", help="intact condition only")
@@ -58,7 +62,7 @@ def run_check(args) -> int:
         check_output(args.report, "--report", (".html", ".htm"), describe=".html")
     if args.end_of_life:
         return _run_end_of_life(args, case)
-    report = run_checks(case, standard=args.standard, tol=args.tol,
+    report = run_checks(case, standard=args.standard, tol=args.tol, method=args.method,
                         damaged=False if args.no_damaged else None)
     from ..report.check_html import check_json, format_check_table, write_html_report
     if args.report is not None:

@@ -47,7 +47,7 @@ import numpy as np
 from ..errors import CaseError, ConvergenceError
 from .line_model import LineModel
 
-__all__ = ["LineResponse", "line_response", "HARMONIC", "SPECTRAL"]
+__all__ = ["LineResponse", "line_response", "line_responses", "HARMONIC", "SPECTRAL"]
 
 HARMONIC = "harmonic"
 SPECTRAL = "spectral"
@@ -94,94 +94,6 @@ class LineResponse:
     damping_tangential: np.ndarray
     iterations: int
     linearisation: str
-
-
-class _System:
-    """The matrices of one line, restricted to its free degrees of freedom."""
-
-    def __init__(self, model: LineModel):
-        n = model.n_elements
-        ndof = 3 * (n + 1)
-        self.K = model.stiffness()
-        t = model.tangent
-        self.Pt = t[:, :, None] * t[:, None, :]                    # (n+1, 3, 3)
-        self.Pn = np.eye(3) - self.Pt
-        M_blocks = (model.mass[:, None, None] * np.eye(3)
-                    + model.added_mass[:, None, None] * self.Pn)
-        i, a, b = np.meshgrid(np.arange(n + 1), np.arange(3), np.arange(3), indexing="ij")
-        self.rows, self.cols = (3 * i + a).ravel(), (3 * i + b).ravel()
-        self.M = np.zeros((ndof, ndof))
-        self.M[self.rows, self.cols] = M_blocks.ravel()
-        fixed = np.zeros(ndof, bool)
-        fixed[:3] = True                                           # end A
-        fixed[-3:] = True                                          # end B, prescribed
-        if model.seabed_spring is None:
-            fixed[3 * np.flatnonzero(model.grounded) + 2] = True   # held on the seabed
-        # A grounded node between two elements without tension (friction has used the
-        # tension up, or the run lies slack) has no stiffness along the seabed: it is held
-        # where it lies, as the friction holding it would.
-        T = np.concatenate([[0.0], model.tension, [0.0]])
-        loose = 1e-9 * max(float(np.max(np.abs(model.tension))), 1.0)
-        held = model.grounded & (T[:-1] <= loose) & (T[1:] <= loose)
-        for k in range(2):
-            fixed[3 * np.flatnonzero(held) + k] = True
-        self.free = f = np.flatnonzero(~fixed)
-        self.end_b = np.arange(ndof - 3, ndof)
-        self.n_nodes = n + 1
-        self.ndof = ndof
-        # The free-free matrices are banded (a node couples only with its neighbours):
-        # each frequency is a banded solve, O(n) instead of the O(n^3) of a dense one.
-        nf = len(f)
-        where = -np.ones(ndof, int)
-        where[f] = np.arange(nf)
-        Kff, Mff = self.K[np.ix_(f, f)], self.M[np.ix_(f, f)]
-        i, j = np.nonzero((Kff != 0) | (Mff != 0))
-        bi, bj = where[self.rows], where[self.cols]
-        self.b_keep = (bi >= 0) & (bj >= 0)
-        bi, bj = bi[self.b_keep], bj[self.b_keep]
-        self.band = band = int(max(np.max(np.abs(i - j), initial=0),
-                                   np.max(np.abs(bi - bj), initial=0)))
-        i, j = np.nonzero(np.abs(np.subtract.outer(np.arange(nf), np.arange(nf))) <= band)
-        self.ab_index = (band + i - j, j)
-        self.K_band, self.M_band = Kff[i, j], Mff[i, j]
-        self.b_index = (band + bi - bj, bj)
-        self.end_a = np.arange(3)
-        self.K_fb = self.K[np.ix_(f, self.end_b)]
-        self.K_fa = self.K[np.ix_(f, self.end_a)]
-
-    def solve(self, omega, u_a, u_b, bn, bt):
-        """Node displacements ``(n_omega, n_nodes, 3)`` for end motions ``u_a``, ``u_b``
-        ``(n_omega, 3)`` and drag coefficients per node ``bn``, ``bt``
-        ``(n_omega, n_nodes)``."""
-        from scipy.linalg import solve_banded
-
-        nw, band, nf = len(omega), self.band, len(self.free)
-        B_blocks = bn[:, :, None, None] * self.Pn + bt[:, :, None, None] * self.Pt
-        ab = np.zeros((nw, 2 * band + 1, nf), complex)
-        ab[:, self.ab_index[0], self.ab_index[1]] = (
-            self.K_band[None, :] - (omega ** 2)[:, None] * self.M_band[None, :])
-        ab[:, self.b_index[0], self.b_index[1]] += (
-            1j * omega[:, None] * B_blocks.reshape(nw, -1)[:, self.b_keep])
-        rhs = -(u_b @ self.K_fb.T) - (u_a @ self.K_fa.T)
-        u = np.zeros((nw, self.ndof), complex)
-        try:
-            u[:, self.free] = [solve_banded((band, band), ab[w], rhs[w], check_finite=False)
-                               for w in range(nw)]
-        except np.linalg.LinAlgError:
-            raise ConvergenceError(
-                "the line's dynamic stiffness is singular at one of the frequencies (a node "
-                "with neither tension nor mass to hold it, or omega = 0 on a line without "
-                "tension)") from None
-        u[:, self.end_b] = u_b
-        u[:, self.end_a] = u_a
-        return u.reshape(nw, self.n_nodes, 3)
-
-    def split_velocity(self, v):
-        """Magnitudes of the normal and tangential parts of node velocities ``v``
-        ``(n_omega, n_nodes, 3)``, components added in quadrature."""
-        vt = np.einsum("nij,wnj->wni", self.Pt, v)
-        vn = v - vt
-        return np.sqrt(np.sum(np.abs(vn) ** 2, -1)), np.sqrt(np.sum(np.abs(vt) ** 2, -1))
 
 
 def _drive(motion, omega, field="motion") -> np.ndarray:
@@ -231,11 +143,31 @@ def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMO
     ConvergenceError
         When the drag linearisation does not converge.
     """
+    (out,) = line_responses([model], omega, [motion], linearisation=linearisation,
+                            spectrum=spectrum, motions_a=[motion_a], tolerance=tolerance,
+                            max_iterations=max_iterations, relaxation=relaxation)
+    return out
+
+
+def line_responses(models, omega, motions, *, linearisation: str = HARMONIC,
+                   spectrum=None, motions_a=None, tolerance: float = 1e-4,
+                   max_iterations: int = 200, relaxation: float = 0.5) -> list:
+    """:func:`line_response` of several lines at the same frequencies, solved together
+    (:class:`~.line_stack.LineStack`): ``motions`` and ``motions_a`` give each line's
+    drives (``motions_a`` None, or an entry None, for a fixed end A). Each line's drag is
+    linearised on its own response; the iteration stops when every line has converged.
+    Returns one :class:`LineResponse` per line."""
+    from .line_stack import LineStack
+
     omega = np.asarray(omega, float).ravel()
     if omega.size == 0 or np.any(omega < 0) or not np.all(np.isfinite(omega)):
         raise CaseError("omega", "frequencies must be finite and >= 0 rad/s")
-    u_b = _drive(motion, omega)
-    u_a = np.zeros_like(u_b) if motion_a is None else _drive(motion_a, omega, "motion_a")
+    models = list(models)
+    if motions_a is None:
+        motions_a = [None] * len(models)
+    u_b = np.array([_drive(m, omega) for m in motions])                # (L, nw, 3)
+    u_a = np.array([np.zeros((omega.size, 3), complex) if m is None
+                    else _drive(m, omega, "motion_a") for m in motions_a])
     if linearisation not in (HARMONIC, SPECTRAL):
         raise CaseError("linearisation", f"{linearisation!r}: use 'harmonic' or 'spectral'")
     if linearisation == SPECTRAL:
@@ -246,41 +178,58 @@ def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMO
             raise CaseError("spectrum", f"S(omega) must be {omega.size} values >= 0")
         if omega.size < 2:
             raise CaseError("omega", "the spectral linearisation needs at least 2 frequencies")
-    sys = _System(model)
-    nw = len(omega)
-    qn, qt = model.drag_normal, model.drag_tangential
+    stack = LineStack(models)
+    nw, N = omega.size, stack.n_nodes
+    qn, qt = stack.qn[:, None, :], stack.qt[:, None, :]
 
     def coefficients(u):
-        vn, vt = sys.split_velocity(1j * omega[:, None, None] * u)
+        vn, vt = stack.split_velocity(1j * omega[None, :, None, None] * u)
         if linearisation == HARMONIC:
             return _HARMONIC_FACTOR * vn * qn, _HARMONIC_FACTOR * vt * qt
-        sn = np.sqrt(np.trapezoid(vn ** 2 * S[:, None], omega, axis=0))
-        st = np.sqrt(np.trapezoid(vt ** 2 * S[:, None], omega, axis=0))
-        return (np.broadcast_to(_SPECTRAL_FACTOR * sn * qn, (nw, sys.n_nodes)),
-                np.broadcast_to(_SPECTRAL_FACTOR * st * qt, (nw, sys.n_nodes)))
+        sn = np.sqrt(np.trapezoid(vn ** 2 * S[None, :, None], omega, axis=1))[:, None]
+        st = np.sqrt(np.trapezoid(vt ** 2 * S[None, :, None], omega, axis=1))[:, None]
+        return (np.broadcast_to(_SPECTRAL_FACTOR * sn * qn, (len(models), nw, N)),
+                np.broadcast_to(_SPECTRAL_FACTOR * st * qt, (len(models), nw, N)))
 
-    # Start from the line moving as a straight rod between its ends.
-    frac = (model.s / model.s[-1])[None, :, None]
-    bn, bt = coefficients(u_a[:, None, :] + frac * (u_b - u_a)[:, None, :])
+    # Start from each line moving as a straight rod between its ends.
+    frac = np.zeros((len(models), N))
+    for k, m in enumerate(models):
+        frac[k, :m.n_elements + 1] = m.s / m.s[-1]
+    bn, bt = coefficients(u_a[:, :, None, :] + frac[:, None, :, None]
+                          * (u_b - u_a)[:, :, None, :])
     for it in range(1, max_iterations + 1):
-        u = sys.solve(omega, u_a, u_b, bn, bt)
+        u = stack.solve(omega, u_a, u_b, bn, bt)
         bn_new, bt_new = coefficients(u)
-        scale = max(float(np.max(bn_new)), float(np.max(bt_new)), 1e-300)
-        change = max(float(np.max(np.abs(bn_new - bn))), float(np.max(np.abs(bt_new - bt))))
-        if change <= tolerance * scale:
+        scale = np.maximum(np.maximum(bn_new.max(axis=(1, 2)), bt_new.max(axis=(1, 2))),
+                           1e-300)
+        change = np.maximum(np.abs(bn_new - bn).max(axis=(1, 2)),
+                            np.abs(bt_new - bt).max(axis=(1, 2)))
+        if np.all(change <= tolerance * scale):
             bn, bt = bn_new, bt_new
-            u = sys.solve(omega, u_a, u_b, bn, bt)
+            u = stack.solve(omega, u_a, u_b, bn, bt)
             break
         bn = relaxation * bn_new + (1 - relaxation) * bn
         bt = relaxation * bt_new + (1 - relaxation) * bt
     else:
+        worst = int(np.argmax(change / scale))
         raise ConvergenceError(
-            f"line {model.name}: the drag linearisation did not converge in "
-            f"{max_iterations} iterations (last change {change / scale:.3g} of the largest "
-            "coefficient)", iterations=max_iterations)
+            f"line {models[worst].name}: the drag linearisation did not converge in "
+            f"{max_iterations} iterations (last change {change[worst] / scale[worst]:.3g} "
+            "of the largest coefficient)", iterations=max_iterations)
+    return [_response(m, stack, k, omega, u[k, :, :m.n_elements + 1], bn[k], bt[k], it,
+                      linearisation) for k, m in enumerate(models)]
+
+
+def _response(model, stack, k, omega, u, bn, bt, iterations, linearisation) -> LineResponse:
+    """One line's tensions from its node displacements ``u`` (n_omega, nodes, 3)."""
+    n = model.n_elements
     du = np.diff(u, axis=1)                                         # (nw, n, 3)
     tension = model.axial[None, :] * np.einsum("wei,ei->we", du, model.direction)
-    f_b = -(np.einsum("ij,wj->wi", sys.K[sys.end_b, :], u.reshape(nw, -1)))
+    # The force on end B: its row of the stiffness (the last element, a seabed spring).
+    f_b = -np.einsum("ij,wj->wi", stack.ke[k][-1], u[:, n] - u[:, n - 1])
+    if model.seabed_spring is not None and model.grounded[n]:
+        f_b[:, 2] -= model.seabed_spring[n] * u[:, n, 2]
+    bn, bt = bn[:, :n + 1], bt[:, :n + 1]
     if linearisation == SPECTRAL:
         bn, bt = bn[0], bt[0]
     dz = du[:, :, 2]
@@ -289,5 +238,5 @@ def line_response(model: LineModel, omega, motion, *, linearisation: str = HARMO
     return LineResponse(omega=omega, tension_a=t_a, tension_b=t_b,
                         tension=tension, s_elements=0.5 * (model.s[:-1] + model.s[1:]),
                         force_b=f_b, motion=u, damping_normal=np.array(bn),
-                        damping_tangential=np.array(bt), iterations=it,
+                        damping_tangential=np.array(bt), iterations=iterations,
                         linearisation=linearisation)

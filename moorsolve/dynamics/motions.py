@@ -110,6 +110,16 @@ class Motions:
     spectrum: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))
     #: Each moving body's hydrodynamics as used (tables; Capytaine's computed ones).
     hydrodynamics: dict = dataclasses.field(default_factory=dict)
+    #: The free DOFs of the coupled system, ``"body.dof"`` (the solver's unknowns: global
+    #: translations [m] and the roll, pitch, yaw angles [rad]).
+    labels: tuple = ()
+    #: Wave-frequency response per unit wave amplitude over ``labels``, (len(omega), n)
+    #: complex [m/m, rad/m].
+    wf_response: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 0)))
+    #: Slow-drift difference frequencies [rad/s] and the response cross-spectra over
+    #: ``labels`` (len(lf_omega), n, n) [m^2 s/rad, ...]; None without slow drift.
+    lf_omega: Optional[np.ndarray] = None
+    lf_cross: Optional[np.ndarray] = None
 
     @property
     def static(self) -> bool:
@@ -375,7 +385,8 @@ def _respond(case, result, moving, system, grid, density, forces, sea) -> Motion
     simulated = (["mean_drift"] if forces else []) + ["wave_frequency"] + (
         ["slow_drift"] if lf_mu is not None else [])
     return Motions(sea={**sea, "simulated": simulated}, result=result, omega=grid,
-                   bodies=tuple(bodies), spectrum=S)
+                   bodies=tuple(bodies), spectrum=S, labels=tuple(system.labels),
+                   wf_response=X, lf_omega=lf_mu, lf_cross=lf_cross)
 
 
 def _design_offset(b, idx, cols, X, S, grid, lf_mu, lf_cross, duration):

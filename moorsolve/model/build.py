@@ -71,7 +71,9 @@ Schema (SI units, ``[...]`` lists)::
              design_life, corrosion, creep (moorsolve.model.build_wear),
              anchors: {drag | suction | pile | deadweight: DESIGN}
                                                (DESIGN: moorsolve.model.build_anchors),
-             fatigue: {...} (moorsolve.model.build_fatigue)}   optional
+             fatigue: {...} (moorsolve.model.build_fatigue),
+             method: quasi_static | dynamic}   optional
+    analysis: {lines: dynamic | quasi_static}  optional; line dynamics in a sea state
     moordyn: {...}                             optional; MoorDyn columns moorsolve does not use,
                                                kept for export (moorsolve.model.moordyn_block);
                                                the solver ignores it
@@ -89,7 +91,7 @@ from collections.abc import Mapping
 from ..errors import CaseError
 from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
-from .scene import STANDARDS, Case, Checks, SolverOptions
+from .scene import METHODS, STANDARDS, Analysis, Case, Checks, SolverOptions, moves_in_sea
 from .shared import LEGS, shared_parts
 from .build_legs import _body, _legs
 from .build_lines import _anchor_type, _line_types
@@ -251,7 +253,7 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
     m = check_mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
                                       "offset_limit_damaged", "min_grounded_length",
                                       "min_grounded_length_damaged", "anchor", "damaged",
-                                      "anchors", "fatigue") + WEAR_KEYS)
+                                      "anchors", "fatigue", "method") + WEAR_KEYS)
     defaults = Checks()
     standard = m.get("standard", defaults.standard)
     if not isinstance(standard, str) or standard not in STANDARDS:
@@ -291,11 +293,48 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
         fatigue = fatigue_spec(m["fatigue"], field_path(path, "fatigue"), sorted(types),
                                checks_life=m.get("design_life"),
                                checks_life_path=field_path(path, "design_life"))
+    method = m.get("method")
+    if method is not None and (not isinstance(method, str) or method not in METHODS):
+        raise CaseError(field_path(path, "method"), f"{show_value(method)} must be one of "
+                        f"{', '.join(METHODS)} (how the dynamic part of the line tension is "
+                        "had in a sea state)")
     return Checks(anchors=anchors, standard=standard, consequence_class=int(cclass),
                   offset_limit=offset, offset_limit_damaged=offset_damaged,
                   min_grounded_length=grounded, min_grounded_length_damaged=grounded_damaged,
                   anchor=anchor, damaged=damaged,
-                  wear=wear_fields(m, path, line_types or {}, legs), fatigue=fatigue)
+                  wear=wear_fields(m, path, line_types or {}, legs), fatigue=fatigue,
+                  method=method)
+
+
+def _analysis(raw, path: str) -> Analysis:
+    m = check_mapping(raw, path, optional=("lines",))
+    lines = m.get("lines")
+    if lines is not None and (not isinstance(lines, str) or lines not in METHODS):
+        raise CaseError(field_path(path, "lines"), f"{show_value(lines)} must be one of "
+                        f"{', '.join(METHODS)}")
+    return Analysis(lines=lines)
+
+
+def check_analysis(case: Case) -> None:
+    """Refuse line dynamics, or a dynamic check, in a scene with nothing that moves in a
+    sea state, naming the field."""
+    sea = moves_in_sea(case)
+    waves = case.environment.waves
+    why = ("the scene has no sea state (environment.waves with tp)"
+           if waves is None or not waves.sea_state else
+           "no body has hydrodynamics (bodies[i].hydrodynamics) to move in the sea state")
+    if case.analysis.lines == "dynamic" and not sea:
+        raise CaseError("analysis.lines", f"dynamic: {why}; line dynamics are driven by the "
+                        "bodies' motions in it (use quasi_static, or give the sea state and "
+                        "the hydrodynamics)")
+    method = None if case.checks is None else case.checks.method
+    if method == "dynamic" and not sea:
+        raise CaseError("checks.method", f"dynamic: {why}; drop the method (the check then "
+                        "covers the mean tension) or give the sea state and the "
+                        "hydrodynamics")
+    if method == "dynamic" and case.analysis.lines == "quasi_static":
+        raise CaseError("checks.method", "dynamic needs the lines' dynamics, but "
+                        "analysis.lines is quasi_static: use one of them")
 
 
 # ---- solver -----------------------------------------------------------------------------
@@ -409,7 +448,7 @@ def build_case(data, default_name: str = "case") -> Case:
                                 "legs (with an optional body) or lines between points and "
                                 "bodies (bodies, points, lines)")
     network = isinstance(data, Mapping) and any(k in data for k in _NETWORK_FORM)
-    common = ("name", "solver", "checks", "moordyn")
+    common = ("name", "solver", "checks", "moordyn", "analysis")
     if network:
         m = check_mapping(data, "", required=("environment",),
                           optional=common + ("bodies", "points", "body", "legs", "lines",
@@ -453,8 +492,13 @@ def build_case(data, default_name: str = "case") -> Case:
               else _checks(m["checks"], "checks", lines, line_types))
     moordyn = (None if m.get("moordyn") is None
                else validate_moordyn_block(m["moordyn"], "moordyn", line_types, lines))
+    analysis = Analysis() if m.get("analysis") is None else _analysis(m["analysis"],
+                                                                        "analysis")
     # Equal parts of earlier cases are shared, so what was derived from them is found again.
-    return shared_parts(Case(name=name, environment=environment, line_types=line_types,
+    case = shared_parts(Case(name=name, environment=environment, line_types=line_types,
                              lines=lines, bodies=bodies, points=points, solver=solver,
                              checks=checks, moordyn=moordyn,
-                             form="network" if network else "legs", contacts=contacts))
+                             form="network" if network else "legs", contacts=contacts,
+                             analysis=analysis))
+    check_analysis(case)
+    return case

@@ -15,6 +15,9 @@ from .contact import Contacts
 DEGREES_OF_FREEDOM = DOFS
 #: Criteria tables known to ``moorsolve.checks`` (``checks.standard``).
 STANDARDS = ("api-rp-2sk", "dnv-os-e301")
+#: How a check takes the dynamic part of the line tension (``checks.method``) and how the
+#: lines respond in a sea state (``analysis.lines``).
+METHODS = ("quasi_static", "dynamic")
 
 
 @dataclass(frozen=True)
@@ -60,6 +63,11 @@ class Checks:
         capacity each kind of anchor is checked against, and its mass for the cost.
     fatigue : FatigueSpec or None
         The fatigue check (:mod:`moorsolve.model.fatigue`), where the case asks for one.
+    method : str or None
+        How the dynamic part of the line tension is had in a sea state: ``quasi_static``
+        (the lines re-solved with the bodies held at their design offset) or ``dynamic``
+        (the lines' own dynamics driven by the bodies' motions); None follows
+        ``analysis.lines``. API RP 2SK's factors depend on it (2.00 / 1.43 or 1.67 / 1.25).
     """
 
     standard: str = "api-rp-2sk"
@@ -72,11 +80,42 @@ class Checks:
     damaged: bool = True
     wear: Optional[object] = None
     anchors: tuple = ()
+    fatigue: Optional[object] = None
+    method: Optional[str] = None
 
     def anchor_design(self, kind: str):
         """The :class:`~moorsolve.model.anchors.AnchorDesign` of anchor ``kind``, or None."""
         return next((a for a in self.anchors if a.kind == kind), None)
-    fatigue: Optional[object] = None
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """What the scene simulates beyond the statics (the case file's ``analysis``).
+
+    Attributes
+    ----------
+    lines : str or None
+        ``dynamic``: each line's own dynamics (lumped masses, drag linearised) driven by the
+        bodies' motions in the sea state; ``quasi_static``: the lines follow the bodies
+        statically. None: ``dynamic`` where the scene has a sea state and a body with
+        hydrodynamics, ``quasi_static`` otherwise (:meth:`lines_in`).
+    """
+
+    lines: Optional[str] = None
+
+    def lines_in(self, case) -> str:
+        """The line model in effect for ``case``."""
+        if self.lines is not None:
+            return self.lines
+        return "dynamic" if moves_in_sea(case) else "quasi_static"
+
+
+def moves_in_sea(case) -> bool:
+    """Whether ``case`` has a sea state (waves with a period) and a body with
+    hydrodynamics to move in it."""
+    waves = case.environment.waves
+    return bool(waves is not None and waves.sea_state
+                and any(getattr(b, "hydrodynamics", None) is not None for b in case.bodies))
 
 
 @dataclass(frozen=True)
@@ -96,6 +135,8 @@ class Case:
     solver: SolverOptions = field(default_factory=SolverOptions)
     checks: Optional[Checks] = None
     form: str = "legs"
+    #: What the scene simulates beyond the statics (``analysis`` in the case file).
+    analysis: Analysis = field(default_factory=Analysis)
     #: Walls, piles, fenders and pile guides (network form; :mod:`.contact`).
     contacts: Contacts = field(default_factory=Contacts)
     #: What a MoorDyn input file held that moorsolve does not use (the case file's ``moordyn``

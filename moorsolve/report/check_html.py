@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..io.output_files import write_text
+from .check_lines import design_tension_table
 from .check_text import UTIL_LEGEND, check_json, format_check_table, kN, summary_rows
 
 if TYPE_CHECKING:          # annotations only: the report reads what upstream made
@@ -135,7 +136,8 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
     case : moorsolve.model.Case
     images : dict
         ``name -> PNG bytes``; ``"intact"``, ``"governing"`` (the views of the intact and
-        of the worst damaged condition) and ``"utilisation"`` are placed.
+        of the worst damaged condition), ``"utilisation"`` and ``"sea"`` (the intact
+        condition's sea, RAOs and tension spectra, with line dynamics) are placed.
     case_file : str or path, optional
         The case file checked: its path and SHA-256 are stated.
     created : datetime.datetime, optional
@@ -158,7 +160,7 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
              f"<h1>Mooring check: {_e(report.case_name)}</h1>",
              (f'<p><span class="verdict {verdict.lower()}">Result: <b>{verdict}</b></span> '
               f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
-              f"conditions pass under {_e(standard)} (quasi-static analysis).</p>"),
+              f"conditions pass under {_e(standard)} ({_e(_analysis(report))}).</p>"),
              _table(None, [
                  ["software", f"moorsolve {__version__}"],
                  ["date", created.strftime("%Y-%m-%d %H:%M UTC")],
@@ -196,6 +198,17 @@ def render_html(report: CheckReport, case, images: dict, *, case_file=None,
     header, rows = summary_table(report)
     parts.append(_table(header, rows))
     parts.append(f'<p class="note">{_e(UTIL_LEGEND)}.</p>')
+    title, header, rows = design_tension_table(report)
+    if rows:
+        parts.append("<h3>Line design tensions</h3>")
+        parts.append(f'<p class="note">{_e(title)}.</p>')
+        parts.append(_table(header, rows, left=3))
+    parts += [f'<p class="note">{_e(n)}.</p>' for n in report.notes]
+    if "sea" in images:
+        parts.append(_figure(images["sea"], "Intact condition: the wave spectrum, the "
+                                            "body's RAOs, and every line's wave- and "
+                                            "low-frequency tension spectra at its end of "
+                                            "larger sigma."))
     if report.failures:
         parts.append("<p><b>Failures</b></p><ul>" + "".join(
             f"<li>{_e(f)}</li>" for f in report.failures) + "</ul>")
@@ -289,15 +302,22 @@ def _criteria_section(report: CheckReport) -> list:
               f"default anchor: {_anchor_text(checks.anchor)}"]
     out.append("<ul>" + "".join(f"<li>{_e(x)}</li>" for x in limits) + "</ul>")
     out.append(f'<p class="note">Line tension: {_e(report.method)}.</p>')
-    where = ("with each moving body held at its design offset, the lines re-solved"
-             if any(c.method == "design offset" for c in report.conditions)
-             else "of the quasi-static equilibrium under the mean environmental loads")
-    out.append('<p class="note">The line tension is the larger of the fairlead and anchor '
-               f"tension {where}. "
-               "Damaged conditions remove one leg and solve the body again. Only the "
-               "quasi-static rows of the table are applied; a DNV-OS-E301 check on a "
-               "quasi-static solution covers the mean tension only (no dynamic part), so "
-               "it is necessary but not sufficient.</p>")
+    methods = {c.method for c in report.conditions if c.solved}
+    if "dynamic" in methods:
+        where = ("the mean tension (mean drift included) plus the dynamic part from each "
+                 "line's dynamics driven by the bodies' motions, at the end of larger "
+                 "utilisation; the offset, uplift and grounded length at the design offset")
+    elif "design offset" in methods:
+        where = ("the larger of the fairlead and anchor tension with each moving body held "
+                 "at its design offset, the lines re-solved")
+    else:
+        where = ("the larger of the fairlead and anchor tension of the quasi-static "
+                 "equilibrium under the mean environmental loads; a DNV-OS-E301 check on "
+                 "it covers the mean tension only (no dynamic part), so it is necessary "
+                 "but not sufficient")
+    out.append(f'<p class="note">The line tension is {where}. Damaged conditions remove '
+               "one leg and solve the body again (its motions and line dynamics "
+               "re-computed where they run).</p>")
     return out
 
 
@@ -317,6 +337,15 @@ def _detail_section(report: CheckReport) -> list:
     return ['<h2 class="pagebreak">6. Every leg in every condition</h2>',
             _table(["condition", "leg", "check", "value", "limit", "utilisation",
                     "criterion", "result"], detail, left=3)]
+
+
+def _analysis(report: CheckReport) -> str:
+    methods = {c.method for c in report.conditions if c.solved}
+    if "dynamic" in methods:
+        return "line dynamics in the sea state"
+    if "design offset" in methods:
+        return "quasi-static analysis at the design offset"
+    return "quasi-static analysis, mean tension"
 
 
 def _css_string(text: str) -> str:
@@ -383,5 +412,8 @@ def write_html_report(report: CheckReport, case, path: str, *, case_file=None) -
             governing.result, layout="portrait", removed_from=intact.result), dpi=110)
         images["governing_name"] = governing.name
     images["utilisation"] = figure_png(utilisation_figure(report), dpi=130)
+    if intact.tensions:
+        from ..plot.line_tension import sea_check_figure
+        images["sea"] = figure_png(sea_check_figure(intact), dpi=100)
     text = render_html(report, case, images, case_file=case_file)
     write_text(path, text)

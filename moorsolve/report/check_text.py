@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from .anchors import anchor_check_lines
 from .berth import berth_check_lines
+from .check_lines import design_tension_text
 from .text import _finite
 
 if TYPE_CHECKING:          # annotations only: the report reads what upstream made
@@ -62,11 +63,14 @@ def mark(item) -> str:
 
 def format_check_table(report: CheckReport) -> str:
     """The check as plain text: one line per condition, then every failure."""
-    crit = {c.condition: c for c in report.criteria if c.analysis == "quasi-static"
-            and c.consequence_class in (None, report.consequence_class)}
+    crit = {c.kind: c.criterion for c in report.conditions}
+    analysis = ("dynamic" if any(c.method == "dynamic" for c in report.conditions)
+                else "quasi-static")
+    dynamic = any(c.method != "mean" for c in report.conditions)
     lines = [f"Mooring check: {report.case_name}",
-             f"standard     {report.standard} (quasi-static): "
-             + "; ".join(f"{k} {v.describe().split(': ', 1)[1]}" for k, v in crit.items()),
+             f"standard     {report.standard} ({analysis}): "
+             + "; ".join(f"{k} {v.describe(dynamic=dynamic).split(': ', 1)[1]}"
+                         for k, v in crit.items()),
              f"method       {report.method}",
              f"columns      {UTIL_LEGEND}"]
     rows = summary_rows(report)
@@ -93,10 +97,11 @@ def format_check_table(report: CheckReport) -> str:
         lines += [f"{'':<4}LOST: {d['message']}" for d in c.drifting]
     lines += berth_check_lines(report, wide)  # hawsers, fenders, guides
     lines += anchor_check_lines(report, wide)
-    lines += _design_offset_lines(report, wide)
+    lines += design_tension_text(report, wide)
     if report.fatigue is not None:
         from .fatigue import fatigue_text
         lines += ["", fatigue_text(report.fatigue)]
+    lines += [f"note         {n}" for n in report.notes]
     lines.append("")
     failures = report.failures
     lines.append(f"result       {'PASS' if report.passed else 'FAIL'}: "
@@ -106,29 +111,6 @@ def format_check_table(report: CheckReport) -> str:
         lines.append(f"  failed: {failure}")
     lines += [f"WARNING: {w['condition']}: {w['message']}" for w in report.warnings]
     return "\n".join(lines)
-
-
-def _design_offset_lines(report: CheckReport, wide: int) -> list:
-    """Every line's mean tension, its tension at the design offset and the standard's
-    design figures, where the quasi-static method ran."""
-    conds = [c for c in report.conditions if c.solved and c.method == "design offset"]
-    if not conds:
-        return []
-    header = (f"{'condition':<{wide}}{'leg':>6}{'end':>9}{'T mean kN':>11}{'T max kN':>10}"
-              f"{'design kN':>11}{'capacity kN':>13}{'util':>6}")
-    out = ["", "line tension at the design offset (T max; T mean with the mean drift):",
-           header, "-" * len(header)]
-    for c in conds:
-        offsets = ", ".join(f"{name} {d:.2f} m" for name, d in c.design_offset_m.items())
-        for i, line in enumerate(c.lines):
-            out.append(f"{(c.name if i == 0 else ''):<{wide}}{line['leg']:>6}"
-                       f"{line['end']:>9}{_num(line['t_mean_N'] / 1e3, 11, 1)}"
-                       f"{_num(line['t_max_N'] / 1e3, 10, 1)}"
-                       f"{_num(line['design_N'] / 1e3, 11, 1)}"
-                       f"{_num(line['capacity_N'] / 1e3, 13, 1)}"
-                       f"{_num(line['utilisation'], 6, 3)}")
-        out.append(f"{'':<{wide}}design offset: {offsets}")
-    return out
 
 
 def check_json(report: CheckReport) -> str:

@@ -128,8 +128,10 @@ def check_html_table(report) -> str:
                f"{sum(c.passed for c in report.conditions)} of {len(report.conditions)} "
                "conditions pass")
     lost = [f"{c.name}: {d['message']}" for c in report.conditions for d in c.drifting]
+    notes = [f"Line tension: {report.method}."] + [f"{n}." for n in report.notes]
     return html_table(header, rows, caption) + "".join(
-        f'<p style="background:#f8d0d0">LOST: {html.escape(text)}</p>' for text in lost)
+        f'<p style="background:#f8d0d0">LOST: {html.escape(text)}</p>' for text in lost) + \
+        "".join(f"<p>{html.escape(text)}</p>" for text in notes)
 
 
 def envelope_html(envelope) -> str:

@@ -1,4 +1,4 @@
-"""``moorsolve check`` with a sea state: API RP 2SK's quasi-static method (3rd ed., 2005,
+"""``moorsolve check`` with a sea state and ``method: quasi_static``: API RP 2SK's quasi-static method (3rd ed., 2005,
 section 6.4.2 design offset, section 7.4 safety factors 2.00 intact / 1.43 damaged), each
 body held at its design offset and the lines re-solved; without a sea state the check covers
 the mean tension only and says so."""
@@ -15,7 +15,9 @@ import pytest
 
 import moorsolve
 from moorsolve.checks import run_checks
-from moorsolve.checks.design_offset import MEAN_ONLY, MEAN_ONLY_DNV, METHOD_DESIGN_OFFSET
+from moorsolve.checks.design_offset import MEAN_ONLY
+from moorsolve.checks.design_offset import METHOD_DESIGN_OFFSET as _SHOWN
+
 from moorsolve.cli import main
 from moorsolve.model.edit import without_line
 from conftest import ROOT
@@ -23,6 +25,7 @@ from conftest import ROOT
 BUOY = ROOT / "cases" / "buoy_sea.yaml"
 #: The chain's MBL in the case file [N].
 MBL = 1.5e6
+METHOD_DESIGN_OFFSET = _SHOWN["api-rp-2sk"]
 
 
 @pytest.fixture(scope="module")
@@ -32,7 +35,7 @@ def buoy():
 
 @pytest.fixture(scope="module")
 def report(buoy):
-    return run_checks(buoy)
+    return run_checks(buoy, method="quasi_static")
 
 
 def _held_tensions(scene) -> tuple:
@@ -166,18 +169,19 @@ def test_without_a_period_the_check_is_the_mean_only_one(tmp_path, capsys):
 
 
 def test_cli_text_and_json_carry_the_method(capsys, tmp_path):
-    assert main(["check", str(BUOY), "--no-damaged"]) == 0
+    assert main(["check", str(BUOY), "--no-damaged", "--method", "quasi_static"]) == 0
     text = capsys.readouterr().out
     assert f"method       {METHOD_DESIGN_OFFSET}" in text
     # Every line's figures in the per-line table, as the JSON has them.
-    report = run_checks(moorsolve.load_case(BUOY), damaged=False)
+    report = run_checks(moorsolve.load_case(BUOY), damaged=False, method="quasi_static")
     for line in report.conditions[0].lines:
         row = (f"{line['leg']:>6}{line['end']:>9}{line['t_mean_N'] / 1e3:11.1f}"
-               f"{line['t_max_N'] / 1e3:10.1f}{line['design_N'] / 1e3:11.1f}"
-               f"{line['capacity_N'] / 1e3:13.1f}{line['utilisation']:6.3f}")
+               f"{line['t_dyn_N'] / 1e3:10.1f}{line['t_max_N'] / 1e3:10.1f}"
+               f"{line['design_N'] / 1e3:11.1f}{line['capacity_N'] / 1e3:13.1f}"
+               f"{line['utilisation']:7.3f}")
         assert row in text
     assert f"design offset: buoy {report.conditions[0].design_offset_m['buoy']:.2f} m" in text
-    assert main(["check", str(BUOY), "--no-damaged", "--json"]) == 0
+    assert main(["check", str(BUOY), "--no-damaged", "--json", "--method", "quasi_static"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["method"] == METHOD_DESIGN_OFFSET
     intact = data["conditions"][0]
@@ -186,20 +190,25 @@ def test_cli_text_and_json_carry_the_method(capsys, tmp_path):
     for line in intact["lines"]:
         assert {"t_mean_N", "t_max_N", "design_N", "capacity_N", "utilisation"} <= set(line)
     html = tmp_path / "r.html"
-    assert main(["check", str(BUOY), "--no-damaged", "--report", str(html)]) == 0
+    assert main(["check", str(BUOY), "--no-damaged", "--report", str(html), "--method",
+                 "quasi_static"]) == 0
     capsys.readouterr()
     assert METHOD_DESIGN_OFFSET in html.read_text()
 
 
-def test_dnv_with_a_sea_state_says_its_dynamic_method_is_not_wired(buoy):
-    report = run_checks(buoy, standard="dnv-os-e301", damaged=False)
-    assert report.method == MEAN_ONLY_DNV
-    assert report.conditions[0].method == "mean"
-    res = moorsolve.solve(buoy)
-    for lr in res.legs:
-        line = next(x for x in report.conditions[0].lines if x["leg"] == lr.name)
-        assert line["t_max_N"] == pytest.approx(max(lr.fairlead_tension_N,
-                                                    lr.anchor_tension_N), rel=1e-9)
+def test_dnv_quasi_static_factors_the_tension_at_the_design_offset(buoy, report):
+    # DNV-OS-E301 ULS CC1 with the quasi-static line tension: T_dyn = T(design offset) -
+    # T_mean, 1.10 T_mean + 1.50 T_dyn <= 0.95 MBS, on the same held solve as API's.
+    dnv = run_checks(buoy, standard="dnv-os-e301", damaged=False, method="quasi_static")
+    assert dnv.conditions[0].method == "design offset"
+    api = {x["leg"]: x for x in report.conditions[0].lines}
+    for line in dnv.conditions[0].lines:
+        ref = api[line["leg"]]
+        assert line["t_max_N"] == pytest.approx(ref["t_max_N"], rel=1e-9)
+        t_dyn = ref["t_max_N"] - ref["t_mean_N"]
+        assert line["design_N"] == pytest.approx(1.10 * ref["t_mean_N"] + 1.50 * t_dyn,
+                                                 rel=1e-9)
+        assert line["utilisation"] == pytest.approx(line["design_N"] / (0.95 * MBL), rel=1e-12)
 
 
 def test_offset_uplift_and_grounded_length_are_checked_at_the_design_offset(buoy):
@@ -207,7 +216,7 @@ def test_offset_uplift_and_grounded_length_are_checked_at_the_design_offset(buoy
     # (about 2.5 m) does not; grounded length and uplift from the held solve.
     from moorsolve.model import Checks
     case = dataclasses.replace(buoy, checks=Checks(offset_limit=2.0, min_grounded_length=1.0,
-                                                   damaged=False))
+                                                   damaged=False, method="quasi_static"))
     report = run_checks(case)
     cond = report.conditions[0]
     design, _, mean = _held_tensions(case)
@@ -254,7 +263,7 @@ def test_a_damaged_condition_whose_motions_fail_is_a_failed_condition(buoy, monk
         return real(result, tol=tol)
 
     monkeypatch.setattr(run_module, "design_offset_solve", refuse_damaged)
-    report = run_checks(buoy)
+    report = run_checks(buoy, method="quasi_static")
     assert report.conditions[0].passed
     for cond in report.conditions[1:]:
         assert not cond.solved and not cond.passed
