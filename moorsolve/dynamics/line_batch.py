@@ -19,34 +19,25 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
-from .line_dynamics import _SPECTRAL_FACTOR, _System
+from .line_dynamics import _SPECTRAL_FACTOR
 from .line_model import LineModel
+from .line_stack import LineStack, element_blocks
 
 __all__ = ["spectral_tensions"]
 
 
-def _blocks(sys: _System):
-    """Diagonal and upper blocks of K and M over the nodes, constrained DOFs removed
-    (identity in K's diagonal, zero elsewhere), and the free mask ``(n_nodes, 3)``."""
-    n = sys.n_nodes
-    free = np.zeros(sys.ndof, bool)
-    free[sys.free] = True
-    mask = free.reshape(n, 3)
+def _blocks(model: LineModel):
+    """Diagonal and upper blocks of K and M over the nodes (as :class:`.line_stack.LineStack`
+    builds them), constrained DOFs removed (identity in K's diagonal, zero elsewhere), the
+    free mask ``(n_nodes, 3)``, the free-free mask of a block and the elements' stiffness."""
+    stack = LineStack([model])
+    mask = ~stack.fixed[0]
     outer = mask[:, :, None] & mask[:, None, :]
-    idx = np.arange(n)
-    K4 = sys.K.reshape(n, 3, n, 3).transpose(0, 2, 1, 3)       # (n, n, 3, 3)
-    M4 = sys.M.reshape(n, 3, n, 3).transpose(0, 2, 1, 3)
-    Kd = np.where(outer, K4[idx, idx], 0.0) + np.eye(3) * (~mask)[:, :, None]
-    Md = np.where(outer, M4[idx, idx], 0.0)
-    Ku = np.where(mask[:-1, :, None] & mask[1:, None, :], K4[idx[:-1], idx[1:]], 0.0)
-    rest = sys.K.copy()
-    for i in range(n):
-        for j in (i - 1, i, i + 1):
-            if 0 <= j < n:
-                rest[3 * i:3 * i + 3, 3 * j:3 * j + 3] = 0.0
-    if np.any(rest != 0):
-        raise ValueError("the line's stiffness is not block tridiagonal in its nodes")
-    return Kd, Md, Ku, mask, outer
+    ke = element_blocks(model)
+    Kd = np.where(outer, stack.K_diag[0], 0.0) + np.eye(3) * (~mask)[:, :, None]
+    Md = np.where(outer, stack.M[0], 0.0)
+    Ku = np.where(mask[:-1, :, None] & mask[1:, None, :], -ke, 0.0)
+    return Kd, Md, Ku, mask, outer, stack, ke
 
 
 def _inv3(A):
@@ -130,21 +121,19 @@ def spectral_tensions(model: LineModel, omega, motion_b, spectra, *, motion_a=No
     ub = np.swapaxes(np.asarray(motion_b, complex), 1, 2)            # (ns, nw, 3)
     ua = np.zeros_like(ub) if motion_a is None else np.swapaxes(
         np.asarray(motion_a, complex), 1, 2)
-    sys = _System(model)
-    Kd, Md, Ku, mask, outer = _blocks(sys)
-    n = sys.n_nodes
+    Kd, Md, Ku, mask, outer, stack, ke = _blocks(model)
+    n = model.n_elements + 1
     ns, nw = S.shape
-    # Coupling of the prescribed ends to the free DOFs (through K only: M and B are
-    # block diagonal and the ends are constrained whole).
-    K = sys.K
+    # The prescribed ends couple to their neighbours through the end elements' stiffness
+    # (M and B are block diagonal); other held DOFs stay where they lie (no motion).
     rhs = np.zeros((ns, nw, n, 3), complex)
-    rhs_flat = -(ub @ K[:, sys.end_b].T) - (ua @ K[:, sys.end_a].T)   # (ns, nw, ndof)
-    rhs[:] = rhs_flat.reshape(ns, nw, n, 3)
+    rhs[:, :, 1] += ua @ ke[0].T
+    rhs[:, :, n - 2] += ub @ ke[-1].T
     rhs *= mask
     base = Kd[None, :] - (omega ** 2)[:, None, None, None] * Md[None, :]   # (nw, n, 3, 3)
     qn, qt = model.drag_normal, model.drag_tangential
-    Pn = np.where(outer, sys.Pn, 0.0)
-    Pt = np.where(outer, sys.Pt, 0.0)
+    Pn = np.where(outer, stack.Pn[0], 0.0)
+    Pt = np.where(outer, stack.Pt[0], 0.0)
 
     N = ns * nw
     rhs_c = rhs.transpose(2, 3, 0, 1).reshape(n, 3, N)

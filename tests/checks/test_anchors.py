@@ -295,6 +295,7 @@ def test_design_offset_method_checks_the_anchor_at_the_design_offset():
     from pathlib import Path
     data = yaml.safe_load((Path(__file__).parents[2] / "cases" / "buoy_sea.yaml").read_text())
     data["checks"] = dict(data.get("checks") or {}, standard="api-rp-2sk", damaged=False,
+                          method="quasi_static",
                           anchor={"type": "pile", "allowed_uplift_angle_deg": 89},
                           anchors={"pile": {"h_max": "200 kN", "v_max": "150 kN"}})
     report = run_checks(moorsolve.load_case(data))
