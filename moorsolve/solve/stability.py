@@ -32,6 +32,7 @@ import time
 import numpy as np
 
 from .result import DeferredStability, Stability
+from .sparse_stiffness import clearly_positive, sparse_condensed_stiffness, uses_sparse_path
 
 #: A mode whose eigenvalue is below this fraction of the largest is examined as zero.
 _ZERO = 1e-7
@@ -82,6 +83,11 @@ def condensed_stiffness(problem, x, p) -> tuple:
     """``(K, keep)``: the tangent stiffness ``-dQ/dq`` [SI] of the free body DOFs at the
     scaled point ``x``, lines and free points condensed out, and the kept unknowns."""
     keep, rest = _split(problem)
+    if uses_sparse_path(problem):
+        try:
+            return _sparse_condensed(problem, x, p).toarray(), keep
+        except RuntimeError:        # a singular condensed block: least squares below
+            pass
     J = np.asarray(problem.jacobian(x, p))
     rq, rr = _rows(problem, keep), _rows(problem, rest)
     A = J[np.ix_(rq, keep)]
@@ -94,6 +100,13 @@ def condensed_stiffness(problem, x, p) -> tuple:
                           else problem.force_scale for j in keep])
     K = -(row_scale[:, None] * A) / problem.x_scale[keep][None, :]
     return K, keep
+
+
+def _sparse_condensed(problem, x, p):
+    """:func:`condensed_stiffness` as a sparse matrix (:mod:`.sparse_stiffness`)."""
+    keep, rest = _split(problem)
+    return sparse_condensed_stiffness(problem, x, p, keep, rest, _rows(problem, keep),
+                                      _rows(problem, rest))
 
 
 def stiffness_modes(problem, x, p) -> tuple:
@@ -273,6 +286,18 @@ def assess(problem, x, p, stiffness=None, clearly_stable=False) -> Stability:
     keep, _, h, names, hh = _layout(problem)
     if keep.size == 0:
         return Stability(stable=True, min_eigenvalue=math.inf)
+    if uses_sparse_path(problem):
+        # A large scene: condensed and tested sparsely, eigenvalues only when read or
+        # when the test is inconclusive.
+        try:
+            inverse_h = 1.0 / h
+            Kh = (_sparse_condensed(problem, x, p).multiply(inverse_h[:, None])
+                  .multiply(inverse_h[None, :]).tocsc())
+        except RuntimeError:        # a singular condensed block
+            Kh = None
+        if Kh is not None and clearly_positive(Kh, _ZERO):
+            return DeferredStability(Kh.toarray(), names)
+        stiffness = None if Kh is None else Kh.toarray() / hh
     if not problem.smoothed:
         if clearly_stable and stiffness is not None:
             # The product is a fresh array (no copy of the kernel's output needed first).
