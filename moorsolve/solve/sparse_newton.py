@@ -26,7 +26,8 @@ from scipy.sparse.linalg import splu
 
 from .newton import (_ARMIJO, _BACKTRACKS, _OUTPUTS, CONVERGED, MAX_ITER, MAX_ITERATIONS,
                      STALLED, _inverse_step_limits)
-from .sparse_stiffness import SPARSE_BODY_DOFS, inverse_2x2_blocks, uses_sparse_path
+from .sparse_arrow import arrow_plan
+from .sparse_stiffness import SPARSE_BODY_DOFS, uses_sparse_path
 
 class SparseNewton:
     """The Newton kernel's interface (:class:`.newton.NewtonKernel`) on sparse steps.
@@ -64,6 +65,7 @@ class SparseNewton:
             rot = np.array(problem.rotational, dtype=bool)
             self._node_rot = rot
             self._line_cols = n_q + 2 * np.arange(n_legs)
+        self._arrow = arrow_plan(problem)
         n_keep = sum(owner == "body" for owner, _, _ in problem.nodes)
         self._n_stiffness = n_keep * n_keep
 
@@ -103,25 +105,27 @@ class SparseNewton:
     # -- the iteration ---------------------------------------------------------------
     def iterate(self, x: np.ndarray, p: np.ndarray, tol: float) -> tuple:
         """``(x, status, iterations)`` of the damped Newton method from ``x``."""
-        problem = self.problem
-        for count in range(MAX_ITERATIONS):
-            g, values = problem.residual_jacobian(x, p)
-            g = np.asarray(g, dtype=float).ravel()
-            values = np.asarray(values.nonzeros(), dtype=float)
+        evaluated = self._evaluate(x, p)
+        for count in range(MAX_ITERATIONS + 1):
+            g, values = evaluated
             if self._converged(x, p, g, values, tol):
                 return x, CONVERGED, count
+            if count == MAX_ITERATIONS:
+                break
             step = self._step(g, values)
             if step is None:
                 return x, STALLED, count
-            x_new = self._search(x, p, step, float(g @ g))
-            if x_new is None:
+            found = self._search(x, p, step, float(g @ g))
+            if found is None:
                 return x, STALLED, count
-            x = x_new
-        g, values = problem.residual_jacobian(x, p)
-        if self._converged(x, p, np.asarray(g, dtype=float).ravel(),
-                           np.asarray(values.nonzeros(), dtype=float), tol):
-            return x, CONVERGED, MAX_ITERATIONS
+            x, evaluated = found
         return x, MAX_ITER, MAX_ITERATIONS
+
+    def _evaluate(self, x, p) -> tuple:
+        """``(g, J's nonzeros)`` at ``x`` (CasADi's column-major order, as CSC)."""
+        g, J = self.problem.residual_jacobian(x, p)
+        return (np.asarray(g, dtype=float).ravel(),
+                np.asarray(J.nonzeros(), dtype=float))
 
     def _converged(self, x, p, g, values, tol) -> bool:
         """The kernel's stopping test: each line's span mismatch turned into fairlead
@@ -164,9 +168,9 @@ class SparseNewton:
         in closed form and SuperLU factorises the nodes' Schur complement
         ``D - C A^-1 B`` (a farm's bodies and their neighbours); otherwise, or where a
         block is singular, SuperLU factorises ``J`` whole."""
-        J = sps.csc_matrix((values, self._indices, self._indptr), shape=self._shape)
-        d = self._arrow_step(J, g) if self._estimate else None
+        d = self._arrow.step(g, values) if self._arrow is not None else None
         if d is None:
+            J = sps.csc_matrix((values, self._indices, self._indptr), shape=self._shape)
             try:
                 d = splu(J).solve(g)
             except RuntimeError:        # exactly singular
@@ -176,37 +180,23 @@ class SparseNewton:
         worst = float(np.max(np.abs(d) * self._inverse_limit, initial=0.0))
         return d * min(1.0, 1.0 / worst) if worst > 0 else d
 
-    def _arrow_step(self, J, g):
-        """The step by block elimination of the lines (see :meth:`_step`), or None."""
-        n_q, n_l = self.problem.n_q, 2 * self.problem.n_legs
-        Jr = J.tocsr()
-        lines, nodes = Jr[:n_l], Jr[n_l:]
-        inverse = inverse_2x2_blocks(lines[:, n_q:])
-        if inverse is None:
-            return None
-        B, C, D = lines[:, :n_q], nodes[:, n_q:], nodes[:, :n_q]
-        y = inverse @ g[:n_l]
-        if n_q:
-            try:
-                dq = splu((D - C @ (inverse @ B)).tocsc()).solve(g[n_l:] - C @ y)
-            except RuntimeError:
-                return None
-            dl = y - inverse @ (B @ dq)
-        else:
-            dq, dl = np.zeros(0), y
-        return np.concatenate([dq, dl])
-
     def _search(self, x, p, d, m0):
         """Backtracking ``x - a d`` (``a = 1, 1/2, ...``) projected onto the bounds until
-        the squared residual falls by the Armijo factor; None if no step does."""
+        the squared residual falls by the Armijo factor: ``(x, (g, J))`` there, or None
+        if no step does. The full step, usually taken, is evaluated with its Jacobian (the
+        next iteration's); shorter ones with the residual alone."""
         residual = self.problem.residual
         for j in range(_BACKTRACKS):
             a = 0.5 ** j
             xa = np.minimum(np.maximum(x - a * d, self._lb), self._ub)
-            r = np.asarray(residual(xa, p), dtype=float).ravel()
+            if j == 0:
+                evaluated = self._evaluate(xa, p)
+                r = evaluated[0]
+            else:
+                r = np.asarray(residual(xa, p), dtype=float).ravel()
             m = float(r @ r)
             if m <= (1 - 2 * _ARMIJO * a) * m0:
-                return xa
+                return xa, (evaluated if j == 0 else self._evaluate(xa, p))
         return None
 
 

@@ -23,6 +23,8 @@ import numpy as np
 import scipy.sparse as sps
 from scipy.sparse.linalg import splu
 
+from .sparse_arrow import arrow_plan
+
 #: Largest problem (unknowns) whose dense Newton kernel is compiled: beyond (some 190
 #: one-segment lines) the C compiler takes minutes, and the sparse path serves the scene.
 COMPILE_MAX_UNKNOWNS = 400
@@ -79,6 +81,18 @@ def sparse_condensed_stiffness(problem, x, p, keep, rest, rq, rr) -> sps.csr_mat
     """``K = -(J_qq - J_qr J_rr^-1 J_rq)`` [SI: N/m, N, N m/rad] of the body DOFs
     ``keep`` at ``x``, sparse: ``rq``/``rr`` are the residual rows that balance ``keep``
     and ``rest``. Raises RuntimeError where ``J_rr`` is singular (a slack line)."""
+    plan = arrow_plan(problem)
+    if plan is not None and keep.size == problem.n_q:
+        # Bodies only (no free points): K is the Newton step's Schur complement.
+        v = np.append(np.asarray(problem.jacobian(x, p).nonzeros(), dtype=float), 0.0)
+        inv = plan.inverses(v)
+        if inv is None:
+            raise RuntimeError("a line's block is singular")
+        A = plan.schur(v, inv)[0]
+        row_scale = np.array([problem.moment_scale if problem.rotational[j]
+                              else problem.force_scale for j in keep])
+        return sps.csr_matrix(-sps.diags(row_scale) @ A
+                              @ sps.diags(1.0 / problem.x_scale[keep]))
     J = _csc(problem, x, p).tocsr()
     A = J[rq][:, keep]
     if rest.size:

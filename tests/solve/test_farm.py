@@ -91,17 +91,24 @@ def test_sparse_newton_reaches_the_dense_kernels_point(small):
     assert problem.judge(*sparse["certificate"], tol=tol)[0]
 
 
-def test_arrow_step_equals_a_direct_sparse_solve(small):
-    # The block elimination of the lines against SuperLU on the whole Jacobian.
+@pytest.mark.parametrize("dense_nodes", [0, 150], ids=["superlu", "lapack"])
+def test_arrow_step_equals_a_direct_sparse_solve(small, dense_nodes, monkeypatch):
+    # The block elimination of the lines (the bodies' Schur complement by SuperLU or
+    # LAPACK) against SuperLU on the whole Jacobian.
+    from moorsolve.solve import sparse_arrow
+    monkeypatch.setattr(sparse_arrow, "DENSE_NODES", dense_nodes)
     import scipy.sparse as sps
     from scipy.sparse.linalg import spsolve
+    # Away from rest (the rest state balances the lines, so their residuals vanish there).
     case, problem, p, x0 = small
     kernel = SparseNewton(problem)
-    g, J = problem.residual_jacobian(x0, p)
+    x = x0 + 0.01 * np.random.default_rng(1).normal(size=x0.size)
+    g, J = problem.residual_jacobian(x, p)
     g = np.asarray(g).ravel()
+    assert np.max(np.abs(g[:2 * problem.n_legs])) > 1e-3
     Jd = sps.csc_matrix(np.asarray(J))
     direct = spsolve(Jd, g)
-    arrow = kernel._arrow_step(Jd, g)
+    arrow = kernel._arrow.step(g, np.asarray(J.nonzeros(), dtype=float))
     np.testing.assert_allclose(arrow, direct, rtol=1e-10, atol=1e-12 * np.max(np.abs(direct)))
 
 
@@ -127,6 +134,22 @@ def test_sparse_stiffness_equals_the_dense_condensation(nine):
     assert np.max(np.abs(K - dense)) <= 1e-9 * np.max(np.abs(dense))
     # A farm couples a body with its neighbours only: the stiffness stays sparse.
     assert np.count_nonzero(K) < 0.5 * K.size
+
+
+def test_sparse_stiffness_with_free_points_equals_the_dense_condensation():
+    # The general branch (SuperLU on the lines' and free points' block): three platforms
+    # on bridles whose apexes are free points.
+    from moorsolve.solve.sparse_stiffness import sparse_condensed_stiffness
+    case = moorsolve.load_case(ROOT / "cases" / "three_platforms.yaml")
+    result = moorsolve.solve(case, solver="newton")
+    problem = get_problem(case)
+    p = problem.parameters(case, 1.0)
+    keep, rest = _layout(problem)[:2]
+    assert keep.size < problem.n_q                  # free points are condensed too
+    K = sparse_condensed_stiffness(problem, result.state, p, keep, rest,
+                                   _rows(problem, keep), _rows(problem, rest)).toarray()
+    dense = _dense_condensed(problem, result.state, p)
+    assert np.max(np.abs(K - dense)) <= 1e-9 * np.max(np.abs(dense))
 
 
 def test_stiffness_against_central_differences_of_the_residual(nine):
