@@ -117,17 +117,71 @@ def growth(rows: dict, key: str, a: int = 9, b: int = 100) -> float | None:
     return math.log(tb / ta) / math.log(b / a)
 
 
+def farm_table(n: int, rows: int, rng):
+    """A load table of ``rows`` rows over an ``n`` x ``n`` farm: every platform's thrust
+    (x and y) per row."""
+    import pandas as pd
+    case = moorsolve.load_case(farm_dict(n))
+    columns = {}
+    for body in case.bodies:
+        size = rng.uniform(1.0e3, 2.0e3, rows)
+        angle = np.radians(rng.uniform(-30, 30, rows))
+        columns[f"bodies[{body.name}].loads.force[0] [kN]"] = size * np.cos(angle)
+        columns[f"bodies[{body.name}].loads.force[1] [kN]"] = size * np.sin(angle)
+    return case, pd.DataFrame(columns)
+
+
+def dask_farm_table(n: int, rows: int, rng) -> dict:
+    """The farm's load table on a ``distributed.LocalCluster`` of two single-threaded
+    worker processes against one and two local threads."""
+    from distributed import Client, LocalCluster
+    case, table = farm_table(n, rows, rng)
+    os.environ["PYTHONPATH"] = os.pathsep.join(
+        [str(HERE.parent)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+                              if p])
+    out = {"bodies": n * n, "rows": rows}
+    t0 = time.perf_counter()
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        out["cluster_start_s"] = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        first = moorsolve.sweep(case, table=table, scheduler=client)
+        out["first_sweep_s"] = time.perf_counter() - t0     # each worker builds the problem
+        t0 = time.perf_counter()
+        moorsolve.sweep(case, table=table, scheduler=client)
+        out["sweep_s"] = time.perf_counter() - t0
+    out["converged"] = int(first["converged"].sum())
+    out["stable"] = int(first["stable"].sum())
+    local = {}
+    moorsolve.sweep(case, table=table.head(2), workers=1)    # build in this process
+    for workers in (1, 2):
+        t0 = time.perf_counter()
+        moorsolve.sweep(case, table=table, workers=workers)
+        local[str(workers)] = time.perf_counter() - t0
+    out["local_s"] = local
+    print(f"  {n * n}-body farm, {rows} rows: LocalCluster (2 workers) start "
+          f"{out['cluster_start_s']:.1f} s, first sweep {out['first_sweep_s']:.2f} s, then "
+          f"{out['sweep_s']:.2f} s ({out['converged']} converged, {out['stable']} stable); "
+          f"local threads 1: {local['1']:.2f} s, 2: {local['2']:.2f} s", flush=True)
+    return out
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="3 loads a size, not 7")
     parser.add_argument("--out", default=str(HERE / "farm_results.json"))
+    parser.add_argument("--dask", type=int, default=0, metavar="ROWS",
+                        help="also a 36-body farm's load table of ROWS rows on a Dask "
+                             "LocalCluster (2 workers) against local threads")
+    parser.add_argument("--sizes", type=int, nargs="*", default=list(SIZES),
+                        help="farm sides n (n x n bodies)")
     args = parser.parse_args(argv)
     count = 3 if args.quick else 7
     rng = np.random.default_rng(SEED)
     rows = {}
     print(f"{'bodies':>6} {'unknowns':>8} {'first':>8} {'moorsolve':>10} {'MoorPy':>9} "
           f"{'ratio':>7}  agreement (pose, tension)")
-    for n in SIZES:
+    for n in args.sizes:
         cases = thrust_cases(n, count, rng)
         ours = time_moorsolve(cases)
         peer = time_moorpy(cases[:max(1, count if n < 10 else 2)])
@@ -150,9 +204,12 @@ def main(argv=None) -> int:
               flush=True)
     summary = {"growth_moorsolve_9_100": growth(rows, "moorsolve_median_cpu_s"),
                "growth_moorpy_9_100": growth(rows, "moorpy_median_cpu_s")}
-    print(f"time ~ bodies^k from 9 to 100 bodies: moorsolve k = "
-          f"{summary['growth_moorsolve_9_100']:.2f}, MoorPy k = "
-          f"{summary['growth_moorpy_9_100']:.2f}")
+    if summary["growth_moorsolve_9_100"] is not None:
+        print(f"time ~ bodies^k from 9 to 100 bodies: moorsolve k = "
+              f"{summary['growth_moorsolve_9_100']:.2f}, MoorPy k = "
+              f"{summary['growth_moorpy_9_100']:.2f}")
+    if args.dask:
+        summary["dask"] = dask_farm_table(6, args.dask, rng)
     Path(args.out).write_text(json.dumps({"moorpy_tol_m": MOORPY_TOL, "loads": count,
                                           "sizes": rows, **summary}, indent=2))
     return 0

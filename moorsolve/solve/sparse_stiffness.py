@@ -38,10 +38,13 @@ def uses_sparse_path(problem) -> bool:
     module's stiffness: more body DOFs than :data:`SPARSE_BODY_DOFS` or more unknowns than
     :data:`COMPILE_MAX_UNKNOWNS`, and no complementarities (hawsers and contacts take the
     dense kernel's semismooth steps)."""
-    if problem.smoothed:
-        return False
-    n_body = sum(owner == "body" for owner, _, _ in problem.nodes)
-    return n_body > SPARSE_BODY_DOFS or problem.n_x > COMPILE_MAX_UNKNOWNS
+    found = problem.derived.get("sparse_path")
+    if found is None:
+        n_body = sum(owner == "body" for owner, _, _ in problem.nodes)
+        found = not problem.smoothed and (n_body > SPARSE_BODY_DOFS
+                                          or problem.n_x > COMPILE_MAX_UNKNOWNS)
+        problem.derived["sparse_path"] = found
+    return found
 
 
 def _csc(problem, x, p) -> sps.csc_matrix:

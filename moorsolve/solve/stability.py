@@ -105,8 +105,10 @@ def condensed_stiffness(problem, x, p) -> tuple:
 def _sparse_condensed(problem, x, p):
     """:func:`condensed_stiffness` as a sparse matrix (:mod:`.sparse_stiffness`)."""
     keep, rest = _split(problem)
-    return sparse_condensed_stiffness(problem, x, p, keep, rest, _rows(problem, keep),
-                                      _rows(problem, rest))
+    rows = problem.derived.get("stability_rows")
+    if rows is None:
+        rows = problem.derived["stability_rows"] = (_rows(problem, keep), _rows(problem, rest))
+    return sparse_condensed_stiffness(problem, x, p, keep, rest, *rows)
 
 
 def stiffness_modes(problem, x, p) -> tuple:

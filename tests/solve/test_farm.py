@@ -261,3 +261,25 @@ def test_farm_result_carries_every_field(nine):
                for b, b0 in zip(result.bodies, farm.farm_dict(3)["bodies"]))
     d = result.to_dict()
     assert d["stability"]["stable"] is True
+
+
+def test_farm_load_table_rows_equal_single_solves(nine):
+    # A load table through the sparse path's batch (run_many) and its sparse stability
+    # check: each row as its own solve.
+    import pandas as pd
+    case, result, problem, p = nine
+    thrusts = [800.0, 1900.0]
+    table = pd.DataFrame({f"bodies[{b.name}].loads.force[0] [kN]": thrusts
+                          for b in case.bodies})
+    out = moorsolve.sweep(case, table=table, workers=1)
+    assert out["converged"].all() and out["stable"].all()
+    data = farm.farm_dict(3)
+    for row, thrust in enumerate(thrusts):
+        for body in data["bodies"]:
+            body["loads"]["force"][0] = thrust * 1e3
+        single = moorsolve.solve(moorsolve.load_case(data), solver="newton")
+        for leg in single.legs:
+            assert out[f"{leg.name}.fairlead_tension_N"][row] == pytest.approx(
+                leg.fairlead_tension_N, rel=1e-9)
+        assert out["min_eigenvalue"][row] == pytest.approx(
+            single.stability.min_eigenvalue, rel=1e-6)
