@@ -36,7 +36,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import numpy as np
 from farm import farm_dict
 from peer_moorpy_network import NetworkScene
-from speed import wait_steady
 
 import moorsolve
 
@@ -58,6 +57,17 @@ def thrust_cases(n: int, count: int, rng) -> list:
                                       0.0, 0.0, 0.0, 0.0]
         out.append(moorsolve.load_case(data))
     return out
+
+
+def wait_steady(case) -> None:
+    """The steady state of a process that solves the farm repeatedly: the dense Newton
+    kernel (the 4-body farm's; larger farms take the sparse path, nothing to compile) and
+    the closed-form audit's checks (up to 128 lines) compiled. IPOPT is not used."""
+    from moorsolve.audit import closed_form as audit_closed_form
+    from moorsolve.solve.cache import get_problem
+    problem = get_problem(case)
+    problem.newton().wait_compiled()
+    audit_closed_form.wait_compiled(len(case.lines))
 
 
 def time_moorsolve(cases) -> dict:

@@ -80,7 +80,7 @@ def inverse_2x2_blocks(D) -> sps.csr_matrix | None:
     return sps.bsr_matrix((inverse, index, np.arange(n // 2 + 1)), shape=(n, n)).tocsr()
 
 
-def sparse_condensed_stiffness(problem, x, p, keep, rest, rq, rr) -> sps.csr_matrix:
+def sparse_condensed_stiffness(problem, x, p, keep, rest, rq, rr) -> sps.spmatrix:
     """``K = -(J_qq - J_qr J_rr^-1 J_rq)`` [SI: N/m, N, N m/rad] of the body DOFs
     ``keep`` at ``x``, sparse: ``rq``/``rr`` are the residual rows that balance ``keep``
     and ``rest``. Raises RuntimeError where ``J_rr`` is singular (a slack line)."""
@@ -94,8 +94,9 @@ def sparse_condensed_stiffness(problem, x, p, keep, rest, rq, rr) -> sps.csr_mat
         A = plan.schur(v, inv)[0]
         row_scale = np.array([problem.moment_scale if problem.rotational[j]
                               else problem.force_scale for j in keep])
-        return sps.csr_matrix(-sps.diags(row_scale) @ A
-                              @ sps.diags(1.0 / problem.x_scale[keep]))
+        # Scaled entry by entry on S's own pattern (CSC: rows, and columns by pointer).
+        A.data *= -row_scale[A.indices] / np.repeat(problem.x_scale[keep], np.diff(A.indptr))
+        return A
     J = _csc(problem, x, p).tocsr()
     A = J[rq][:, keep]
     if rest.size:
@@ -120,6 +121,10 @@ def sparse_condensed_stiffness(problem, x, p, keep, rest, rq, rr) -> sps.csr_mat
     return sps.csr_matrix(K)
 
 
+#: Most DOFs whose test factorises densely.
+DENSE_DOFS = 150
+
+
 def clearly_positive(Kh: sps.spmatrix, zero: float) -> bool:
     """Whether every eigenvalue of ``Kh`` has a real part above ``zero * ||Kh||_F``
     (sufficient, not necessary; see the module notes)."""
@@ -130,6 +135,14 @@ def clearly_positive(Kh: sps.spmatrix, zero: float) -> bool:
     if not np.isfinite(Kh.data).all():
         return False
     c = zero * float(np.sqrt((Kh.data ** 2).sum()))
+    if n <= DENSE_DOFS:
+        # Small: LAPACK's Cholesky, the kernel's own test, costs less than the set-up.
+        dense = Kh.toarray()
+        try:
+            np.linalg.cholesky((dense + dense.T) / 2 - c * np.eye(n))
+        except np.linalg.LinAlgError:
+            return False
+        return True
     S = ((Kh + Kh.T) * 0.5 - c * sps.identity(n, format="csc")).tocsc()
     try:
         lu = splu(S, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,

@@ -30,6 +30,7 @@ import math
 import time
 
 import numpy as np
+import scipy.sparse as sps
 
 from .result import DeferredStability, Stability
 from .sparse_stiffness import clearly_positive, sparse_condensed_stiffness, uses_sparse_path
@@ -292,9 +293,9 @@ def assess(problem, x, p, stiffness=None, clearly_stable=False) -> Stability:
         # A large scene: condensed and tested sparsely, eigenvalues only when read or
         # when the test is inconclusive.
         try:
-            inverse_h = 1.0 / h
-            Kh = (_sparse_condensed(problem, x, p).multiply(inverse_h[:, None])
-                  .multiply(inverse_h[None, :]).tocsc())
+            Kh = sps.csc_matrix(_sparse_condensed(problem, x, p))
+            # Homogenised entry by entry: K_ij / (h_i h_j).
+            Kh.data /= h[Kh.indices] * np.repeat(h, np.diff(Kh.indptr))
         except RuntimeError:        # a singular condensed block
             Kh = None
         if Kh is not None and clearly_positive(Kh, _ZERO):

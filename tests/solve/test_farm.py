@@ -219,10 +219,14 @@ def test_unstable_farm_is_found_unstable_as_by_dense_eigenvalues():
     assert any(d.endswith(("roll", "pitch")) for d in verdict.unstable_dofs)
 
 
-def test_clearly_positive_against_eigenvalues_of_random_matrices():
+@pytest.mark.parametrize("dense_dofs", [0, 150], ids=["superlu", "lapack"])
+def test_clearly_positive_against_eigenvalues_of_random_matrices(dense_dofs, monkeypatch):
     # Symmetric-part test: positive definite symmetric parts pass, an indefinite one
-    # fails, whatever the sparse ordering.
+    # fails, whatever the sparse ordering (SuperLU's LDL^T pivots or LAPACK's Cholesky).
     import scipy.sparse as sps
+    from moorsolve.solve import sparse_stiffness
+    monkeypatch.setattr(sparse_stiffness, "DENSE_DOFS", dense_dofs)
+    outcomes = set()
     rng = np.random.default_rng(7)
     for trial in range(20):
         n = 30
@@ -233,6 +237,8 @@ def test_clearly_positive_against_eigenvalues_of_random_matrices():
         c = _ZERO * np.linalg.norm(M)
         expected = np.linalg.eigvalsh(S).min() > c
         assert clearly_positive(sps.csc_matrix(M), _ZERO) == expected
+        outcomes.add(expected)
+    assert outcomes == {True, False}
 
 
 def test_certificate_certifies_and_fails_on_a_planted_state(nine):
