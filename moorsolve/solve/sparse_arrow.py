@@ -139,7 +139,8 @@ class ArrowPlan:
             if n_q <= DENSE_NODES:
                 dq = np.linalg.solve(S.toarray(), rhs)
             else:
-                dq = splu(S).solve(rhs)
+                # S is structurally symmetric (a line couples its two ends both ways).
+                dq = splu(S, permc_spec="MMD_AT_PLUS_A").solve(rhs)
         except (RuntimeError, np.linalg.LinAlgError):        # exactly singular
             return None
         dq_b = np.append(dq, 0.0)[np.where(self.b_cols >= 0, self.b_cols, n_q)]
@@ -148,9 +149,9 @@ class ArrowPlan:
         return step if np.isfinite(step).all() else None
 
 
-#: Most node unknowns whose Schur complement is factorised densely (LAPACK): below some
-#: hundreds SuperLU's set-up costs more than the factorisation.
-DENSE_NODES = 150
+#: Most node unknowns whose Schur complement is factorised densely (LAPACK): below about
+#: a hundred SuperLU's set-up costs more than the factorisation.
+DENSE_NODES = 100
 
 
 def arrow_plan(problem) -> ArrowPlan | None:
@@ -170,4 +171,20 @@ def arrow_plan(problem) -> ArrowPlan | None:
     return problem.derived["arrow_plan"]
 
 
-__all__ = ["ArrowPlan", "arrow_plan", "DENSE_NODES"]
+def keep_jacobian(problem, x, p, values) -> None:
+    """Remember the Jacobian's nonzeros at the point a solve ends on, so that its
+    stability check (:func:`jacobian_values`) need not evaluate them again."""
+    problem.derived["last_jacobian"] = (x.tobytes() + np.asarray(p, float).tobytes(),
+                                        values)
+
+
+def jacobian_values(problem, x, p) -> np.ndarray:
+    """The Jacobian's nonzeros at ``x`` (storage order): those kept by the solve that
+    ended there, else evaluated."""
+    kept = problem.derived.get("last_jacobian")
+    if kept is not None and kept[0] == x.tobytes() + np.asarray(p, float).tobytes():
+        return kept[1]
+    return np.asarray(problem.jacobian(x, p).nonzeros(), dtype=float)
+
+
+__all__ = ["ArrowPlan", "arrow_plan", "keep_jacobian", "jacobian_values", "DENSE_NODES"]

@@ -1,19 +1,19 @@
-"""The Newton path of large scenes (wind farms): sparse steps, one compiled graph per piece.
+"""The Newton path of large scenes (wind farms): sparse steps, nothing compiled.
 
 The kernel of :mod:`.newton` unrolls forty iterations, each with its line search, into one
 CasADi graph over every line: its C grows with the scene and takes minutes to compile past
 a few hundred unknowns, and its condensed stiffness (a dense symbolic elimination over
 every body DOF) costs more than the solve. Here the same iteration runs in Python over
 the problem's residual and Jacobian (:attr:`EquilibriumProblem.residual_jacobian`, an SX
-graph evaluated without compiling, linear in the lines), with the step factorised by
-SuperLU (:func:`scipy.sparse.linalg.splu`) on the Jacobian's own sparsity. The stiffness
-and the stability test are left to :mod:`.stability`, which condenses and factorises
-sparsely and only when asked.
+graph evaluated without compiling, linear in the lines). Each step eliminates the lines
+in closed form and factorises the bodies' Schur complement (:mod:`.sparse_arrow`; SuperLU
+on the whole Jacobian where the lines have more than two unknowns). The stiffness and the
+stability test are left to :mod:`.stability`, which condenses and factorises sparsely
+(:mod:`.sparse_stiffness`) from the Jacobian the solve ended with.
 
 The iteration is the kernel's (same convergence estimate, step limits, projection onto
-the bounds, Armijo backtracking), so both paths reach the same point: it is used where the
-kernel would run interpreted or its dense stiffness would dominate
-(:func:`uses_sparse_path`), for scenes without complementarities.
+the bounds, Armijo backtracking), so both paths reach the same point: it is used where
+:func:`.sparse_stiffness.uses_sparse_path` holds, for scenes without complementarities.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from scipy.sparse.linalg import splu
 
 from .newton import (_ARMIJO, _BACKTRACKS, _OUTPUTS, CONVERGED, MAX_ITER, MAX_ITERATIONS,
                      STALLED, _inverse_step_limits)
-from .sparse_arrow import arrow_plan
+from .sparse_arrow import arrow_plan, keep_jacobian
 from .sparse_stiffness import SPARSE_BODY_DOFS, uses_sparse_path
 
 class SparseNewton:
@@ -109,6 +109,7 @@ class SparseNewton:
         for count in range(MAX_ITERATIONS + 1):
             g, values = evaluated
             if self._converged(x, p, g, values, tol):
+                keep_jacobian(self.problem, x, p, values)
                 return x, CONVERGED, count
             if count == MAX_ITERATIONS:
                 break

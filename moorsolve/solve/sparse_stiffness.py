@@ -23,7 +23,7 @@ import numpy as np
 import scipy.sparse as sps
 from scipy.sparse.linalg import splu
 
-from .sparse_arrow import arrow_plan
+from .sparse_arrow import arrow_plan, jacobian_values
 
 #: Largest problem (unknowns) whose dense Newton kernel is compiled: beyond (some 190
 #: one-segment lines) the C compiler takes minutes, and the sparse path serves the scene.
@@ -87,7 +87,7 @@ def sparse_condensed_stiffness(problem, x, p, keep, rest, rq, rr) -> sps.spmatri
     plan = arrow_plan(problem)
     if plan is not None and keep.size == problem.n_q:
         # Bodies only (no free points): K is the Newton step's Schur complement.
-        v = np.append(np.asarray(problem.jacobian(x, p).nonzeros(), dtype=float), 0.0)
+        v = np.append(jacobian_values(problem, np.asarray(x, float), p), 0.0)
         inv = plan.inverses(v)
         if inv is None:
             raise RuntimeError("a line's block is singular")
