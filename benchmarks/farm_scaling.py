@@ -220,6 +220,11 @@ def main(argv=None) -> int:
               f"{summary['growth_moorpy_9_100']:.2f}")
     if args.dask:
         summary["dask"] = dask_farm_table(6, args.dask, rng)
+    elif Path(args.out).exists():
+        # A run without --dask keeps the table's figures of the last run that had it.
+        last = json.loads(Path(args.out).read_text()).get("dask")
+        if last is not None:
+            summary["dask"] = last
     Path(args.out).write_text(json.dumps({"moorpy_tol_m": MOORPY_TOL, "loads": count,
                                           "sizes": rows, **summary}, indent=2))
     return 0
