@@ -289,3 +289,25 @@ def test_farm_load_table_rows_equal_single_solves(nine):
                 leg.fairlead_tension_N, rel=1e-9)
         assert out["min_eigenvalue"][row] == pytest.approx(
             single.stability.min_eigenvalue, rel=1e-6)
+
+
+def test_multi_segment_farm_takes_the_general_sparse_step_and_agrees_with_ipopt():
+    # Two-segment chains: more than two unknowns a line, so no closed-form elimination
+    # (SuperLU on the whole Jacobian, the exact certificate as the stopping test).
+    data = farm.farm_dict(3)
+    for line in data["lines"]:
+        if line["name"].startswith("T"):
+            line["segments"] = [{"type": "chain", "length": 400.0},
+                                {"type": "chain", "length": 450.0}]
+    case = moorsolve.load_case(data)
+    fast = moorsolve.solve(case, solver="newton")
+    kernel = get_problem(case).newton()
+    assert isinstance(kernel, SparseNewton) and kernel._arrow is None
+    assert fast.solver == "newton" and fast.stability.stable
+    ref = moorsolve.solve(case, solver="ipopt")
+    t_max = max(leg.fairlead_tension_N for leg in ref.legs)
+    for a, b in zip(fast.bodies, ref.bodies):
+        for key in ("x_m", "y_m", "z_m"):
+            assert abs(a[key] - b[key]) < 1e-9
+    for a, b in zip(fast.legs, ref.legs):
+        assert abs(a.fairlead_tension_N - b.fairlead_tension_N) < 1e-9 * t_max
