@@ -321,9 +321,12 @@ class EquilibriumProblem(Certification, SolverAccess):
         self.jacobian = ca.Function("jacobian", [xs, p], [jac])
         # One graph for both, so the Newton kernel evaluates the shared terms once.
         self.residual_jacobian = ca.Function("residual_jacobian", [xs, p], [g_all, jac])
+        # Without complementarities the smoothed residual is the exact one: its Jacobian
+        # is not differentiated twice (a farm's node rows take seconds to).
         self.smoothed_jacobian = ca.Function(
             "smoothed_jacobian", [xs, p, eps],
-            [_blockwise_jacobian(g_step, xs, (len(line_res), len(contact_res)))])
+            [_blockwise_jacobian(g_step, xs, (len(line_res), len(contact_res)))
+             if self.smoothed else jac])
 
         def exact(expr):
             """``expr`` with the complementarities exact (no smoothing)."""

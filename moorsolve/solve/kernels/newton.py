@@ -33,6 +33,10 @@ import math
 import casadi as ca
 import numpy as np
 
+# The largest problem (unknowns) whose kernel is compiled; beyond, scenes without
+# complementarities take the sparse path (:mod:`.sparse_newton`).
+from .sparse_stiffness import COMPILE_MAX_UNKNOWNS
+
 log = logging.getLogger(__name__)
 
 #: Most node unknowns whose Schur complement is solved symbolically (beyond: sparse QR).
@@ -44,9 +48,6 @@ _ARROW_NODES = 24
 #: load: at one, the 12-chain dock under up to 9 MN took 9.7 iterations, at four 8.2.
 STEP_LIMIT = 1.0
 LINE_STEP_LIMIT = 4.0
-#: Largest problem (unknowns) whose kernel is compiled: beyond (some 190 one-segment lines)
-#: the C compiler takes minutes for about twice the speed of the interpreted kernel.
-COMPILE_MAX_UNKNOWNS = 400
 #: Unrolled iterations; a point still unconverged after them reports status 2.
 MAX_ITERATIONS = 40
 _BACKTRACKS = 12

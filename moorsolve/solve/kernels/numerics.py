@@ -104,12 +104,16 @@ class SolverAccess:
         return np.concatenate([p, [smoothing], start])
 
     def newton(self):
-        """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use."""
+        """The fast-path Newton kernel (:mod:`.newton`), built and compiled on first use;
+        for a large scene its sparse form (:mod:`.sparse_newton`), which compiles nothing."""
         with self._lock:
             if self._newton is None:
                 from .newton import NewtonKernel
+                from .sparse_newton import SparseNewton
+                from .sparse_stiffness import uses_sparse_path
                 with SYMBOLIC_LOCK:
-                    self._newton = NewtonKernel(self)
+                    self._newton = (SparseNewton(self) if uses_sparse_path(self)
+                                    else NewtonKernel(self))
             return self._newton
 
     def kernel_pool(self):

@@ -82,13 +82,19 @@ class Certification:
         Result need from a solved point, in one call. Compiled with the Newton kernel."""
         with self._lock:
             if self._post is None:
+                from ..kernels.sparse_stiffness import uses_sparse_path
                 from ..stability.static import clearly_stable_graph, stiffness_graph
                 with SYMBOLIC_LOCK:
                     x = ca.MX.sym("x", self.n_x)
                     p = ca.MX.sym("p", self.n_p)
-                    K = stiffness_graph(self, self.jacobian(x, p))
-                    outs = [ca.vertcat(*self.certificate(x, p)), K,
-                            clearly_stable_graph(self, K),
+                    if uses_sparse_path(self):
+                        # A large scene: its stability check condenses sparsely when
+                        # it runs (.sparse_stiffness); no dense graph over every DOF.
+                        K, stable = ca.MX(0, 0), ca.MX(0)
+                    else:
+                        K = stiffness_graph(self, self.jacobian(x, p))
+                        stable = clearly_stable_graph(self, K)
+                    outs = [ca.vertcat(*self.certificate(x, p)), K, stable,
                             *self.report(x, p), self.segment_report(x, p),
                             self.node_report(x, p)]
                     self._post = ca.Function("moorsolve_post", [x, p],

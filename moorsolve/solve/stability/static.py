@@ -30,7 +30,10 @@ import math
 import time
 
 import numpy as np
+import scipy.sparse as sps
 
+from ..kernels.sparse_stiffness import (clearly_positive, sparse_condensed_stiffness,
+                                       uses_sparse_path)
 from ..result.classes import DeferredStability, Stability
 
 #: A mode whose eigenvalue is below this fraction of the largest is examined as zero.
@@ -82,6 +85,11 @@ def condensed_stiffness(problem, x, p) -> tuple:
     """``(K, keep)``: the tangent stiffness ``-dQ/dq`` [SI] of the free body DOFs at the
     scaled point ``x``, lines and free points condensed out, and the kept unknowns."""
     keep, rest = _split(problem)
+    if uses_sparse_path(problem):
+        try:
+            return _sparse_condensed(problem, x, p).toarray(), keep
+        except RuntimeError:        # a singular condensed block: least squares below
+            pass
     J = np.asarray(problem.jacobian(x, p))
     rq, rr = _rows(problem, keep), _rows(problem, rest)
     A = J[np.ix_(rq, keep)]
@@ -94,6 +102,15 @@ def condensed_stiffness(problem, x, p) -> tuple:
                           else problem.force_scale for j in keep])
     K = -(row_scale[:, None] * A) / problem.x_scale[keep][None, :]
     return K, keep
+
+
+def _sparse_condensed(problem, x, p):
+    """:func:`condensed_stiffness` as a sparse matrix (:mod:`.sparse_stiffness`)."""
+    keep, rest = _split(problem)
+    rows = problem.derived.get("stability_rows")
+    if rows is None:
+        rows = problem.derived["stability_rows"] = (_rows(problem, keep), _rows(problem, rest))
+    return sparse_condensed_stiffness(problem, x, p, keep, rest, *rows)
 
 
 def stiffness_modes(problem, x, p) -> tuple:
@@ -273,6 +290,18 @@ def assess(problem, x, p, stiffness=None, clearly_stable=False) -> Stability:
     keep, _, h, names, hh = _layout(problem)
     if keep.size == 0:
         return Stability(stable=True, min_eigenvalue=math.inf)
+    if uses_sparse_path(problem):
+        # A large scene: condensed and tested sparsely, eigenvalues only when read or
+        # when the test is inconclusive.
+        try:
+            Kh = sps.csc_matrix(_sparse_condensed(problem, x, p))
+            # Homogenised entry by entry: K_ij / (h_i h_j).
+            Kh.data /= h[Kh.indices] * np.repeat(h, np.diff(Kh.indptr))
+        except RuntimeError:        # a singular condensed block
+            Kh = None
+        if Kh is not None and clearly_positive(Kh, _ZERO):
+            return DeferredStability(Kh.toarray(), names)
+        stiffness = None if Kh is None else Kh.toarray() / hh
     if not problem.smoothed:
         if clearly_stable and stiffness is not None:
             # The product is a fresh array (no copy of the kernel's output needed first).
