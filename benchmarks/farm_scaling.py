@@ -64,7 +64,7 @@ def wait_steady(case) -> None:
     kernel (the 4-body farm's; larger farms take the sparse path, nothing to compile) and
     the closed-form audit's checks (up to 128 lines) compiled. IPOPT is not used."""
     from moorsolve.audit import closed_form as audit_closed_form
-    from moorsolve.solve.cache import get_problem
+    from moorsolve.solve.assembly.cache import get_problem
     problem = get_problem(case)
     problem.newton().wait_compiled()
     audit_closed_form.wait_compiled(len(case.lines))
@@ -195,7 +195,7 @@ def main(argv=None) -> int:
         cases = thrust_cases(n, count, rng)
         ours = time_moorsolve(cases)
         peer = time_moorpy(cases[:max(1, count if n < 10 else 2)])
-        from moorsolve.solve.cache import get_problem
+        from moorsolve.solve.assembly.cache import get_problem
         problem = get_problem(cases[0])
         row = {"bodies": n * n, "lines": len(cases[0].lines), "unknowns": problem.n_x,
                "path": type(problem.newton()).__name__, **{f"moorsolve_{k}": v

@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.solve.cache import get_problem
-from moorsolve.solve.newton import CONVERGED, NewtonKernel
-from moorsolve.solve.result import DeferredStability
+from moorsolve.solve.assembly.cache import get_problem
+from moorsolve.solve.kernels.newton import CONVERGED, NewtonKernel
+from moorsolve.solve.result.classes import DeferredStability
 from moorsolve.solve.kernels.sparse_newton import SparseNewton, uses_sparse_path
 from moorsolve.solve.kernels.sparse_stiffness import clearly_positive, inverse_2x2_blocks
-from moorsolve.solve.stability import _ZERO, _layout, _rows, assess
-from moorsolve.solve.strategies import rest_point
+from moorsolve.solve.stability.static import _ZERO, _layout, _rows, assess
+from moorsolve.solve.kernels.strategies import rest_point
 from conftest import ROOT
 
 
@@ -128,7 +128,7 @@ def test_inverse_of_2x2_blocks_and_refusals():
 
 def test_sparse_stiffness_equals_the_dense_condensation(nine):
     case, result, problem, p = nine
-    from moorsolve.solve.stability import _sparse_condensed
+    from moorsolve.solve.stability.static import _sparse_condensed
     K = _sparse_condensed(problem, result.state, p).toarray()
     dense = _dense_condensed(problem, result.state, p)
     assert np.max(np.abs(K - dense)) <= 1e-9 * np.max(np.abs(dense))
@@ -155,7 +155,7 @@ def test_sparse_stiffness_with_free_points_equals_the_dense_condensation():
 def test_stiffness_against_central_differences_of_the_residual(nine):
     # K = -dQ/dq with the lines in equilibrium: move one body DOF, re-settle the lines
     # (Newton on their rows with the bodies held), difference the generalized forces.
-    from moorsolve.solve.stability import _sparse_condensed, _settle
+    from moorsolve.solve.stability.static import _sparse_condensed, _settle
     case, result, problem, p = nine
     keep, _, _, _, _ = _layout(problem)
     K = _sparse_condensed(problem, result.state, p).toarray()
@@ -178,7 +178,7 @@ def test_stiffness_against_central_differences_of_the_residual(nine):
 
 
 def _homogenised(problem, x, p):
-    from moorsolve.solve.stability import _sparse_condensed
+    from moorsolve.solve.stability.static import _sparse_condensed
     keep, _, h, _, _ = _layout(problem)
     return _sparse_condensed(problem, x, p).multiply((1 / h)[:, None]).multiply(
         (1 / h)[None, :]).tocsc()
