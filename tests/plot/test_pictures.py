@@ -39,6 +39,17 @@ def _solve(name):
     return _SOLVED[name]
 
 
+def _solve_without_outline(name):
+    """The shipped case ``name`` with its drawn ship outline taken away."""
+    import yaml
+    data = yaml.safe_load((CASES / name).read_text(encoding="utf-8"))
+    for body in [data.get("body")] + list(data.get("bodies") or []):
+        if body:
+            body.pop("outline", None)
+    from moorsolve.model import build_case
+    return moorsolve.solve(build_case(data, name))
+
+
 def _sides(ring: np.ndarray) -> np.ndarray:
     return np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T)
 
@@ -85,15 +96,43 @@ def test_length_and_beam_of_the_case_make_the_hull():
     assert _heading(shape.ring) == pytest.approx(dock.body["yaw_deg"], abs=1e-9)
     np.testing.assert_allclose(shape.ring.mean(axis=0), [dock.body["x_m"], dock.body["y_m"]],
                                atol=1e-9)
-    ship = _solve("ship_97m.yaml")
+    ship = _solve_without_outline("ship_97m.yaml")
     (shape,) = scene_of(ship).bodies[0].shapes
     np.testing.assert_allclose(_sides(shape.ring), [97.0, 15.8] * 2, rtol=1e-12)
+
+
+@pytest.mark.parametrize("name, length, beam, draft, freeboard", [
+    ("ship_97m.yaml", 97.0, 15.8, 3.8, 3.9),          # Hu & Tang (2004), example 1
+    ("ship_berth.yaml", 200.0, 32.0, 11.5, 8.0),
+    ("turret_ship.yaml", 160.0, 28.0, 9.0, 12.0),
+])
+def test_a_ship_outline_is_drawn_as_a_ship(name, length, beam, draft, freeboard):
+    """A body's ``outline`` is drawn at the solved pose: as long and as broad as the case
+    says (measured along and across its heading), its stem on the bow side, from the draft
+    to the freeboard; the pictures' legend says where it came from."""
+    result = _solve(name)
+    body = scene_of(result).bodies[0]
+    (shape,) = [s for s in body.shapes if s.kind == "ship"]
+    pose = result.bodies[0]
+    yaw = pose["yaw_deg"]
+    along = np.array([math.cos(math.radians(yaw)), math.sin(math.radians(yaw))])
+    across = np.array([-along[1], along[0]])
+    assert np.ptp(shape.ring @ along) == pytest.approx(length, rel=1e-12)
+    assert np.ptp(shape.ring @ across) == pytest.approx(beam, rel=1e-12)
+    # The stem (the one point at the bow's end) is on the centreline, half a length ahead
+    # of the body origin (midship).
+    stem = shape.ring[np.argmax(shape.ring @ along)] - [pose["x_m"], pose["y_m"]]
+    assert stem @ along == pytest.approx(length / 2, rel=1e-12)
+    assert abs(stem @ across) < 1e-9 * length
+    assert shape.top - shape.bottom == pytest.approx(draft + freeboard, rel=1e-12)
+    texts = [t.get_text() for t in plot_plan(result).get_legend().get_texts()]
+    assert any("ship outline from the case" in t for t in texts)
 
 
 def test_without_hull_geometry_the_outline_of_the_line_ends_says_so():
     """A body the case gives no hull for is drawn through its line ends, fender points and
     origin, and the legend says that no hull was given."""
-    result = _solve("ship_berth.yaml")
+    result = _solve_without_outline("ship_berth.yaml")
     (body,) = scene_of(result).bodies
     (shape,) = body.shapes
     assert shape.kind == "fairleads"
