@@ -9,7 +9,8 @@ errors; there are no aliases. Quantities may be given with units (see
 A key whose absence means "none" (``ea``, ``body``, ``environment.wind``, a load model, ...)
 may also be given as null with the same meaning. A key with a default value may not be null.
 
-Schema (SI units, ``[...]`` lists)::
+An outline of the schema follows (SI units, ``[...]`` lists); every key with its unit,
+default and range is declared in :mod:`moorsolve.model.schema`, which the checks here read::
 
     name: str                                  optional, default the file stem or "case"
     environment:                               required
