@@ -125,6 +125,9 @@ class Body:
         (:class:`~moorsolve.model.sea.ExtraDamping`).
     outline : ShipOutline or None
         The ship hull the pictures draw (no effect on the solve).
+    outline_members : tuple of HullMember
+        Members the pictures draw (a platform's columns where its buoyancy is the linear
+        ``hydrostatics``); no effect on the solve.
     """
 
     name: str = "body"
@@ -143,6 +146,7 @@ class Body:
     hydrodynamics: Optional[object] = None
     damping: Optional[object] = None
     outline: Optional[ShipOutline] = None
+    outline_members: tuple = ()
 
     @property
     def pose(self) -> tuple:

@@ -12,7 +12,7 @@ from .bodies import PLANAR_DOFS, Body
 from .environment import Environment
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
-from .build_network import fixed_to_field, outline_field
+from .build_network import fixed_to_field, outline_fields
 from .lines import End, Line
 from .loads import BodyLoads
 
@@ -26,7 +26,7 @@ def _body(raw, path: str) -> Body:
     free = PLANAR_DOFS if "free" not in m else _free(m["free"], field_path(path, "free"))
     loads = BodyLoads() if m.get("loads") is None else _loads(m["loads"], field_path(path, "loads"))
     return Body(name="body", free=free, loads=loads, fixed_to=fixed_to_field(m, path, free),
-                outline=outline_field(m, path))
+                **outline_fields(m, path))
 
 
 def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool) -> Line:

@@ -200,10 +200,21 @@ def _body(raw, path: str, environment: Environment) -> Body:
     return Body(name=name, free=free, position=position, orientation_deg=orientation,
                 mass=mass, centre_of_gravity=cg, hydrostatics=hydro, hull=hull,
                 stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia,
-                fixed_to=fixed_to, outline=outline_field(m, path), **sea)
+                fixed_to=fixed_to, **outline_fields(m, path), **sea)
 
 
-def outline_field(m: Mapping, path: str):
+def outline_fields(m: Mapping, path: str) -> dict:
+    """A body's drawn-only ``outline`` and ``outline_members``, as Body keyword arguments."""
+    members = ()
+    if m.get("outline_members") is not None:
+        mpath = field_path(path, "outline_members")
+        items = check_list(m["outline_members"], mpath, "a list of members {shape, ...}")
+        members = tuple(_hull_member(item, field_path(mpath, i))
+                        for i, item in enumerate(items))
+    return {"outline": _outline(m, path), "outline_members": members}
+
+
+def _outline(m: Mapping, path: str):
     """A body's ``outline`` (a :class:`ShipOutline`, or None when absent or null)."""
     if m.get("outline") is None:
         return None

@@ -219,7 +219,8 @@ def body_shapes(model, origin, origin_rest, yaw_deg: float, yaw_rest_deg: float,
         Their heights at equilibrium [m].
     """
     z0 = float(origin[2])
-    members = tuple(getattr(model, "hull", ()) or ())
+    members = tuple(getattr(model, "hull", ()) or ()) + \
+        tuple(getattr(model, "outline_members", ()) or ())
     outline = getattr(model, "outline", None)
     shapes = [Shape(kind=m.shape, ring=_place(_member_ring(m), origin, yaw_deg),
                     ring_rest=_place(_member_ring(m), origin_rest, yaw_rest_deg),

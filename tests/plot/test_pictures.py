@@ -39,13 +39,14 @@ def _solve(name):
     return _SOLVED[name]
 
 
-def _solve_without_outline(name):
-    """The shipped case ``name`` with its drawn ship outline taken away."""
+def _solve_without_outline(name, key="outline"):
+    """The shipped case ``name`` with its drawn ``outline`` (or ``outline_members``) taken
+    away."""
     import yaml
     data = yaml.safe_load((CASES / name).read_text(encoding="utf-8"))
     for body in [data.get("body")] + list(data.get("bodies") or []):
         if body:
-            body.pop("outline", None)
+            body.pop(key, None)
     from moorsolve.model import build_case
     return moorsolve.solve(build_case(data, name))
 
@@ -360,3 +361,29 @@ def test_interactive_view_without_plotly_says_how_to_get_it(monkeypatch):
     monkeypatch.setitem(sys.modules, "plotly.graph_objects", None)
     with pytest.raises(ImportError, match=r"moorsolve\[interactive\]"):
         plot_3d_interactive(_solve("buoy_vida.yaml"))
+
+
+@pytest.mark.parametrize("name, members, radius", [
+    ("oc4_semi.yaml", 7, 12.0),        # Robertson et al. (2014), Table 3-1: base columns
+    ("volturnus_s.yaml", 4, 6.25),     # Allen et al. (2020): 12.5 m outer columns
+    ("oc3_spar.yaml", 3, 4.7),         # Jonkman (2010): 9.4 m below the taper
+])
+def test_a_platforms_drawn_columns_are_its_outline_members(name, members, radius):
+    """``outline_members`` are drawn as the columns they are, at the solved pose, without
+    taking part in the solve (the same equilibrium as the case without them)."""
+    result = _solve(name)
+    shapes = [s for s in scene_of(result).bodies[0].shapes if s.kind == "cylinder"]
+    assert len(shapes) == members
+    widest = max(float(np.ptp(s.ring[:, 0])) for s in shapes)
+    assert widest == pytest.approx(2 * radius, rel=1e-2)     # a 36-gon's width
+    bare = _solve_without_outline(name, "outline_members")
+    a, b = result.bodies[0], bare.bodies[0]
+    for key in ("x_m", "y_m", "yaw_deg"):
+        assert a[key] == b[key]
+
+
+def test_an_offset_below_what_the_legend_shows_is_not_drawn():
+    """OC3 at rest: an offset of rounding size is not magnified into an arrow."""
+    result = _solve("oc3_spar.yaml")
+    texts = [t.get_text() for t in plot_plan(result).get_legend().get_texts()]
+    assert any("not drawn" in t for t in texts)

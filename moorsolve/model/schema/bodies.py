@@ -17,6 +17,9 @@ section("body", "body", "The moored body of the legs form (planar: surge, sway, 
     "free": Key("degrees of freedom solved for", "list", default=DOFS3, choices=DOFS3),
     "outline": Key("ship hull drawn in the pictures (no effect on the solve)", "mapping",
                    section="outline"),
+    "outline_members": Key("vertical cylinders and boxes drawn in the pictures (no effect on "
+                           "the solve; hull gives buoyancy)", "list",
+                           section="hull_cylinder|hull_box"),
     "loads": _LOADS,
     "fixed_to": _FIXED_TO,
 })
@@ -103,6 +106,9 @@ section("network_body", "bodies[i]", "A body of the network form (six degrees of
                 section="hull_cylinder|hull_box"),
     "outline": Key("ship hull drawn in the pictures (no effect on the solve)", "mapping",
                    section="outline"),
+    "outline_members": Key("vertical cylinders and boxes drawn in the pictures (no effect on "
+                           "the solve; hull gives buoyancy)", "list",
+                           section="hull_cylinder|hull_box"),
     "stiffness": Key("linear spring to the reference pose, 6x6 SI", "dimensionless",
                      shape="6 rows of 6"),
     "added_mass": Key("added mass, 6x6 SI (periods, motions)", "dimensionless",
@@ -129,13 +135,13 @@ _MEMBER = {
     "top": Key("top z, body frame", "length", REQUIRED, range="> bottom"),
 }
 _AXIS = Key("axis position, body frame", "length", default=(0.0, 0.0), shape="[x, y]")
-section("hull_cylinder", "bodies[i].hull[j] (shape: cylinder)",
+section("hull_cylinder", "bodies[i].hull[j], outline_members[j] (shape: cylinder)",
         "A vertical cylinder: exact buoyancy, drawn in the pictures.", {
             **_MEMBER,
             "radius": Key("radius", "length", REQUIRED, range="> 0"),
             "centre": _AXIS,
         })
-section("hull_box", "bodies[i].hull[j] (shape: box)",
+section("hull_box", "bodies[i].hull[j], outline_members[j] (shape: box)",
         "A vertical box: exact buoyancy, drawn in the pictures.", {
             **_MEMBER,
             "length": Key("length along body x", "length", REQUIRED, range="> 0"),
