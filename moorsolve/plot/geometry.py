@@ -3,8 +3,8 @@ matplotlib here).
 
 A body is drawn from the most exact geometry the case gives:
 
-1. its hull members (``hull:``: boxes and vertical cylinders of the exact hydrostatics), each
-   drawn as the prism it is, and its ship outline (``outline:``, length, beam, draft and
+1. its hull members (``hull:``: boxes and vertical cylinders of the exact hydrostatics, and
+   ``outline_members:``, drawn only), each drawn as the prism it is, and its ship outline (``outline:``, length, beam, draft and
    freeboard: a parallel middle body, a rounded bow and a transom stern);
 2. else a length and beam the case gives for its loads (the wave drift model's ``beam`` and
    ``length``), drawn as a rectangle about the body origin; a beam without a length is
@@ -34,8 +34,8 @@ _CYLINDER_POINTS = 36
 
 #: What each kind of shape is called in a legend.
 SHAPE_SOURCES = {
-    "box": "its hull members",
-    "cylinder": "its hull members",
+    "box": "hull members from the case",
+    "cylinder": "hull members from the case",
     "ship": "ship outline from the case",
     "dimensions": "length x beam from the case",
     "fairleads": "outline of fairleads (no hull given)",
