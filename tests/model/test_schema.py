@@ -378,3 +378,25 @@ def test_the_case_file_reference_page_is_generated_from_the_schema():
         assert f"`{sec.where}`" in text or sec.where in text, sec.name
         for key in sec.keys:
             assert f"`{key}`" in text
+
+
+@pytest.mark.parametrize("outline, field, message", [
+    ({"length": 97}, "body.outline.beam", "required key 'beam' is missing"),
+    ({"length": 97, "beam": 120}, "body.outline.beam", "must be <= 97 m"),
+    ({"length": 97, "beam": 15.8, "draft": -1}, "body.outline.draft", "must be >= 0"),
+    ({"length": 97, "beam": 15.8, "keel": 1}, "body.outline.keel", "unknown key 'keel'"),
+])
+def test_a_bad_ship_outline_names_its_field(outline, field, message):
+    data = dict(copy.deepcopy(_DOCK), body={"outline": outline})
+    with pytest.raises(CaseError, match=message) as err:
+        moorsolve.load_case(data)
+    assert err.value.field == field
+
+
+def test_an_outline_draws_only():
+    """The same equilibrium with and without a drawn outline, which the Body carries."""
+    bare = moorsolve.solve(moorsolve.load_case(copy.deepcopy(_DOCK) | {"body": {}}))
+    drawn = moorsolve.load_case(copy.deepcopy(_DOCK) | {"body": {
+        "outline": {"length": "97 m", "beam": 15.8, "draft": 3.8, "heading_deg": 10}}})
+    assert drawn.bodies[0].outline.heading_deg == 10.0
+    assert moorsolve.solve(drawn).body == bare.body
