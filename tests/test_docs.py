@@ -106,3 +106,48 @@ def test_the_pictures_of_the_docs_are_drawn_by_their_script(tmp_path):
     import re
     for name in re.findall(r"\]\(((?:docs/)?[\w]+\.png)\)", text):
         assert (ROOT / name).exists() or (DOCS / name).exists(), f"{name} is not committed"
+
+
+def test_a_blocks_shown_output_is_compared_with_what_it_prints(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text("```python\nprint('offset 5.00 m, solved in 12.6 ms')\n"
+                    "print('force residual 2.81e-10 N (9.4e-15 of max tension)')\n```\n"
+                    "```text\noffset 5.00 m, solved in 3.1 ms\n"
+                    "force residual 1.00e-09 N (1.1e-14 of max tension)\n```\n")
+    run_blocks.run(page, tmp_path, log=lambda *_: None)          # times, residuals masked
+    page.write_text("```python\nprint('offset 5.01 m')\n```\n```text\noffset 5.00 m\n```\n")
+    with pytest.raises(RuntimeError, match="differs from what the block prints"):
+        run_blocks.run(page, tmp_path, log=lambda *_: None)
+    page.write_text("```python\nprint('offset 5.01 m')\n```\n"
+                    "```text compare=no\noffset 5.00 m\n```\n")
+    run_blocks.run(page, tmp_path, log=lambda *_: None)
+
+
+@pytest.mark.parametrize("printed, shown, same", [
+    ("a\nb\nc\n", "a\n...\nc", True),                    # ... stands for any lines
+    ("a\nb\nc\n", "...\nb\n...", True),
+    ("a\nb\nc\n", "a\nc", False),                         # a line left out without ...
+    ("a\nb\n", "a", False),                               # printed more than shown
+    ("x 1.2346\n", "x 1.235", True),                      # equal to the digits shown
+    ("x 1.2344\n", "x 1.235", False),
+    ("T 69622.066536\n", "T 69622.0665361", True),        # and to 1e-6 relative
+    ("moorsolve 1.4.0.dev3\n", "moorsolve 1.3.0", True),  # version strings masked
+    ("wrote /tmp/abc/x.png\n", "wrote /home/u/x.png", True),   # paths masked
+    ("T/MBL 0.32\n", "T/MBL 0.32", True),
+    ("6 iterations\n", "7 iterations", False),
+])
+def test_output_comparison_rules(printed, shown, same):
+    assert (run_blocks.compare_output(printed, shown) == "") is same
+
+
+def test_the_gallery_shows_every_example_and_its_committed_picture():
+    import make_gallery
+    assert (DOCS / "gallery.md").read_text(encoding="utf-8") == make_gallery.render(), \
+        "docs/gallery.md is stale: run python docs/make_gallery.py"
+    found = make_gallery.examples()
+    assert {p.name for p, _, _ in found} == {p.name for p in (ROOT / "examples").glob("*.py")}
+    drawn = [p for p, _, draws in found if draws]
+    assert len(drawn) >= 3
+    for path in drawn:
+        png = DOCS / "gallery" / f"{path.stem}.png"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", f"{png.name} is not committed"

@@ -11,7 +11,7 @@ direction a wind, current or wave train travels toward, counter-clockwise from +
 """
 
 from .environment import Environment, Flow, Seabed, Waves
-from .bodies import DOFS, PLANAR_DOFS, Body, Hydrostatics, HullMember, Point
+from .bodies import DOFS, PLANAR_DOFS, Body, Hydrostatics, HullMember, Point, ShipOutline
 from .lines import ANCHOR_KINDS, AnchorType, Clump, End, Leg, Line, LineDrag, LineType, Segment
 from .loads import (BodyLoads, DragLoad, DriftCoefficient, HuTangCurrent, HuTangDrift,
                     HuTangWind)
@@ -20,7 +20,7 @@ from .contact import Contacts, Fender, Guide, Pile, ReactionLaw, Wall
 
 __all__ = ["Environment", "Flow", "Seabed", "Waves", "ANCHOR_KINDS", "AnchorType", "Clump",
            "End", "Leg", "Line", "LineDrag", "LineType", "Segment", "DOFS", "PLANAR_DOFS",
-           "Body", "Hydrostatics", "HullMember", "Point", "BodyLoads", "DragLoad",
+           "Body", "Hydrostatics", "HullMember", "Point", "ShipOutline", "BodyLoads", "DragLoad",
            "DriftCoefficient", "HuTangCurrent", "HuTangDrift", "HuTangWind",
            "DEGREES_OF_FREEDOM", "STANDARDS", "Case", "Checks", "SolverOptions",
            "Contacts", "Fender", "Guide", "Pile", "ReactionLaw", "Wall"]

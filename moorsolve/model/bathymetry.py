@@ -145,7 +145,7 @@ def bathymetry_from_mapping(raw, path: str, source: str = "inline") -> Bathymetr
         raise CaseError(path, f"{show_value(raw)} is not a grid: give a file name (a MoorDyn "
                               "SeafloorFile, .csv or .nc) or {x: [...], y: [...], "
                               "depth: [[...], ...]}")
-    m = check_mapping(raw, path, required=("x", "y", "depth"), optional=("source",))
+    m = check_mapping(raw, path, section="bathymetry")
     if "source" in m:
         # Where the grid came from (the file the case named), for reports.
         if not isinstance(m["source"], str):

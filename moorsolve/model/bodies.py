@@ -65,6 +65,25 @@ class HullMember:
 
 
 @dataclass(frozen=True)
+class ShipOutline:
+    """The hull of a ship as the pictures draw it: length overall and beam in plan (a
+    parallel middle body, a rounded bow, a transom stern), its sides from ``draft`` below
+    the waterline to ``freeboard`` above it [m]. ``centre`` is midship on the waterline
+    (body frame x, y [m]); the bow points along body x turned by ``heading_deg``.
+
+    It draws the ship and nothing else: buoyancy is ``hydrostatics`` or ``hull``, loads
+    are the load models.
+    """
+
+    length: float
+    beam: float
+    draft: float = 0.0
+    freeboard: float = 0.0
+    centre: tuple = (0.0, 0.0)
+    heading_deg: float = 0.0
+
+
+@dataclass(frozen=True)
 class Body:
     """A rigid body: its pose in the case, which degrees of freedom are solved, and its
     mass, hydrostatics, extra springs and load models.
@@ -104,6 +123,11 @@ class Body:
     damping : ExtraDamping or None
         Damping added to the radiation damping for motions
         (:class:`~moorsolve.model.sea.ExtraDamping`).
+    outline : ShipOutline or None
+        The ship hull the pictures draw (no effect on the solve).
+    outline_members : tuple of HullMember
+        Members the pictures draw (a platform's columns where its buoyancy is the linear
+        ``hydrostatics``); no effect on the solve.
     """
 
     name: str = "body"
@@ -121,6 +145,8 @@ class Body:
     fixed_to: str = "water"
     hydrodynamics: Optional[object] = None
     damping: Optional[object] = None
+    outline: Optional[ShipOutline] = None
+    outline_members: tuple = ()
 
     @property
     def pose(self) -> tuple:

@@ -9,7 +9,8 @@ errors; there are no aliases. Quantities may be given with units (see
 A key whose absence means "none" (``ea``, ``body``, ``environment.wind``, a load model, ...)
 may also be given as null with the same meaning. A key with a default value may not be null.
 
-Schema (SI units, ``[...]`` lists)::
+An outline of the schema follows (SI units, ``[...]`` lists); every key with its unit,
+default and range is declared in :mod:`moorsolve.model.schema`, which the checks here read::
 
     name: str                                  optional, default the file stem or "case"
     environment:                               required
@@ -89,7 +90,7 @@ import numbers
 from collections.abc import Mapping
 
 from ..errors import CaseError
-from .directions import CONVENTIONS, DIRECTION_KEYS, Compass, flow_direction
+from .directions import CONVENTIONS, Compass, flow_direction
 from .environment import Environment, Flow, Seabed, Waves
 from .scene import METHODS, STANDARDS, Analysis, Case, Checks, SolverOptions, moves_in_sea
 from .shared import LEGS, shared_parts
@@ -98,14 +99,15 @@ from .build_lines import _anchor_type, _line_types
 from .build_anchors import build_anchors
 from .build_network import build_network, check_held, end_position
 from .build_sea import sea_state_fields
-from .build_wear import WEAR_KEYS, wear_fields
+from .build_wear import wear_fields
 from .build_contact import build_contacts
 from .contact import Contacts
 from .fields import (GRAVITY_RANGE, MAX_DENSITY, MAX_DEPTH, MAX_GRADIENT, MAX_HS,
                      MAX_ITER_LIMIT, MAX_LINE_ELEMENTS,
                      MAX_SPEED, MIN_DEPTH, check_bounds, check_list,
                      check_mapping, check_name, check_rows, field_path,
-                     nullable_quantity, optional_quantity, quantity)
+                     nullable_quantity, quantity, schema_quantity)
+from .schema import default as schema_default
 from .bathymetry import bathymetry_from_mapping, check_scene as check_bathymetry
 from .moordyn_block import validate_moordyn_block
 from .units import format_si, recording_active, show_value
@@ -121,8 +123,7 @@ def _angle(raw, path: str) -> float:
 
 
 def _flow(raw, path: str, compass: Compass, profile: bool = False) -> Flow:
-    m = check_mapping(raw, path, required=("speed",),
-                      optional=DIRECTION_KEYS + (("profile",) if profile else ()))
+    m = check_mapping(raw, path, section="current" if profile else "wind")
     speed = quantity(m["speed"], field_path(path, "speed"), "speed", ge=0, le=MAX_SPEED)
     toward = flow_direction(m, path, compass, _angle)
     rows = None
@@ -158,35 +159,27 @@ def _current_profile(raw, ppath: str, compass: Compass) -> tuple:
 
 
 def _waves(raw, path: str, compass: Compass) -> Waves:
-    m = check_mapping(raw, path, required=("hs",),
-                      optional=DIRECTION_KEYS + ("tp", "spectrum", "duration"))
+    m = check_mapping(raw, path, section="waves")
     hs = quantity(m["hs"], field_path(path, "hs"), "length", ge=0, le=MAX_HS)
     toward = flow_direction(m, path, compass, _angle)
     return Waves(hs=hs, toward_deg=toward, **sea_state_fields(m, path, hs))
 
 
 def _environment(raw, path: str) -> Environment:
-    m = check_mapping(raw, path, required=("depth",),
-                 optional=("water_density", "air_density", "gravity", "seabed", "wind",
-                           "current", "waves", "directions", "north_deg", "water_level"))
-    defaults = Environment(depth=1.0)
+    m = check_mapping(raw, path, section="environment")
     dpath = field_path(path, "depth")
     depth = quantity(m["depth"], dpath, "length", gt=0, le=MAX_DEPTH)
     check_bounds(m["depth"], depth, "length", dpath, ge=MIN_DEPTH)
-    water_density = optional_quantity(m, path, "water_density", "density", defaults.water_density,
-                                      gt=0,
-                           le=MAX_DENSITY)
-    air_density = optional_quantity(m, path, "air_density", "density", defaults.air_density, gt=0,
-                         le=MAX_DENSITY)
-    gravity = optional_quantity(m, path, "gravity", "acceleration", defaults.gravity, gt=0,
-                     le=GRAVITY_RANGE[1])
+    water_density = schema_quantity(m, path, "environment", "water_density", gt=0,
+                                    le=MAX_DENSITY)
+    air_density = schema_quantity(m, path, "environment", "air_density", gt=0, le=MAX_DENSITY)
+    gravity = schema_quantity(m, path, "environment", "gravity", gt=0, le=GRAVITY_RANGE[1])
     check_bounds(m.get("gravity"), gravity, "acceleration", field_path(path, "gravity"),
                   ge=GRAVITY_RANGE[0])
     seabed = Seabed()
     if "seabed" in m:
         sub = field_path(path, "seabed")
-        s = check_mapping(m["seabed"], sub,
-                          optional=("friction", "gradient", "bathymetry", "tolerance"))
+        s = check_mapping(m["seabed"], sub, section="seabed")
         gradient = (0.0, 0.0)
         if "gradient" in s and "bathymetry" in s:
             raise CaseError(field_path(sub, "bathymetry"), "give either a bathymetry grid or "
@@ -213,18 +206,17 @@ def _environment(raw, path: str) -> Environment:
                 raise CaseError(bpath, f"file {raw!r} was not read: a bathymetry file is read "
                                        "by load_case (relative to the case file)")
             grid = bathymetry_from_mapping(raw, bpath)
-        seabed = Seabed(friction=optional_quantity(s, sub, "friction", "dimensionless", 0.0, ge=0),
+        seabed = Seabed(friction=schema_quantity(s, sub, "seabed", "friction", ge=0),
                         gradient=gradient, bathymetry=grid,
-                        tolerance=optional_quantity(s, sub, "tolerance", "length", 0.1, gt=0,
-                                                    le=MAX_DEPTH))
+                        tolerance=schema_quantity(s, sub, "seabed", "tolerance", gt=0,
+                                                  le=MAX_DEPTH))
     compass = _compass(m, path)
     wind = None if m.get("wind") is None else _flow(m["wind"], field_path(path, "wind"), compass)
     current = (None if m.get("current") is None
                else _flow(m["current"], field_path(path, "current"), compass, profile=True))
     waves = (None if m.get("waves") is None
              else _waves(m["waves"], field_path(path, "waves"), compass))
-    level = optional_quantity(m, path, "water_level", "length", 0.0, ge=-MAX_TIDE,
-                              le=MAX_TIDE)
+    level = schema_quantity(m, path, "environment", "water_level", ge=-MAX_TIDE, le=MAX_TIDE)
     if level <= -depth:
         raise CaseError(field_path(path, "water_level"),
                         f"{format_si(level, 'length')} would leave no water over the seabed "
@@ -236,7 +228,7 @@ def _environment(raw, path: str) -> Environment:
 
 def _compass(m: dict, path: str) -> Compass:
     """``directions`` (mathematical or nautical) and ``north_deg`` (nautical only)."""
-    convention = m.get("directions", "mathematical")
+    convention = m.get("directions", schema_default("environment", "directions"))
     if not isinstance(convention, str) or convention not in CONVENTIONS:
         raise CaseError(field_path(path, "directions"),
                         f"{show_value(convention)} must be one of {', '.join(CONVENTIONS)} "
@@ -245,15 +237,12 @@ def _compass(m: dict, path: str) -> Compass:
     if "north_deg" in m and convention != "nautical":
         raise CaseError(field_path(path, "north_deg"), "applies to compass bearings only; "
                                                        "give directions: nautical with it")
-    north = optional_quantity(m, path, "north_deg", "angle", 90.0)
+    north = schema_quantity(m, path, "environment", "north_deg")
     return Compass(convention=convention, north_deg=north)
 
 
 def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Checks:
-    m = check_mapping(raw, path, optional=("standard", "consequence_class", "offset_limit",
-                                      "offset_limit_damaged", "min_grounded_length",
-                                      "min_grounded_length_damaged", "anchor", "damaged",
-                                      "anchors", "fatigue", "method") + WEAR_KEYS)
+    m = check_mapping(raw, path, section="checks")
     defaults = Checks()
     standard = m.get("standard", defaults.standard)
     if not isinstance(standard, str) or standard not in STANDARDS:
@@ -281,7 +270,7 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
                                               f"({format_si(longest, 'length')})")
     anchor = (defaults.anchor if m.get("anchor") is None
               else _anchor_type(m["anchor"], field_path(path, "anchor")))
-    damaged = m.get("damaged", True)
+    damaged = m.get("damaged", schema_default("checks", "damaged"))
     if not isinstance(damaged, bool):
         raise CaseError(field_path(path, "damaged"), f"{show_value(damaged)} is not true or false")
     anchors = (() if m.get("anchors") is None
@@ -307,7 +296,7 @@ def _checks(raw, path: str, legs: tuple, line_types: dict | None = None) -> Chec
 
 
 def _analysis(raw, path: str) -> Analysis:
-    m = check_mapping(raw, path, optional=("lines",))
+    m = check_mapping(raw, path, section="analysis")
     lines = m.get("lines")
     if lines is not None and (not isinstance(lines, str) or lines not in METHODS):
         raise CaseError(field_path(path, "lines"), f"{show_value(lines)} must be one of "
@@ -341,9 +330,9 @@ def check_analysis(case: Case) -> None:
 
 
 def _solver(raw, path: str) -> SolverOptions:
-    m = check_mapping(raw, path, optional=("tol", "max_iter", "max_time_s", "line_elements"))
+    m = check_mapping(raw, path, section="solver")
     defaults = SolverOptions()
-    tol = optional_quantity(m, path, "tol", "dimensionless", defaults.tol, gt=0, lt=1)
+    tol = schema_quantity(m, path, "solver", "tol", gt=0, lt=1)
     max_iter = defaults.max_iter
     if "max_iter" in m:
         raw_iter = m["max_iter"]
@@ -354,7 +343,7 @@ def _solver(raw, path: str) -> SolverOptions:
         max_iter = int(raw_iter)
         if not 1 <= max_iter <= MAX_ITER_LIMIT:
             raise CaseError(ipath, f"{max_iter} must be an integer from 1 to {MAX_ITER_LIMIT}")
-    max_time = optional_quantity(m, path, "max_time_s", "time", defaults.max_time_s, gt=0)
+    max_time = schema_quantity(m, path, "solver", "max_time_s", gt=0)
     elements = defaults.line_elements
     if "line_elements" in m:
         raw_n = m["line_elements"]
@@ -448,26 +437,22 @@ def build_case(data, default_name: str = "case") -> Case:
                                 "legs (with an optional body) or lines between points and "
                                 "bodies (bodies, points, lines)")
     network = isinstance(data, Mapping) and any(k in data for k in _NETWORK_FORM)
-    common = ("name", "solver", "checks", "moordyn", "analysis")
     if network:
-        m = check_mapping(data, "", required=("environment",),
-                          optional=common + ("bodies", "points", "body", "legs", "lines",
-                                             "line_types") + _BERTH)
+        for key in _LEGS_FORM:
+            if key in data:
+                raise CaseError(key, f"{key!r} belongs to the body + legs form; this case uses "
+                                     "the network form (bodies, points, lines): give one form")
+        m = check_mapping(data, "", section="network")
         if m.get("lines") and "line_types" not in m:
             raise CaseError("line_types", "required key 'line_types' is missing: the lines "
                                           "name their types there")
-        for key in _LEGS_FORM:
-            if key in m:
-                raise CaseError(key, f"{key!r} belongs to the body + legs form; this case uses "
-                                     "the network form (bodies, points, lines): give one form")
     else:
         if isinstance(data, Mapping):
             for key in _BERTH:
                 if key in data:
                     raise CaseError(key, f"{key!r} belongs to the network form (bodies, "
                                          "points, lines): fenders name the body they are on")
-        m = check_mapping(data, "", required=("environment", "line_types", "legs"),
-                          optional=common + ("body",))
+        m = check_mapping(data, "", section="case")
     name = default_name if "name" not in m else check_name(m["name"], "name", "case name")
     # Environment first: gravity converts weights given as mass per length, and depth
     # places anchors given as [x, y].

@@ -36,7 +36,7 @@ _EMBED = "embedment"
 
 def build_anchors(raw, path: str) -> tuple:
     """``checks.anchors`` -> a tuple of AnchorDesign, one per kind given."""
-    m = check_mapping(raw, path, optional=ANCHOR_DESIGN_KINDS)
+    m = check_mapping(raw, path, section="anchor_designs")
     return tuple(_BUILDERS[kind](entry, field_path(path, kind))
                  for kind, entry in m.items() if entry is not None)
 
@@ -46,8 +46,7 @@ def _mass(m: dict, path: str):
 
 
 def _drag(raw, path: str) -> AnchorDesign:
-    m = check_mapping(raw, path, optional=("capacity", "fluke_weight", "soil", "design", "mass",
-                                           _EMBED))
+    m = check_mapping(raw, path, section="anchor_design_drag")
     embed = _embedment(m, path)
     if m.get("capacity") is not None:
         for key in ("fluke_weight", "soil", "design"):
@@ -87,8 +86,7 @@ def _hv(m: dict, path: str) -> tuple:
 
 
 def _suction(raw, path: str) -> AnchorDesign:
-    m = check_mapping(raw, path, required=("h_max", "v_max", "length", "diameter"),
-                      optional=("mass", _EMBED))
+    m = check_mapping(raw, path, section="anchor_design_suction")
     h, v = _hv(m, path)
     length = quantity(m["length"], field_path(path, "length"), "length", gt=0)
     diameter = quantity(m["diameter"], field_path(path, "diameter"), "length", gt=0)
@@ -102,14 +100,14 @@ def _suction(raw, path: str) -> AnchorDesign:
 
 
 def _pile(raw, path: str) -> AnchorDesign:
-    m = check_mapping(raw, path, required=("h_max", "v_max"), optional=("mass", _EMBED))
+    m = check_mapping(raw, path, section="anchor_design_pile")
     h, v = _hv(m, path)
     return AnchorDesign(kind="pile", h_max=h, v_max=v, mass=_mass(m, path),
                         embedment=_embedment(m, path))
 
 
 def _deadweight(raw, path: str) -> AnchorDesign:
-    m = check_mapping(raw, path, required=("mass",))
+    m = check_mapping(raw, path, section="anchor_design_deadweight")
     return AnchorDesign(kind="deadweight", mass=_mass(m, path))
 
 
@@ -117,9 +115,7 @@ def _embedment(m: dict, path: str):
     if m.get(_EMBED) is None:
         return None
     epath = field_path(path, _EMBED)
-    e = check_mapping(m[_EMBED], epath, required=("padeye_depth", "su0", "su_gradient"),
-                      optional=("line_diameter", "bearing_factor", "bearing_width",
-                                "friction"))
+    e = check_mapping(m[_EMBED], epath, section="embedment")
     depth = quantity(e["padeye_depth"], field_path(epath, "padeye_depth"), "length", gt=0)
     su0 = quantity(e["su0"], field_path(epath, "su0"), "pressure", ge=0)
     k = quantity(e["su_gradient"], field_path(epath, "su_gradient"), "pressure_per_length",

@@ -74,8 +74,7 @@ def _items(m: Mapping, key: str, what: str) -> list:
 
 
 def _wall(raw, path: str) -> Wall:
-    m = check_mapping(raw, path, required=("name", "point", "normal"),
-                      optional=("friction", "friction_slip"))
+    m = check_mapping(raw, path, section="wall")
     name = check_name(m["name"], field_path(path, "name"), "wall name")
     point = check_point(m["point"], field_path(path, "point"), (3,))
     npath = field_path(path, "normal")
@@ -102,8 +101,7 @@ def _friction(m: dict, path: str) -> tuple:
 
 
 def _pile(raw, path: str) -> Pile:
-    m = check_mapping(raw, path, required=("name", "position", "radius"),
-                      optional=("top", "friction", "friction_slip", "bending_stiffness"))
+    m = check_mapping(raw, path, section="pile")
     name = check_name(m["name"], field_path(path, "name"), "pile name")
     position = check_point(m["position"], field_path(path, "position"), (2,))
     radius = quantity(m["radius"], field_path(path, "radius"), "length", gt=0, le=100)
@@ -165,8 +163,7 @@ def _pose(body: Body):
 
 
 def _fender(raw, path: str, bodies: dict, walls: dict, piles: dict) -> Fender:
-    m = check_mapping(raw, path, required=("name", "body", "at", "reaction"),
-                      optional=("wall", "pile", "mounted", "rated_deflection", "height"))
+    m = check_mapping(raw, path, section="fender")
     name = check_name(m["name"], field_path(path, "name"), "fender name")
     body = _known(m["body"], field_path(path, "body"), bodies, "body")
     at = check_point(m["at"], field_path(path, "at"), (3,))
@@ -268,8 +265,7 @@ def _check_touching(fender: Fender, path: str, body: Body, walls: dict, piles: d
 
 
 def _guide(raw, path: str, bodies: dict, piles: dict) -> Guide:
-    m = check_mapping(raw, path, required=("name", "body", "at", "pile", "clearance"),
-                      optional=("pads",))
+    m = check_mapping(raw, path, section="guide")
     name = check_name(m["name"], field_path(path, "name"), "guide name")
     body = _known(m["body"], field_path(path, "body"), bodies, "body")
     at = check_point(m["at"], field_path(path, "at"), (3,))

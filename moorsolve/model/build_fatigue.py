@@ -40,9 +40,7 @@ def fatigue_spec(raw, path: str, line_types, *, checks_life=None,
     The design life is the fatigue block's own ``design_life`` or, without one, the
     ``checks.design_life`` the wear check reads (``checks_life``); both given, they must agree.
     """
-    m = check_mapping(raw, path, required=("sea_states",),
-                      optional=("design_life", "spectrum", "curve", "curves",
-                                "design_fatigue_factor", "method"))
+    m = check_mapping(raw, path, section="fatigue")
     life = None if checks_life is None else design_life_years(checks_life, checks_life_path)
     if m.get("design_life") is not None:
         own = design_life_years(m["design_life"], field_path(path, "design_life"))
@@ -72,7 +70,15 @@ def fatigue_spec(raw, path: str, line_types, *, checks_life=None,
     curves = ()
     if m.get("curves") is not None:
         cpath = field_path(path, "curves")
-        given = check_mapping(m["curves"], cpath, optional=tuple(line_types))
+        given = m["curves"]
+        if not isinstance(given, Mapping):
+            raise CaseError(cpath, f"{show_value(given)} is not a mapping of line type names "
+                                   "to curves")
+        for name in given:
+            if name not in line_types:
+                raise CaseError(field_path(cpath, name),
+                                f"unknown line type {show_value(name)}; known line types: "
+                                f"{', '.join(line_types)}")
         curves = tuple((name, _curve(v, field_path(cpath, name))) for name, v in given.items())
     dff = DEFAULT_DFF
     if m.get("design_fatigue_factor") is not None:
@@ -87,7 +93,7 @@ def fatigue_spec(raw, path: str, line_types, *, checks_life=None,
 
 
 def _sea_states(raw, path: str) -> tuple:
-    m = check_mapping(raw, path, required=("table",))
+    m = check_mapping(raw, path, section="fatigue_sea_states")
     tpath = field_path(path, "table")
     rows = check_rows(m["table"], tpath, "[hs m, tp s, toward_deg, probability]", width=4,
                       min_rows=1, empty="a scatter diagram")
@@ -108,7 +114,7 @@ def _sea_states(raw, path: str) -> tuple:
 
 def _curve(raw, path: str) -> Curve:
     if isinstance(raw, Mapping) and "catalog" in raw:
-        m = check_mapping(raw, path, required=("catalog",))
+        m = check_mapping(raw, path, section="fatigue_curve_catalog")
         name = m["catalog"]
         known = catalog()
         if not isinstance(name, str) or name not in known:
@@ -116,7 +122,7 @@ def _curve(raw, path: str) -> Curve:
                             f"{show_value(name)} is not a fatigue curve of the catalogue; "
                             f"allowed: {', '.join(known)}")
         return known[name]
-    m = check_mapping(raw, path, required=("m", "a_d"), optional=("basis",))
+    m = check_mapping(raw, path, section="fatigue_curve")
     slope = quantity(m["m"], field_path(path, "m"), "dimensionless", gt=0, le=20)
     a_d = quantity(m["a_d"], field_path(path, "a_d"), "dimensionless", gt=0)
     basis = m.get("basis", "stress_chain")

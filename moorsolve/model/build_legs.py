@@ -12,7 +12,7 @@ from .bodies import PLANAR_DOFS, Body
 from .environment import Environment
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
-from .build_network import fixed_to_field
+from .build_network import fixed_to_field, outline_fields
 from .lines import End, Line
 from .loads import BodyLoads
 
@@ -22,15 +22,15 @@ def _free(raw, path: str) -> tuple:
 
 
 def _body(raw, path: str) -> Body:
-    m = check_mapping(raw, path, optional=("free", "loads", "fixed_to"))
+    m = check_mapping(raw, path, section="body")
     free = PLANAR_DOFS if "free" not in m else _free(m["free"], field_path(path, "free"))
     loads = BodyLoads() if m.get("loads") is None else _loads(m["loads"], field_path(path, "loads"))
-    return Body(name="body", free=free, loads=loads, fixed_to=fixed_to_field(m, path, free))
+    return Body(name="body", free=free, loads=loads, fixed_to=fixed_to_field(m, path, free),
+                **outline_fields(m, path))
 
 
 def _leg(raw, path: str, environment: Environment, line_types: dict, body: bool) -> Line:
-    m = check_mapping(raw, path, required=("name", "anchor", "fairlead", "segments"),
-                 optional=("anchor_type",))
+    m = check_mapping(raw, path, section="leg")
     name = check_name(m["name"], field_path(path, "name"), "leg name")
     anchor_type = (None if m.get("anchor_type") is None
                    else _anchor_type(m["anchor_type"], field_path(path, "anchor_type")))

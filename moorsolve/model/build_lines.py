@@ -10,23 +10,23 @@ from .fields import (MAX_EA,
                      MAX_LINE_LENGTH, MAX_WEIGHT, MIN_EA,
                      MIN_LINE_LENGTH, MIN_WEIGHT, check_bounds, check_list,
                      check_mapping, field_path,
-                     nullable_quantity, optional_quantity, quantity)
+                     nullable_quantity, optional_quantity, quantity, schema_quantity)
 from .units import format_si, show_value, weight_per_length_to_si
 from .. import catalog as line_catalog
 from ..constants import SEAWATER_DENSITY
 from .environment import Environment
 from .lines import ANCHOR_KINDS, AnchorType, Clump, LineDrag, LineType, Segment
-from .stretch import LINE_TYPE_KEYS, line_type_fields
+from .stretch import line_type_fields
 
 
 # ---- line types -------------------------------------------------------------------------
 
 
 def _line_drag(raw, path: str) -> LineDrag:
-    m = check_mapping(raw, path, required=("normal",), optional=("tangential", "side"))
+    m = check_mapping(raw, path, section="line_drag")
     normal = quantity(m["normal"], field_path(path, "normal"), "dimensionless", ge=0, le=10)
-    tangential = optional_quantity(m, path, "tangential", "dimensionless", 0.0, ge=0, le=10)
-    side = optional_quantity(m, path, "side", "dimensionless", 0.0, ge=-10, le=10)
+    tangential = schema_quantity(m, path, "line_drag", "tangential", ge=0, le=10)
+    side = schema_quantity(m, path, "line_drag", "side", ge=-10, le=10)
     return LineDrag(normal=normal, tangential=tangential, side=side)
 
 
@@ -44,9 +44,7 @@ def _line_type(name: str, raw, path: str, gravity: float,
                water_density: float = SEAWATER_DENSITY) -> LineType:
     if isinstance(raw, Mapping) and "catalog" in raw:
         return _catalog_line_type(name, raw, path, gravity, water_density)
-    m = check_mapping(raw, path, required=("weight_in_water",),
-                 optional=("ea", "mbl", "diameter", "sealed", "catalog", "drag",
-                           "weight_in_air") + LINE_TYPE_KEYS)
+    m = check_mapping(raw, path, section="line_type")
     wpath = field_path(path, "weight_in_water")
     weight = weight_per_length_to_si(m["weight_in_water"], gravity, wpath)
     if abs(weight) > MAX_WEIGHT:
@@ -108,10 +106,7 @@ def _catalog_line_type(name: str, raw, path: str, gravity: float,
     values (e.g. a maker's certificate); ``corrosion_allowance`` reduces the diameter used
     for the catalogue MBL.
     """
-    m = check_mapping(raw, path, required=("catalog", "diameter"),
-                 optional=("corrosion_allowance", "weight_in_water", "ea", "mbl", "sealed",
-                           "weight_in_air",
-                           "drag") + LINE_TYPE_KEYS)
+    m = check_mapping(raw, path, section="catalogue_line_type")
     known = line_catalog.entries()
     entry = m["catalog"]
     if not isinstance(entry, str) or entry not in known:
@@ -168,7 +163,7 @@ def _line_types(raw, path: str, gravity: float, water_density: float = SEAWATER_
 def _segment(raw, path: str, line_types: dict, pretension: bool = False) -> Segment:
     if pretension and isinstance(raw, Mapping) and "pretension" in raw:
         return _pretensioned_segment(raw, path, line_types)
-    m = check_mapping(raw, path, required=("type", "length"))
+    m = check_mapping(raw, path, section="segment")
     type_name = m["type"]
     if not isinstance(type_name, str) or type_name not in line_types:
         raise CaseError(field_path(path, "type"), f"unknown line type {show_value(type_name)}; "
@@ -182,7 +177,7 @@ def _segment(raw, path: str, line_types: dict, pretension: bool = False) -> Segm
 def _pretensioned_segment(raw, path: str, line_types: dict) -> Segment:
     """``{type, pretension}``: a weightless elastic segment (a hawser) given by its tension
     at the case-file pose; its length is set once the line's ends are known."""
-    m = check_mapping(raw, path, required=("type", "pretension"))
+    m = check_mapping(raw, path, section="pretension_segment")
     type_name = m["type"]
     if not isinstance(type_name, str) or type_name not in line_types:
         raise CaseError(field_path(path, "type"), f"unknown line type {show_value(type_name)}; "
@@ -204,7 +199,7 @@ def _pretensioned_segment(raw, path: str, line_types: dict) -> Segment:
 
 def _clump(raw, path: str, environment: Environment) -> Clump:
     """``{mass: kg, volume: m^3}`` (net weight in water) or ``{weight: N}`` (negative: buoy)."""
-    m = check_mapping(raw, path, optional=("mass", "volume", "weight"))
+    m = check_mapping(raw, path, section="clump")
     if "weight" in m:
         for key in ("mass", "volume"):
             if key in m:
@@ -233,11 +228,11 @@ def _segments(raw, path: str, environment: Environment, line_types: dict,
     for j, item in enumerate(items):
         ipath = field_path(path, j)
         if isinstance(item, Mapping) and "clump" in item:
-            check_mapping(item, ipath, required=("clump",))
+            held = check_mapping(item, ipath, section="clump_item")
             if not segments or len(clumps) != len(segments) - 1:
                 raise CaseError(ipath, "a clump must sit between two segments (after a "
                                        "segment, not first and not after another clump)")
-            clumps.append(_clump(item["clump"], field_path(ipath, "clump"), environment))
+            clumps.append(_clump(held["clump"], field_path(ipath, "clump"), environment))
             continue
         if segments and len(clumps) < len(segments):
             clumps.append(None)
@@ -250,8 +245,9 @@ def _segments(raw, path: str, environment: Environment, line_types: dict,
 
 # ---- mooring checks ---------------------------------------------------------------------
 
-_ANCHOR_KEYS = {"drag": (), "deadweight": ("allowed_uplift",),
-                "pile": ("allowed_uplift_angle_deg",), "suction": ()}
+#: The schema section of each anchor kind.
+_ANCHOR_SECTIONS = {"drag": "anchor_drag", "deadweight": "anchor_deadweight",
+                    "pile": "anchor_pile", "suction": "anchor_suction"}
 
 
 def _anchor_type(raw, path: str) -> AnchorType:
@@ -266,8 +262,7 @@ def _anchor_type(raw, path: str) -> AnchorType:
         raise CaseError(field_path(path, "type"),
                         f"unknown anchor type {show_value(kind)}; allowed: "
                                              f"{allowed}")
-    keys = _ANCHOR_KEYS[kind]
-    m = check_mapping(raw, path, required=("type",) + keys)
+    m = check_mapping(raw, path, section=_ANCHOR_SECTIONS[kind])
     if kind == "deadweight":
         uplift = quantity(m["allowed_uplift"], field_path(path, "allowed_uplift"), "force", ge=0)
         return AnchorType(kind=kind, allowed_uplift=uplift)

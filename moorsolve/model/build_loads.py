@@ -37,8 +37,7 @@ def _table(raw, path: str) -> tuple:
 
 
 def _drag(m: dict, path: str) -> DragLoad:
-    m = check_mapping(m, path, required=("model", "area_x", "area_y"),
-                 optional=("cx", "cy", "table", "length", "centre"))
+    m = check_mapping(m, path, section="drag_load")
     area_x = quantity(m["area_x"], field_path(path, "area_x"), "area", ge=0, le=MAX_AREA)
     area_y = quantity(m["area_y"], field_path(path, "area_y"), "area", ge=0, le=MAX_AREA)
     table = None if m.get("table") is None else _table(m["table"], field_path(path, "table"))
@@ -60,8 +59,7 @@ def _drag(m: dict, path: str) -> DragLoad:
 
 
 def _hu_tang_wind(m: dict, path: str) -> HuTangWind:
-    m = check_mapping(m, path, required=("model", "superstructure_area", "hull_area"),
-                 optional=("superstructure_area_lateral", "hull_area_lateral", "centre"))
+    m = check_mapping(m, path, section="hu_tang_wind")
     superstructure = quantity(m["superstructure_area"], field_path(path, "superstructure_area"),
                                "area", ge=0, le=MAX_AREA)
     hull = quantity(m["hull_area"], field_path(path, "hull_area"), "area", ge=0, le=MAX_AREA)
@@ -79,15 +77,14 @@ def _hu_tang_wind(m: dict, path: str) -> HuTangWind:
 
 
 def _hu_tang_current(m: dict, path: str) -> HuTangCurrent:
-    m = check_mapping(m, path, required=("model", "wetted_area"), optional=("coefficient",
-                                                                            "centre"))
+    m = check_mapping(m, path, section="hu_tang_current")
     area = quantity(m["wetted_area"], field_path(path, "wetted_area"), "area", gt=0, le=MAX_AREA)
     coefficient = optional_quantity(m, path, "coefficient", "dimensionless", 0.18, gt=0)
     return HuTangCurrent(wetted_area=area, coefficient=coefficient, centre=check_centre(m, path))
 
 
 def _hu_tang_drift(m: dict, path: str) -> HuTangDrift:
-    m = check_mapping(m, path, required=("model", "beam"), optional=("length", "k", "centre"))
+    m = check_mapping(m, path, section="hu_tang_drift")
     beam = quantity(m["beam"], field_path(path, "beam"), "length", gt=0)
     length = nullable_quantity(m, path, "length", "length", gt=0)
     k = optional_quantity(m, path, "k", "dimensionless", 0.7, gt=0)
@@ -95,8 +92,7 @@ def _hu_tang_drift(m: dict, path: str) -> HuTangDrift:
 
 
 def _drift_coefficient(m: dict, path: str) -> DriftCoefficient:
-    m = check_mapping(m, path, required=("model", "length_x", "length_y"),
-                 optional=("cx", "cy", "centre"))
+    m = check_mapping(m, path, section="drift_coefficient")
     length_x = quantity(m["length_x"], field_path(path, "length_x"), "length", ge=0)
     length_y = quantity(m["length_y"], field_path(path, "length_y"), "length", ge=0)
     cx = optional_quantity(m, path, "cx", "dimensionless", 1.0, ge=0)
@@ -145,7 +141,7 @@ def _force(raw, path: str, sizes: tuple = (3,)) -> tuple:
 
 
 def _loads(raw, path: str, force_sizes: tuple = (3,)) -> BodyLoads:
-    m = check_mapping(raw, path, optional=("force",) + tuple(_LOAD_MODELS))
+    m = check_mapping(raw, path, section="loads")
     force = (None if m.get("force") is None
              else _force(m["force"], field_path(path, "force"), force_sizes))
     models = {key: (None if m.get(key) is None

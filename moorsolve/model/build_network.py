@@ -55,22 +55,22 @@ import numpy as np
 
 from ..errors import CaseError
 from .bodies import DOFS, FIXED_TO, HULL_SHAPES, PLANAR_DOFS, VERTICAL_DOFS, Body, \
-    Hydrostatics, HullMember, Point
+    Hydrostatics, HullMember, Point, ShipOutline
 from .build_lines import _anchor_type, _segments
 from .build_loads import _loads
 from .build_sea import extra_damping, hydrodynamics
 from .environment import Environment
-from .fields import (FAIRLEAD_Z_MAX, check_choices, MAX_AREA, MAX_LINE_LENGTH, MIN_LINE_LENGTH,
+from .fields import (FAIRLEAD_Z_MAX, check_choices, MAX_AREA, MAX_DEPTH, MAX_LINE_LENGTH,
+                     MIN_LINE_LENGTH,
                      check_list,
                      check_mapping, check_name, check_point, field_path, nullable_quantity,
-                     optional_quantity, quantity)
+                     optional_quantity, quantity, schema_quantity)
 from .lines import End, Line
 from .loads import BodyLoads
 from .units import format_si, show_value
 
-_BODY_KEYS = ("position", "orientation_deg", "free", "mass", "centre_of_gravity",
-              "hydrostatics", "hull", "stiffness", "added_mass", "inertia", "loads",
-              "fixed_to", "hydrodynamics", "damping")
+#: The schema section of each hull member shape.
+_HULL_SECTIONS = {"cylinder": "hull_cylinder", "box": "hull_box"}
 
 
 def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -103,8 +103,7 @@ def _free_dofs(raw, path: str) -> tuple:
 
 
 def _hydrostatics(raw, path: str) -> Hydrostatics:
-    m = check_mapping(raw, path, required=("displaced_volume",),
-                      optional=("metacentre", "waterplane_area"))
+    m = check_mapping(raw, path, section="hydrostatics")
     volume = quantity(m["displaced_volume"], field_path(path, "displaced_volume"), "volume",
                       ge=0)
     metacentre = ((0.0, 0.0, 0.0) if "metacentre" not in m
@@ -119,8 +118,7 @@ def _hull_member(raw, path: str) -> HullMember:
         raise CaseError(field_path(path, "shape"), f"unknown hull shape {show_value(shape)}; "
                                                    f"allowed: {', '.join(HULL_SHAPES)}")
     size = ("radius",) if shape == "cylinder" else ("length", "width")
-    m = check_mapping(raw, path, required=("shape", "bottom", "top") + size,
-                      optional=("centre",))
+    m = check_mapping(raw, path, section=_HULL_SECTIONS[shape])
     bottom = quantity(m["bottom"], field_path(path, "bottom"), "length")
     top = quantity(m["top"], field_path(path, "top"), "length", gt=bottom)
     dims = {k: quantity(m[k], field_path(path, k), "length", gt=0) for k in size}
@@ -130,7 +128,7 @@ def _hull_member(raw, path: str) -> HullMember:
 
 
 def _body(raw, path: str, environment: Environment) -> Body:
-    m = check_mapping(raw, path, required=("name",), optional=_BODY_KEYS)
+    m = check_mapping(raw, path, section="network_body")
     name = check_name(m["name"], field_path(path, "name"), "body name")
     position = ((0.0, 0.0, 0.0) if "position" not in m
                 else check_point(m["position"], field_path(path, "position"), (3,)))
@@ -202,7 +200,37 @@ def _body(raw, path: str, environment: Environment) -> Body:
     return Body(name=name, free=free, position=position, orientation_deg=orientation,
                 mass=mass, centre_of_gravity=cg, hydrostatics=hydro, hull=hull,
                 stiffness=stiffness, loads=loads, added_mass=added, inertia=inertia,
-                fixed_to=fixed_to, **sea)
+                fixed_to=fixed_to, **outline_fields(m, path), **sea)
+
+
+def outline_fields(m: Mapping, path: str) -> dict:
+    """A body's drawn-only ``outline`` and ``outline_members``, as Body keyword arguments."""
+    members = ()
+    if m.get("outline_members") is not None:
+        mpath = field_path(path, "outline_members")
+        items = check_list(m["outline_members"], mpath, "a list of members {shape, ...}")
+        members = tuple(_hull_member(item, field_path(mpath, i))
+                        for i, item in enumerate(items))
+    return {"outline": _outline(m, path), "outline_members": members}
+
+
+def _outline(m: Mapping, path: str):
+    """A body's ``outline`` (a :class:`ShipOutline`, or None when absent or null)."""
+    if m.get("outline") is None:
+        return None
+    opath = field_path(path, "outline")
+    o = check_mapping(m["outline"], opath, section="outline")
+    length = quantity(o["length"], field_path(opath, "length"), "length", gt=0,
+                      le=MAX_LINE_LENGTH)
+    beam = quantity(o["beam"], field_path(opath, "beam"), "length", gt=0, le=length)
+    centre = ((0.0, 0.0) if "centre" not in o
+              else check_point(o["centre"], field_path(opath, "centre"), (2,)))
+    return ShipOutline(length=length, beam=beam,
+                       draft=schema_quantity(o, opath, "outline", "draft", ge=0, le=MAX_DEPTH),
+                       freeboard=schema_quantity(o, opath, "outline", "freeboard", ge=0,
+                                                 le=FAIRLEAD_Z_MAX),
+                       centre=centre,
+                       heading_deg=schema_quantity(o, opath, "outline", "heading_deg"))
 
 
 def fixed_to_field(m: Mapping, path: str, free: tuple) -> str:
@@ -220,8 +248,7 @@ def fixed_to_field(m: Mapping, path: str, free: tuple) -> str:
 
 
 def _point(raw, path: str, environment: Environment) -> Point:
-    m = check_mapping(raw, path, required=("name", "position"),
-                      optional=("free", "mass", "volume"))
+    m = check_mapping(raw, path, section="point")
     name = check_name(m["name"], field_path(path, "name"), "point name")
     ppath = field_path(path, "position")
     position = _fixed_position(m["position"], ppath, environment)
@@ -273,7 +300,7 @@ def _end(raw, path: str, environment: Environment, bodies: dict, points: dict) -
         return End(point.position, label=raw,
                    on_seabed=_on_seabed(point.position, environment))
     if isinstance(raw, Mapping):
-        m = check_mapping(raw, path, required=("body", "at"))
+        m = check_mapping(raw, path, section="body_end")
         name = m["body"]
         if not isinstance(name, str) or name not in bodies:
             known = ", ".join(bodies) or "none"
@@ -307,8 +334,7 @@ def end_position(end: End, bodies: dict) -> np.ndarray:
 
 def _line(raw, path: str, environment: Environment, line_types: dict, bodies: dict,
           points: dict) -> Line:
-    m = check_mapping(raw, path, required=("name", "from", "to", "segments"),
-                      optional=("anchor_type",))
+    m = check_mapping(raw, path, section="line")
     name = check_name(m["name"], field_path(path, "name"), "line name")
     a = _end(m["from"], field_path(path, "from"), environment, bodies, points)
     b = _end(m["to"], field_path(path, "to"), environment, bodies, points)

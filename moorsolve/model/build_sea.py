@@ -64,7 +64,7 @@ def sea_state_fields(m: dict, path: str, hs: float) -> dict:
 
 def _spectrum(raw, path: str, hs: float, tp) -> Spectrum:
     if isinstance(raw, Mapping) and "table" in raw:
-        m = check_mapping(raw, path, required=("table",))
+        m = check_mapping(raw, path, section="spectrum_table")
         rows = _array(m["table"], field_path(path, "table"), (None, 2),
                       "a list of rows [omega rad/s, S m^2 s/rad]")
         tpath = field_path(path, "table")
@@ -81,7 +81,7 @@ def _spectrum(raw, path: str, hs: float, tp) -> Spectrum:
                                    f"{hs_table:.4g} m differs from hs = {hs:.4g} m by more than "
                                    f"{TABLE_HS_TOLERANCE:.0%}; give the hs of the table")
         return Spectrum(model="table", table=tuple(tuple(r) for r in rows))
-    m = check_mapping(raw, path, required=("model",), optional=("gamma",))
+    m = check_mapping(raw, path, section="spectrum")
     model = m["model"]
     if not isinstance(model, str) or model not in SPECTRUM_MODELS:
         raise CaseError(field_path(path, "model"),
@@ -125,14 +125,14 @@ def _increasing(values, path: str, what: str) -> None:
                                   "must be strictly increasing")
 
 
-def _heading_tables(raw, path: str, n: int, keys: tuple, make) -> tuple:
+def _heading_tables(raw, path: str, n: int, keys: tuple, make, section: str) -> tuple:
     items = check_list(raw, path, "a list of {heading_deg, ...} per heading")
     if not items:
         raise CaseError(path, "is empty; give at least one heading")
     out = []
     for i, item in enumerate(items):
         ipath = field_path(path, i)
-        m = check_mapping(item, ipath, required=("heading_deg",) + keys)
+        m = check_mapping(item, ipath, section=section)
         heading = quantity(m["heading_deg"], field_path(ipath, "heading_deg"), "angle",
                            ge=-180.0, lt=360.0)
         if out and not heading > out[-1].heading_deg:
@@ -154,8 +154,7 @@ def hydrodynamics(raw, path: str, rho: float, g: float) -> Hydrodynamics:
         return _wamit(raw, path, rho, g)
     if isinstance(raw, Mapping) and raw.get("source") == "capytaine":
         return _capytaine(raw, path)
-    m = check_mapping(raw, path, required=("source", "omega", "added_mass", "damping",
-                                           "excitation"), optional=("mean_drift",))
+    m = check_mapping(raw, path, section="hydro_table")
     if m["source"] != "table":
         raise CaseError(field_path(path, "source"),
                         f"{show_value(m['source'])} must be table, wamit or capytaine")
@@ -183,18 +182,18 @@ def _table(m: dict, path: str, source: str) -> Hydrodynamics:
                      f"{n} 6x6 matrices (one per omega)")
         matrices[key] = tuple(tuple(map(tuple, a)) for a in arr)
     excitation = _heading_tables(m["excitation"], field_path(path, "excitation"), n,
-                                 ("re", "im"), ExcitationTable)
+                                 ("re", "im"), ExcitationTable, "excitation")
     drift = ()
     if m.get("mean_drift") is not None:
         drift = _heading_tables(m["mean_drift"], field_path(path, "mean_drift"), n,
-                                ("values",), DriftTable)
+                                ("values",), DriftTable, "mean_drift")
     return Hydrodynamics(omega=tuple(omega), added_mass=matrices["added_mass"],
                          damping=matrices["damping"], excitation=excitation,
                          mean_drift=drift, source=source)
 
 
 def _wamit(raw, path: str, rho: float, g: float) -> Hydrodynamics:
-    m = check_mapping(raw, path, required=("source", "files"), optional=("ulen", "values"))
+    m = check_mapping(raw, path, section="hydro_wamit")
     ulen = 1.0 if m.get("ulen") is None else quantity(m["ulen"], field_path(path, "ulen"),
                                                        "length", gt=0)
     if not isinstance(m.get("values"), Mapping):
@@ -207,8 +206,7 @@ def _wamit(raw, path: str, rho: float, g: float) -> Hydrodynamics:
 
 
 def _capytaine(raw, path: str) -> CapytaineHull:
-    m = check_mapping(raw, path, required=("source", "omega", "headings_deg"),
-                      optional=("panel_size", "cache"))
+    m = check_mapping(raw, path, section="hydro_capytaine")
     omega = _frequencies(m["omega"], field_path(path, "omega"))
     hpath = field_path(path, "headings_deg")
     headings = _array(m["headings_deg"], hpath, (None,), "a list of headings [deg]")
@@ -229,7 +227,7 @@ def _capytaine(raw, path: str) -> CapytaineHull:
 
 def extra_damping(raw, path: str) -> ExtraDamping:
     """``bodies[i].damping``: linear values and fractions of critical, per DOF."""
-    m = check_mapping(raw, path, optional=("linear", "critical_fraction"))
+    m = check_mapping(raw, path, section="damping")
     linear = (0.0,) * 6
     if m.get("linear") is not None:
         lpath = field_path(path, "linear")
@@ -242,7 +240,7 @@ def extra_damping(raw, path: str) -> ExtraDamping:
     fractions = [0.0] * 6
     if m.get("critical_fraction") is not None:
         cpath = field_path(path, "critical_fraction")
-        c = check_mapping(m["critical_fraction"], cpath, optional=DOFS)
+        c = check_mapping(m["critical_fraction"], cpath, section="critical_fraction")
         for key, value in c.items():
             fractions[DOFS.index(key)] = quantity(value, field_path(cpath, key),
                                                   "dimensionless", ge=0, le=2.0)

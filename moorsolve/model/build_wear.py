@@ -179,13 +179,13 @@ def design_life_years(raw, path: str) -> float:
 
 def _zone_rates(raw, path: str) -> ZoneRates:
     if isinstance(raw, Mapping):
-        m = check_mapping(raw, path, required=ZONES)
+        m = check_mapping(raw, path, section="corrosion_zones")
         return ZoneRates(*(_per_year(m[z], field_path(path, z), "length") for z in ZONES))
     rate = _per_year(raw, path, "length")
     return ZoneRates(rate, rate, rate)
 
 
-def _line_type_names(raw, path: str, line_types: dict, rate) -> tuple:
+def _line_type_names(raw, path: str, line_types: dict, rate, section: str) -> tuple:
     if not isinstance(raw, Mapping):
         raise CaseError(path, f"{show_value(raw)} is not a mapping of line type names to "
                               "{rate: ...}")
@@ -196,19 +196,20 @@ def _line_type_names(raw, path: str, line_types: dict, rate) -> tuple:
                             f"unknown line type {show_value(name)}; known line types: "
                             f"{', '.join(line_types)}")
         sub = field_path(path, name)
-        m = check_mapping(spec, sub, required=("rate",))
+        m = check_mapping(spec, sub, section=section)
         out.append((name, rate(m["rate"], field_path(sub, "rate"))))
     return tuple(out)
 
 
 def _corrosion(raw, path: str, line_types: dict, lines: tuple) -> Corrosion:
-    m = check_mapping(raw, path, optional=("rate", "splash_depth", "line_types", "segments"))
+    m = check_mapping(raw, path, section="corrosion")
     if not any(k in m for k in ("rate", "line_types", "segments")):
         raise CaseError(field_path(path, "rate"), "no corrosion rate; give rate (e.g. "
                         "'0.4 mm/y'), or line_types or segments with their own")
     common = None if "rate" not in m else _zone_rates(m["rate"], field_path(path, "rate"))
     own = () if "line_types" not in m else _line_type_names(
-        m["line_types"], field_path(path, "line_types"), line_types, _zone_rates)
+        m["line_types"], field_path(path, "line_types"), line_types, _zone_rates,
+        "corrosion_line_type")
     for name, _ in own:
         if line_types[name].diameter is None:
             raise CaseError(field_path(field_path(path, "line_types"), name),
@@ -222,7 +223,7 @@ def _corrosion(raw, path: str, line_types: dict, lines: tuple) -> Corrosion:
         for i, item in enumerate(check_list(m["segments"], spath,
                                             "a list of {line, segment, rate}")):
             ipath = field_path(spath, i)
-            s = check_mapping(item, ipath, required=("line", "segment", "rate"))
+            s = check_mapping(item, ipath, section="corrosion_segment")
             line = by_name.get(s["line"])
             if line is None:
                 raise CaseError(field_path(ipath, "line"),
@@ -258,13 +259,14 @@ def _strain_rate(raw, path: str) -> float:
 
 
 def _creep(raw, path: str, line_types: dict) -> Creep:
-    m = check_mapping(raw, path, optional=("rate", "line_types"))
+    m = check_mapping(raw, path, section="creep")
     if not m:
         raise CaseError(field_path(path, "rate"), "no creep rate; give rate (e.g. "
                                                   "'0.1 %/y') or line_types with their own")
     common = None if "rate" not in m else _strain_rate(m["rate"], field_path(path, "rate"))
     own = () if "line_types" not in m else _line_type_names(
-        m["line_types"], field_path(path, "line_types"), line_types, _strain_rate)
+        m["line_types"], field_path(path, "line_types"), line_types, _strain_rate,
+        "creep_line_type")
     return Creep(rate=common, line_types=own)
 
 

@@ -11,6 +11,7 @@ import re
 from collections.abc import Mapping
 
 from ..errors import CaseError
+from .schema import get as get_section
 from .units import describe, format_si, show_value, to_si
 
 
@@ -59,8 +60,17 @@ def field_path(path: str, key) -> str:
     return f"{path}[{show_value(key)}]"
 
 
-def check_mapping(raw, path: str, required=(), optional=()) -> dict:
-    """Check that ``raw`` is a mapping with string keys, all known and the required present."""
+def check_mapping(raw, path: str, required=(), optional=(), *, section: str = "") -> dict:
+    """Check that ``raw`` is a mapping with string keys, all known and the required present.
+
+    ``section`` names the case-file section of :mod:`moorsolve.model.schema` whose keys
+    (and required keys) these are; the case-file validators always give it, so that the
+    documented schema and the accepted keys are one list. ``required`` and ``optional``
+    serve other files (study files).
+    """
+    if section:
+        spec = get_section(section)
+        required, optional = spec.required, spec.optional
     allowed = tuple(required) + tuple(optional)
     where = path or "the case"
     if not isinstance(raw, Mapping):
@@ -129,6 +139,14 @@ def optional_quantity(m: dict, path: str, key: str, kind: str, default, **bounds
     if key not in m:
         return default
     return quantity(m[key], field_path(path, key), kind, **bounds)
+
+
+def schema_quantity(m: dict, path: str, section: str, key: str, **bounds) -> float:
+    """A quantity whose kind (unit) and default come from the schema's ``section``."""
+    spec = get_section(section).keys[key]
+    if key not in m:
+        return spec.default
+    return quantity(m[key], field_path(path, key), spec.kind, **bounds)
 
 
 def nullable_quantity(m: dict, path: str, key: str, kind: str, **bounds):

@@ -218,10 +218,10 @@ def parse_stretch(raw, path: str, *, dynamic: bool = False):
         raise CaseError(field_path(path, "model"),
                         f"{what}; allowed models: {', '.join(models)}")
     if model == "hooke":
-        m = check_mapping(raw, path, required=("model", "ea"))
+        m = check_mapping(raw, path, section="stretch_hooke")
         return _ea(m["ea"], field_path(path, "ea")), None
     if model == "baranov":
-        m = check_mapping(raw, path, required=("model", "n"))
+        m = check_mapping(raw, path, section="stretch_baranov")
         npath = field_path(path, "n")
         n = quantity(m["n"], npath, "dimensionless", gt=0)
         if n >= MAX_BARANOV_N:
@@ -230,12 +230,11 @@ def parse_stretch(raw, path: str, *, dynamic: bool = False):
                                    "n sqrt(T) with T in N: a unit slip?)")
         return None, StretchLaw(model="baranov", n=n)
     if model == "dynamic":
-        m = check_mapping(raw, path, required=("model", "alpha", "beta"))
+        m = check_mapping(raw, path, section="stiffness_dynamic")
         alpha = quantity(m["alpha"], field_path(path, "alpha"), "dimensionless", gt=0)
         beta = quantity(m["beta"], field_path(path, "beta"), "dimensionless", ge=0)
         return None, DynamicStiffness(alpha=alpha, beta=beta)
-    m = check_mapping(raw, path, required=("model", "strain", "tension"),
-                      optional=("interpolation",))
+    m = check_mapping(raw, path, section="stretch_table")
     return None, _table(m, path)
 
 
@@ -248,7 +247,7 @@ def _bound(raw, path: str) -> Spec:
 
 def parse_stiffness_bounds(raw, path: str) -> StiffnessBounds:
     """Validate ``stiffness_bounds: {lower: SPEC, upper: SPEC}`` (see the module notes)."""
-    m = check_mapping(raw, path, required=("lower", "upper"))
+    m = check_mapping(raw, path, section="stiffness_bounds")
     return StiffnessBounds(lower=_bound(m["lower"], field_path(path, "lower")),
                            upper=_bound(m["upper"], field_path(path, "upper")))
 

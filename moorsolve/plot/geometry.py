@@ -3,8 +3,9 @@ matplotlib here).
 
 A body is drawn from the most exact geometry the case gives:
 
-1. its hull members (``hull:``: boxes and vertical cylinders of the exact hydrostatics), each
-   drawn as the prism it is;
+1. its hull members (``hull:``: boxes and vertical cylinders of the exact hydrostatics, and
+   ``outline_members:``, drawn only), each drawn as the prism it is, and its ship outline (``outline:``, length, beam, draft and
+   freeboard: a parallel middle body, a rounded bow and a transom stern);
 2. else a length and beam the case gives for its loads (the wave drift model's ``beam`` and
    ``length``), drawn as a rectangle about the body origin; a beam without a length is
    completed by twice the farthest line end from the origin along the body's x (the bow
@@ -33,8 +34,9 @@ _CYLINDER_POINTS = 36
 
 #: What each kind of shape is called in a legend.
 SHAPE_SOURCES = {
-    "box": "its hull members",
-    "cylinder": "its hull members",
+    "box": "hull members from the case",
+    "cylinder": "hull members from the case",
+    "ship": "ship outline from the case",
     "dimensions": "length x beam from the case",
     "fairleads": "outline of fairleads (no hull given)",
 }
@@ -157,6 +159,33 @@ def _member_ring(member) -> np.ndarray:
                      [cx - hx, cy + hy]])
 
 
+#: Share of a ship's length in its bow and stern (the rest is the parallel middle body), and
+#: the transom's half-width over the half-beam: a typical merchant hull's waterline.
+_BOW, _STERN, _TRANSOM = 0.22, 0.15, 0.7
+
+
+def ship_ring(outline, points: int = 24) -> np.ndarray:
+    """The waterline of a :class:`~moorsolve.model.bodies.ShipOutline` in the body frame
+    [m], counter-clockwise: a transom stern, a parallel middle body and a pointed bow
+    (half-breadth falling as a parabola to the stem)."""
+    half_l, half_b = outline.length / 2, outline.beam / 2
+    bow_start = half_l - _BOW * outline.length
+    stern_end = -half_l + _STERN * outline.length
+    u = np.linspace(0.0, 1.0, points)
+    bow_x = bow_start + (half_l - bow_start) * u
+    bow_y = half_b * (1.0 - u ** 2)
+    s = np.linspace(0.0, 1.0, points // 2)
+    stern_x = stern_end - (stern_end + half_l) * s
+    stern_y = half_b * (1.0 - (1.0 - _TRANSOM) * s ** 2)
+    side_x = np.concatenate([stern_x[::-1], bow_x])
+    side_y = np.concatenate([stern_y[::-1], bow_y])
+    # Starboard (y < 0) from stern to bow, then port back from bow to stern.
+    ring = np.vstack([np.column_stack([side_x, -side_y]),
+                      np.column_stack([side_x[::-1], side_y[::-1]])[1:]])
+    turned = ring @ rotation(outline.heading_deg).T
+    return turned + np.asarray(outline.centre, float)
+
+
 def _dimensions(model, local_ends: np.ndarray) -> Optional[tuple]:
     """``(length, beam)`` [m] the case gives for the body's loads, or None."""
     drift = getattr(getattr(model, "loads", None), "wave_drift", None)
@@ -190,11 +219,19 @@ def body_shapes(model, origin, origin_rest, yaw_deg: float, yaw_rest_deg: float,
         Their heights at equilibrium [m].
     """
     z0 = float(origin[2])
-    members = tuple(getattr(model, "hull", ()) or ())
-    if members:
-        return [Shape(kind=m.shape, ring=_place(_member_ring(m), origin, yaw_deg),
-                      ring_rest=_place(_member_ring(m), origin_rest, yaw_rest_deg),
-                      bottom=z0 + m.bottom, top=z0 + m.top) for m in members]
+    members = tuple(getattr(model, "hull", ()) or ()) + \
+        tuple(getattr(model, "outline_members", ()) or ())
+    outline = getattr(model, "outline", None)
+    shapes = [Shape(kind=m.shape, ring=_place(_member_ring(m), origin, yaw_deg),
+                    ring_rest=_place(_member_ring(m), origin_rest, yaw_rest_deg),
+                    bottom=z0 + m.bottom, top=z0 + m.top) for m in members]
+    if outline is not None:
+        ring = ship_ring(outline)
+        shapes.append(Shape(kind="ship", ring=_place(ring, origin, yaw_deg),
+                            ring_rest=_place(ring, origin_rest, yaw_rest_deg),
+                            bottom=z0 - outline.draft, top=z0 + outline.freeboard))
+    if shapes:
+        return shapes
     zs = np.concatenate([[z0], np.asarray(ends_z, float)])
     size = _dimensions(model, local_ends)
     if size is not None:

@@ -222,7 +222,11 @@ def _arrows(ax, scene: Scene, span: float) -> list:
     handles = []
     sizes = [float(np.hypot(*b.offset[:2])) for b in scene.bodies]
     largest = max(sizes)
-    if largest > 0:
+    # Below what the legend's three decimals show, an offset is the solver's rounding:
+    # magnified to a visible arrow it would draw noise as a displacement.
+    if largest < 5e-4:
+        handles.append(Line2D([], [], color="none", label="offset < 0.5 mm (not drawn)"))
+    else:
         gain = nice(0.12 * span / largest) if largest < 0.12 * span else 1.0
         for body in scene.bodies:
             ax.annotate("", xy=body.origin_rest[:2] + gain * body.offset[:2],

@@ -286,12 +286,14 @@ def plot_optimisation(opt, axes=None):
     ax1.bar(x - 0.2, before, 0.4, label="start", color="0.65")
     ax1.bar(x + 0.2, after, 0.4, label="optimum", color="tab:blue")
     ax1.set_xticks(x, names, rotation=90 if len(names) > 12 else 0)
-    lo = min(before + after)
-    ax1.set_ylim(lo * 0.97, max(before + after) * 1.01)
+    lo, hi = 0.97 * min(before + after), max(before + after)
+    # Headroom above the bars for the legend (the axis starts near the shortest length:
+    # the change is small against the lengths).
+    ax1.set_ylim(lo, hi + 0.35 * (hi - lo))
     ax1.set_ylabel("unstretched length [m]")
     ax1.set_title(f"{opt.objective}: {opt.objective_start:,.0f} -> "
                   f"{opt.objective_optimum:,.0f} {opt.unit}")
-    ax1.legend(loc="lower right")
+    ax1.legend(loc="upper center", ncol=2)
 
     cases = list(dict.fromkeys(c.load_case for c in opt.constraints))
     kinds = list(dict.fromkeys(c.kind for c in opt.constraints))
@@ -307,7 +309,9 @@ def plot_optimisation(opt, axes=None):
     ax2.set_xticks(np.arange(len(cases)), cases, rotation=45, ha="right")
     ax2.set_ylabel("utilisation (1 = limit)")
     ax2.set_title("tightest constraint per load case at the optimum")
-    ax2.legend(fontsize=8)
+    top = max([1.0] + [p.get_height() for p in ax2.patches if np.isfinite(p.get_height())])
+    ax2.set_ylim(0.0, 1.3 * top)
+    ax2.legend(fontsize=8, loc="upper center", ncol=len(kinds))
     ax2.figure.tight_layout()
     return ax1, ax2
 

@@ -255,9 +255,11 @@ def plot_3d(result, ax=None, *, elev: float = 24.0, azim: float = -60.0):
     for body in scene.bodies:
         for shape in body.shapes:
             if len(shape.ring) > 2:
+                # The limits are set below from the scene's extent (autoscaling a fine ring,
+                # a ship's, can overflow in matplotlib's margin arithmetic).
                 ax.add_collection3d(Poly3DCollection(
                     _prism_faces(shape, thin), facecolor="0.6", alpha=0.75, edgecolor="0.3",
-                    lw=0.4))
+                    lw=0.4), autolim=False)
             else:
                 ring = np.column_stack([shape.ring, np.full(len(shape.ring), shape.top)])
                 ax.plot(*ring.T, color="0.5", lw=5, marker="o" if len(ring) == 1 else None)

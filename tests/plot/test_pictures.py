@@ -39,6 +39,18 @@ def _solve(name):
     return _SOLVED[name]
 
 
+def _solve_without_outline(name, key="outline"):
+    """The shipped case ``name`` with its drawn ``outline`` (or ``outline_members``) taken
+    away."""
+    import yaml
+    data = yaml.safe_load((CASES / name).read_text(encoding="utf-8"))
+    for body in [data.get("body")] + list(data.get("bodies") or []):
+        if body:
+            body.pop(key, None)
+    from moorsolve.model import build_case
+    return moorsolve.solve(build_case(data, name))
+
+
 def _sides(ring: np.ndarray) -> np.ndarray:
     return np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T)
 
@@ -85,15 +97,43 @@ def test_length_and_beam_of_the_case_make_the_hull():
     assert _heading(shape.ring) == pytest.approx(dock.body["yaw_deg"], abs=1e-9)
     np.testing.assert_allclose(shape.ring.mean(axis=0), [dock.body["x_m"], dock.body["y_m"]],
                                atol=1e-9)
-    ship = _solve("ship_97m.yaml")
+    ship = _solve_without_outline("ship_97m.yaml")
     (shape,) = scene_of(ship).bodies[0].shapes
     np.testing.assert_allclose(_sides(shape.ring), [97.0, 15.8] * 2, rtol=1e-12)
+
+
+@pytest.mark.parametrize("name, length, beam, draft, freeboard", [
+    ("ship_97m.yaml", 97.0, 15.8, 3.8, 3.9),          # Hu & Tang (2004), example 1
+    ("ship_berth.yaml", 200.0, 32.0, 11.5, 8.0),
+    ("turret_ship.yaml", 160.0, 28.0, 9.0, 12.0),
+])
+def test_a_ship_outline_is_drawn_as_a_ship(name, length, beam, draft, freeboard):
+    """A body's ``outline`` is drawn at the solved pose: as long and as broad as the case
+    says (measured along and across its heading), its stem on the bow side, from the draft
+    to the freeboard; the pictures' legend says where it came from."""
+    result = _solve(name)
+    body = scene_of(result).bodies[0]
+    (shape,) = [s for s in body.shapes if s.kind == "ship"]
+    pose = result.bodies[0]
+    yaw = pose["yaw_deg"]
+    along = np.array([math.cos(math.radians(yaw)), math.sin(math.radians(yaw))])
+    across = np.array([-along[1], along[0]])
+    assert np.ptp(shape.ring @ along) == pytest.approx(length, rel=1e-12)
+    assert np.ptp(shape.ring @ across) == pytest.approx(beam, rel=1e-12)
+    # The stem (the one point at the bow's end) is on the centreline, half a length ahead
+    # of the body origin (midship).
+    stem = shape.ring[np.argmax(shape.ring @ along)] - [pose["x_m"], pose["y_m"]]
+    assert stem @ along == pytest.approx(length / 2, rel=1e-12)
+    assert abs(stem @ across) < 1e-9 * length
+    assert shape.top - shape.bottom == pytest.approx(draft + freeboard, rel=1e-12)
+    texts = [t.get_text() for t in plot_plan(result).get_legend().get_texts()]
+    assert any("ship outline from the case" in t for t in texts)
 
 
 def test_without_hull_geometry_the_outline_of_the_line_ends_says_so():
     """A body the case gives no hull for is drawn through its line ends, fender points and
     origin, and the legend says that no hull was given."""
-    result = _solve("ship_berth.yaml")
+    result = _solve_without_outline("ship_berth.yaml")
     (body,) = scene_of(result).bodies
     (shape,) = body.shapes
     assert shape.kind == "fairleads"
@@ -321,3 +361,29 @@ def test_interactive_view_without_plotly_says_how_to_get_it(monkeypatch):
     monkeypatch.setitem(sys.modules, "plotly.graph_objects", None)
     with pytest.raises(ImportError, match=r"moorsolve\[interactive\]"):
         plot_3d_interactive(_solve("buoy_vida.yaml"))
+
+
+@pytest.mark.parametrize("name, members, radius", [
+    ("oc4_semi.yaml", 7, 12.0),        # Robertson et al. (2014), Table 3-1: base columns
+    ("volturnus_s.yaml", 4, 6.25),     # Allen et al. (2020): 12.5 m outer columns
+    ("oc3_spar.yaml", 3, 4.7),         # Jonkman (2010): 9.4 m below the taper
+])
+def test_a_platforms_drawn_columns_are_its_outline_members(name, members, radius):
+    """``outline_members`` are drawn as the columns they are, at the solved pose, without
+    taking part in the solve (the same equilibrium as the case without them)."""
+    result = _solve(name)
+    shapes = [s for s in scene_of(result).bodies[0].shapes if s.kind == "cylinder"]
+    assert len(shapes) == members
+    widest = max(float(np.ptp(s.ring[:, 0])) for s in shapes)
+    assert widest == pytest.approx(2 * radius, rel=1e-2)     # a 36-gon's width
+    bare = _solve_without_outline(name, "outline_members")
+    a, b = result.bodies[0], bare.bodies[0]
+    for key in ("x_m", "y_m", "yaw_deg"):
+        assert a[key] == b[key]
+
+
+def test_an_offset_below_what_the_legend_shows_is_not_drawn():
+    """OC3 at rest: an offset of rounding size is not magnified into an arrow."""
+    result = _solve("oc3_spar.yaml")
+    texts = [t.get_text() for t in plot_plan(result).get_legend().get_texts()]
+    assert any("not drawn" in t for t in texts)
