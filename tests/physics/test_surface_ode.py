@@ -105,7 +105,10 @@ def test_surface_block_matches_the_ode(line, from_fairlead):
     event(line["regime"] + (" from fairlead" if from_fairlead else " from anchor"))
     err, out = errors(line, from_fairlead)
     worst = max(err, key=err.get)
-    assert err[worst] <= REL, (worst, err, line, out)
+    # The block floors its square roots at 1e-9 N (derivatives at H = V = 0): on the drawn
+    # lines of a tenth of a newton per metre that alone moves a span by 1e-9 N / |w|.
+    allowed = REL + 1e-9 / (abs(line["w"]) * line["L"])
+    assert err[worst] <= allowed, (worst, err, line, out)
 
 
 @pytest.mark.parametrize("regime", REGIMES)

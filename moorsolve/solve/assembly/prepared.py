@@ -204,13 +204,16 @@ _KINDS = LockedLRU(256)
 
 
 def _kinds_context(case) -> tuple:
-    """Everything besides the lines that :func:`~.line_kinds.line_kind` reads: the seabed, the
-    current (whether there is one, its profile's length), the elements of a lumped line
+    """Everything besides the lines that :func:`~.line_kinds.line_kind` reads, or that shapes
+    their parameters: the seabed, the current (whether there is one, its profile's length and
+    whether its rows carry headings), the elements of a lumped line
     and every body's case pose (which end of a line hanging between bodies is lower)."""
     env = case.environment
     current = env.current
     return (env.depth, env.seabed, current is not None,
             len(current.profile) if current is not None and current.profile else 0,
+            # Rows with a heading take three parameters, signed rows two.
+            bool(current is not None and current.profile and current.profile_headings),
             case.solver.line_elements,
             tuple((b.name, tuple(b.position), tuple(b.orientation_deg)) for b in case.bodies))
 
@@ -310,7 +313,8 @@ def _parameter_parts(case) -> tuple:
         return p, bodies
     env = case.environment
     kinds = line_kinds_of(case)
-    key = (id(case.lines), env.depth, env.seabed,
+    # The kinds too: the same lines are lumped in a current and closed-form without one.
+    key = (id(case.lines), kinds, env.depth, env.seabed,
            env.current.profile if env.current is not None else None)
     hit = _LINE_BLOCKS.get(key)
     if hit is not None and hit[0] is case.lines:
@@ -360,9 +364,13 @@ def load_mask(case) -> np.ndarray:
     """Entries of ``case``'s parameter vector that act only through the load factor."""
     kinds = line_kinds_of(case)
     # The berth's block changes the vector's length (a fender's table rows, its height).
+    # So does a current profile's row count (lumped lines see each row): cases that share
+    # their lines (and so their kinds) may differ there.
+    current = case.environment.current
+    profile = (0 if current is None or not current.profile
+               else (3 if current.profile_headings else 2) * len(current.profile))
     key = (id(kinds), tuple((b.stiffness is not None, len(b.hull)) for b in case.bodies),
-           len(case.free_points), layout.contact_parameters(case).size,
-           bool(case.environment.current is not None and case.environment.current.profile))
+           len(case.free_points), layout.contact_parameters(case).size, profile)
     hit = _MASKS.get(key)
     if hit is not None and hit[0] is kinds:
         return hit[1]
