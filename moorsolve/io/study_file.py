@@ -13,7 +13,12 @@ Schema (SI units or strings with units)::
              cost_per_length [per m],           for cost; default: priced from the cost
              material: chain | chain_studlink   basis (moorsolve.catalog.costs, USD) by its
                | wire | polyester | nylon | hmpe}   material (a catalogue line's by default)
-    anchor_cost: >= 0                           optional, per anchor (cost objective)
+    anchor_cost: >= 0                           optional, per anchor (cost objective
+                                                and max_cost)
+    max_cost: > 0 [currency]                    optional: the whole design's cost (lines
+                                                and anchors, priced as for the cost
+                                                objective) at most this; a number or
+                                                "600000 USD" in the study's currency
     currency: str                               optional label, default EUR (USD, and
                                                 only USD, where the basis prices a line)
     variables:                                  required, at least one
@@ -92,13 +97,16 @@ def load_study(source, case: Case) -> Study:
                                  "YAML file or a dict")
     m = check_mapping(data, "", required=("variables", "load_cases"),
                  optional=("name", "objective", "line_types", "anchor_cost", "currency",
-                           "limits", "solver"))
+                           "max_cost", "limits", "solver"))
     name = default_name if "name" not in m else check_name(m["name"], "name", "study name")
     objective = m.get("objective", "mass")
     if not isinstance(objective, str) or objective not in OBJECTIVES:
         raise CaseError("objective", f"{show_value(objective)} is not an objective; allowed: "
                                      f"{', '.join(OBJECTIVES)}")
     mass, cost, materials = _line_types(m.get("line_types") or {}, case)
+    # The cost cap prices the design as the cost objective does, whatever the objective.
+    priced = objective == "cost" or m.get("max_cost") is not None
+    why = "the cost objective" if objective == "cost" else "max_cost"
     from_basis = False
     used = sorted({seg.line_type.name for leg in case.legs for seg in leg.segments})
     for lt_name in used:
@@ -109,14 +117,14 @@ def load_study(source, case: Case) -> Study:
                                 f"required for the mass objective: line type {lt_name!r} is "
                                 "not a catalogue line, so its mass in air is unknown")
             mass[lt_name] = line_catalog.entries()[lt.catalog].mass_per_length(lt.diameter)
-        if objective == "cost" and lt_name not in cost:
+        if priced and lt_name not in cost:
             try:
                 cost[lt_name] = cost_basis.line_price(
                     lt, materials.get(lt_name), gravity=case.environment.gravity,
                     water_density=case.environment.water_density).cost_per_length
             except (KeyError, ValueError) as exc:
                 raise CaseError(f"line_types.{lt_name}.cost_per_length",
-                                f"required for the cost objective unless the cost basis "
+                                f"required for {why} unless the cost basis "
                                 f"prices it: {str(exc).strip(chr(39))}") from None
             from_basis = True
     anchor_cost = 0.0 if m.get("anchor_cost") is None else quantity(
@@ -129,13 +137,37 @@ def load_study(source, case: Case) -> Study:
                                     f"basis is in {cost_basis.CURRENCY}; give every "
                                     "cost_per_length in your currency or use "
                                     f"{cost_basis.CURRENCY}")
+    max_cost = None if m.get("max_cost") is None else _money(m["max_cost"], "max_cost",
+                                                             currency)
     variables = _variables(m["variables"], "variables", case)
     limits = _limits(m.get("limits") or {}, "limits", case, Limits())
     load_cases = _load_cases(m["load_cases"], "load_cases", case, limits)
     tol, max_iter = _solver(m.get("solver") or {}, "solver")
     return Study(name=name, objective=objective, variables=variables, load_cases=load_cases,
                  mass_per_length=mass, cost_per_length=cost, anchor_cost=anchor_cost,
-                 currency=currency, tol=tol, max_iter=max_iter)
+                 currency=currency, max_cost=max_cost, tol=tol, max_iter=max_iter)
+
+
+def _money(raw, path: str, currency: str) -> float:
+    """A positive amount: a number, or a string "AMOUNT CURRENCY" in the study's currency."""
+    allowed = (f"give a positive amount in the study's currency: a number or "
+               f"\"600000 {currency}\"")
+    amount = raw
+    if isinstance(raw, str):
+        parts = raw.replace(",", "").replace("_", "").split()
+        if len(parts) != 2:
+            raise CaseError(path, f"{show_value(raw)} is not an amount; {allowed}")
+        if parts[1] != currency:
+            raise CaseError(path, f"{show_value(raw)} is in {parts[1]}, not the study's "
+                                  f"currency {currency}; {allowed}")
+        try:
+            amount = float(parts[0])
+        except ValueError:
+            raise CaseError(path, f"{show_value(raw)} is not an amount; {allowed}") from None
+    if isinstance(amount, bool) or not isinstance(amount, numbers.Real) \
+            or not math.isfinite(amount) or amount <= 0:
+        raise CaseError(path, f"{show_value(raw)} must be positive and finite; {allowed}")
+    return float(amount)
 
 
 def _line_types(raw, case: Case):

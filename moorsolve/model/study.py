@@ -101,6 +101,9 @@ class Study:
         Cost per anchor (``cost`` objective; a constant in the total).
     currency : str
         Label of the cost unit.
+    max_cost : float or None
+        Largest cost of the whole design (lines and anchors, priced as for the ``cost``
+        objective, in ``currency``); a design-wide constraint, not one per load case.
     tol : float
         IPOPT's optimality tolerance (scaled problem).
     max_iter : int
@@ -114,5 +117,6 @@ class Study:
     cost_per_length: Mapping = field(default_factory=dict)
     anchor_cost: float = 0.0
     currency: str = "EUR"
+    max_cost: Optional[float] = None
     tol: float = 1e-8
     max_iter: int = 500

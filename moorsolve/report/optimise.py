@@ -6,7 +6,7 @@ import json
 import math
 
 _LABEL = {"safety_factor": "safety factor", "anchor_uplift": "anchor uplift",
-          "grounded_length": "grounded length", "offset": "offset"}
+          "grounded_length": "grounded length", "offset": "offset", "cost": "cost (max_cost)"}
 
 
 def _value(v: float, unit: str) -> str:
@@ -16,6 +16,8 @@ def _value(v: float, unit: str) -> str:
         return f"{v / 1e3:.1f} kN"
     if unit == "-":
         return f"{v:.3f}"
+    if unit != "m":  # a currency: the cost cap
+        return f"{v:,.0f} {unit}"
     return f"{v:.3f} m"
 
 
@@ -42,6 +44,10 @@ def format_optimisation(opt, every_constraint: bool = False) -> str:
         f"objective ({what}): start {_amount(opt.objective_start, opt.unit)}, optimum "
         f"{_amount(opt.objective_optimum, opt.unit)}, saving {_amount(saving, opt.unit)} "
         f"({pct:.2f} %)",
+        *([] if opt.max_cost is None else [
+            f"cost: {_amount(opt.cost, opt.currency)} against max_cost "
+            f"{_amount(opt.max_cost, opt.currency)}, utilisation {opt.cost_utilisation:.4f}"
+            + ("" if opt.cost_within_cap else " (OVER THE CAP)")]),
         f"IPOPT: {opt.status}, {opt.iterations} iterations, {opt.solve_time_s:.3f} s "
         f"({opt.total_time_s:.2f} s with the start solves, build and verification)",
         "",

@@ -11,6 +11,7 @@ equilibrium unknowns ``x_k``. One IPOPT problem
     minimise    f(d)                                  line mass or cost
     subject to  g_k(x_k, p_k(d)) = 0                  equilibrium of every load case
                 h_j(x_k, p_k(d); b_j) <= 0            design constraints with limits b_j
+                c(d) / c_max - 1 <= 0                 the cost cap (max_cost), design-wide
                 d_lo <= d <= d_hi
 
 is solved from the starting design solved at every load case by :func:`moorsolve.solve`
@@ -26,7 +27,11 @@ Constraints, written to be smooth where they are active
   constraint has no kink at touchdown, where a drag anchor (``b = 0``) makes it active;
 * grounded length: ``b - (L - V / w) <= 0`` (``L - V/w`` is the grounded length while the
   line touches down, and negative, hence infeasible, when the anchor lifts);
-* offset: ``(x^2 + y^2) / b^2 - 1 <= 0``.
+* offset: ``(x^2 + y^2) / b^2 - 1 <= 0``;
+* cost cap: ``c(d) / c_max - 1 <= 0``, ``c`` the design's cost priced as for the cost
+  objective (lines and anchors), once for the whole design: it is the same in every load
+  case. When no design meets it, the least-cost design that meets every load-case
+  constraint is found (the study again with the cost objective and no cap) and reported.
 
 Multipliers
 -----------
@@ -42,6 +47,7 @@ design, independently (no warm start), and each constraint is checked on those r
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -57,10 +63,10 @@ from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import solve
 from ..solve.assembly.layout import ENV_PARAMS, LEG_PARAMS
 from ..solve.assembly.prepared import parameter_vector
-from .optimise_design import (_anchor_line, _leg_index, _objective, design_case,
+from .optimise_design import (_anchor_line, _leg_index, _objective, cost_value, design_case,
                               load_case_scene, objective_value)
-from .optimise_results import (_KINDS, ACTIVE_TOL, ConstraintResult, Optimisation,
-                               VariableResult)
+from .optimise_results import (_KINDS, ACTIVE_TOL, DESIGN_WIDE, VERIFY_TOL, ConstraintResult,
+                               Optimisation, VariableResult, _amount)
 from .optimise_verify import _infeasible, verify_design
 
 log = logging.getLogger(__name__)
@@ -157,6 +163,8 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
         new, skipped = _constraints(k, lc, scene, problem, table, pk, body)
         records += new
         notes += [f"load case {lc.name!r}: {text}" for text in skipped]
+    if study.max_cost is not None:
+        records.append(_cost_record(_objective(start, study, lengths, "cost"), study.max_cost))
     n_eq = sum(e.numel() for e in eqs)
 
     b = ca.SX.sym("b", len(records))
@@ -205,11 +213,15 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
 
     if status not in ("Solve_Succeeded", "Solved_To_Acceptable_Level") \
             or eq_res > 1e-6 or (h_opt.size and h_opt.max() > 1e-6):
-        raise _infeasible(status, iterations, records, h_opt, eq_res, case, study, d_opt)
+        error = _infeasible(status, iterations, records, h_opt, eq_res, case, study, d_opt)
+        raise error if study.max_cost is None else _cost_infeasible(case, study, error)
 
     constraints = []
     for j, rec in enumerate(records):
         unit, step, relax, _ = _KINDS[rec["kind"]]
+        if rec["kind"] == "cost":
+            # In the study's currency, relaxed by 1 % of the cap.
+            unit, step = study.currency, 0.01 * rec["limit"]
         lam = float(max(lam_g[n_eq + j], 0.0))
         saving = -lam * slopes[j] * f_scale * relax * step
         constraints.append(ConstraintResult(
@@ -235,6 +247,7 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
     verification = []
     if verify:
         verification = verify_design(optimised, study, records, z_opt, xs_all)
+    priced = study.objective == "cost" or study.max_cost is not None
     return Optimisation(
         study_name=study.name, case_name=case.name, objective=study.objective,
         unit="kg" if study.objective == "mass" else study.currency,
@@ -242,7 +255,35 @@ def optimise(case: Case, study, *, verify: bool = True) -> Optimisation:
         variables=variables, constraints=constraints, verification=verification,
         status=status, iterations=iterations, solve_time_s=solve_time,
         total_time_s=time.perf_counter() - t_all, optimised_case=optimised,
-        optimised_data=data, notes=tuple(dict.fromkeys(notes)))
+        optimised_data=data, notes=tuple(dict.fromkeys(notes)),
+        cost=float(cost_value(optimised, study)) if priced else None,
+        max_cost=study.max_cost, currency=study.currency if priced else None)
+
+
+def _cost_record(cost, cap: float) -> dict:
+    """The design-wide cost cap as a constraint record (``cost`` an expression of ``d``)."""
+    return dict(load_case=DESIGN_WIDE, k=None, kind="cost", leg=None, i=None, limit=cap,
+                value=cost, h=lambda b, c=cost: c / b - 1, show=lambda v: v,
+                margin=lambda v, cap=cap: cap - v)
+
+
+def _cost_infeasible(case: Case, study: Study, error: ConvergenceError) -> ConvergenceError:
+    """When the cost cap is what no design meets: say so, with the least cost reached."""
+    free = dataclasses.replace(study, objective="cost", max_cost=None)
+    try:
+        least = optimise(case, free, verify=True)
+    except ConvergenceError:
+        return error  # the load-case constraints cannot be met even without the cap
+    cap = study.max_cost
+    if least.cost <= cap * (1 + VERIFY_TOL) or not least.verified:
+        return error
+    design = ", ".join(f"{v.name} = {v.optimum:.3f} m" for v in least.variables)
+    return ConvergenceError(
+        f"no feasible design: no design within the variables' bounds meets max_cost "
+        f"{_amount(cap, study.currency)}; the least cost of a design that meets every "
+        f"load-case constraint is {_amount(least.cost, study.currency)} (cost utilisation "
+        f"{least.cost / cap:.3f}), at {design}", status=error.status,
+        iterations=error.iterations, residual_N=float("nan"), residual_Nm=float("nan"))
 
 
 def _check_design_legs(problem, study: Study, index: dict, lc_name: str) -> None:

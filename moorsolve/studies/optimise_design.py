@@ -65,7 +65,15 @@ def objective_value(case: Case, study: Study) -> float:
     return _objective(case, study, {leg.name: leg.length for leg in case.legs})
 
 
-def _objective(case: Case, study: Study, lengths: dict):
+def cost_value(case: Case, study: Study) -> float:
+    """Cost of ``case`` (lines and anchors) under the study's prices, whatever its objective."""
+    return _objective(case, study, {leg.name: leg.length for leg in case.legs}, "cost")
+
+
+def _objective(case: Case, study: Study, lengths: dict, what: str | None = None):
+    """Mass [kg] or cost (``what``, default the study's objective) of the legs at
+    ``lengths`` (numbers or CasADi expressions)."""
+    what = what or study.objective
     total = 0
     for leg in case.legs:
         if leg.multi_segment:
@@ -73,11 +81,11 @@ def _objective(case: Case, study: Study, lengths: dict):
         else:
             parts = [(leg.line_type.name, lengths[leg.name])]
         for lt_name, length in parts:
-            if study.objective == "mass":
+            if what == "mass":
                 total = total + length * study.mass_per_length[lt_name]
             else:
                 total = total + length * study.cost_per_length[lt_name]
-    if study.objective == "cost":
+    if what == "cost":
         total = total + study.anchor_cost * len(case.legs)
     return total
 

@@ -18,7 +18,11 @@ _KINDS = {
     "anchor_uplift": ("N", 10e3, +1, "anchor uplift limit"),
     "grounded_length": ("m", 1.0, -1, "minimum grounded length"),
     "offset": ("m", 1.0, +1, "offset limit"),
+    # Unit and step of the cost cap are the study's currency and 1 % of the cap.
+    "cost": ("cost", 1.0, +1, "cost cap (max_cost)"),
 }
+#: The load case named by the design-wide cost cap (it holds over every load case at once).
+DESIGN_WIDE = "whole design"
 
 
 # ---- result --------------------------------------------------------------------------------
@@ -112,6 +116,13 @@ class Optimisation:
     optimised_case : Case
     optimised_data : dict
         Case-file data of the optimised design (for writing a case file).
+    cost : float or None
+        The optimum design's cost (lines and anchors, in ``currency``)
+        when the study prices it (cost objective or ``max_cost``).
+    currency : str or None
+        The study's currency when it prices the design.
+    max_cost : float or None
+        The study's cost cap; ``cost_utilisation`` is ``cost / max_cost``.
     """
 
     study_name: str
@@ -130,11 +141,28 @@ class Optimisation:
     optimised_case: Case = field(repr=False)
     optimised_data: dict = field(repr=False)
     notes: tuple = ()
+    cost: float | None = None
+    max_cost: float | None = None
+    currency: str | None = None
+
+    @property
+    def cost_utilisation(self) -> float | None:
+        """The design's cost over the cap (1: at the cap), None without a cap."""
+        if self.max_cost is None or self.cost is None:
+            return None
+        return self.cost / self.max_cost
+
+    @property
+    def cost_within_cap(self) -> bool:
+        """The optimum's cost, priced again from its case, is within the cap (or no cap)."""
+        return self.max_cost is None or self.cost <= self.max_cost * (1 + VERIFY_TOL)
 
     @property
     def verified(self) -> bool:
-        """Every load case re-solved, certified and within every limit."""
-        return all(v.certified and not v.violations for v in self.verification)
+        """Every load case re-solved, certified and within every limit, and the design's
+        cost within the cap."""
+        return self.cost_within_cap and all(v.certified and not v.violations
+                                            for v in self.verification)
 
     @property
     def active(self) -> list:
@@ -154,6 +182,9 @@ class Optimisation:
             "status": self.status, "iterations": self.iterations,
             "solve_time_s": self.solve_time_s, "total_time_s": self.total_time_s,
             "verified": self.verified,
+            "cost": self.cost, "max_cost": self.max_cost,
+            "cost_utilisation": self.cost_utilisation,
+            "currency": self.currency,
             "variables": [v.to_dict() for v in self.variables],
             "constraints": [c.to_dict() for c in self.constraints],
             "active": self.plain_words(),
@@ -172,7 +203,10 @@ def _plain_words(opt: Optimisation) -> list:
         unit, step, relax, label = _KINDS[c.kind]
         where = f" on leg {c.leg}" if c.leg else ""
         verb = "relaxing it" if relax > 0 else "lowering it"
-        if c.kind == "safety_factor":
+        if c.kind == "cost":
+            limit, by = f"{label} of {_amount(c.limit, c.unit)}", _amount(c.step, c.unit)
+            verb = "raising it"
+        elif c.kind == "safety_factor":
             limit = f"{label} of {c.limit:g}"
             by = f"{step:g}"
         elif c.kind == "anchor_uplift":
@@ -181,13 +215,15 @@ def _plain_words(opt: Optimisation) -> list:
         else:
             limit = f"{label} of {c.limit:g} m"
             by = f"{step:g} m"
-        lines.append(f"the {limit}{where} in load case {c.load_case!r} is active; {verb} by "
+        scope = ("on the whole design" if c.kind == "cost"
+                 else f"in load case {c.load_case!r}")
+        lines.append(f"the {limit}{where} {scope} is active; {verb} by "
                      f"{by} would save {_amount(c.saving, opt.unit)} {what}".rstrip())
     by_kind: dict = {}
     for c in opt.active:
         by_kind.setdefault(c.kind, []).append(c)
     for kind, group in by_kind.items():
-        if len(group) > 1:
+        if len(group) > 1 and kind != "cost":
             unit, step, relax, label = _KINDS[kind]
             by = f"{step / 1e3:g} kN" if unit == "N" else f"{step:g}" + (" m" if unit == "m"
                                                                           else "")

@@ -11,7 +11,7 @@ from ..model.study import Study
 from ..solve.assembly.cache import get_problem
 from ..solve.equilibrium import solve
 from .optimise_results import _KINDS, VERIFY_TOL, Verification
-from .optimise_design import design_case, load_case_scene
+from .optimise_design import cost_value, design_case, load_case_scene
 
 
 def _infeasible(status, iterations, records, h, eq_res, case, study, d) -> ConvergenceError:
@@ -25,18 +25,25 @@ def _infeasible(status, iterations, records, h, eq_res, case, study, d) -> Conve
                    for k in range(len(study.load_cases))]
     except (ConvergenceError, CaseError):
         results = None
-    if results is not None:
-        for rec in records:
+    for rec in records:
+        if rec["kind"] == "cost":
+            value = cost_value(design_case(case, study, d), study)
+        elif results is None:
+            continue
+        else:
             value = _result_value(rec, results[rec["k"]])
-            unit, _, relax, label = _KINDS[rec["kind"]]
-            excess = relax * (value - rec["limit"])
-            if excess > VERIFY_TOL * max(abs(rec["limit"]), 1.0):
-                unmet.append((excess / max(abs(rec["limit"]), 1.0), rec, value))
+        unit, _, relax, label = _KINDS[rec["kind"]]
+        excess = relax * (value - rec["limit"])
+        if excess > VERIFY_TOL * max(abs(rec["limit"]), 1.0):
+            unmet.append((excess / max(abs(rec["limit"]), 1.0), rec, value))
     unmet.sort(key=lambda item: -item[0])
     parts = []
     for _, rec, value in unmet[:8]:
         unit, _, _, label = _KINDS[rec["kind"]]
         where = f" of leg {rec['leg']}" if rec["leg"] else ""
+        if rec["kind"] == "cost":
+            parts.append(f"{label}: {value:,.0f} against {rec['limit']:,.0f} {study.currency}")
+            continue
         parts.append(f"{label}{where} in load case {rec['load_case']!r}: "
                      f"{_fmt(value, unit)} against {_fmt(rec['limit'], unit)}")
     worst = float(h.max()) if len(h) else 0.0
