@@ -282,7 +282,7 @@ def _cost_infeasible(case: Case, study: Study, error: ConvergenceError) -> Conve
         f"no feasible design: no design within the variables' bounds meets max_cost "
         f"{_amount(cap, study.currency)}; the least cost of a design that meets every "
         f"load-case constraint is {_amount(least.cost, study.currency)} (cost utilisation "
-        f"{least.cost / cap:.3f}), at {design}", status=error.status,
+        f"{least.cost / cap:.4f}), at {design}", status=error.status,
         iterations=error.iterations, residual_N=float("nan"), residual_Nm=float("nan"))
 
 
