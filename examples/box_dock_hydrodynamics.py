@@ -30,6 +30,8 @@ import math
 
 import numpy as np
 
+from moorsolve.dynamics.hydro import table_mapping
+
 RHO, G = 1025.0, 9.80665
 
 
@@ -101,11 +103,11 @@ def box_table(length: float, beam: float, draft: float, depth: float, omega,
     gap = depth - draft
     transmitted = (2 * k * gap + np.sinh(2 * k * gap)) / (2 * k * depth + np.sinh(2 * k * depth))
     reflected = 1.0 - transmitted
-    exc, mean = [], []
+    exc, mean = {}, {}
     for h in headings_deg:
         beta = math.radians(h)
         X = force(beta)
-        exc.append({"heading_deg": float(h), "re": _rows(X.real), "im": _rows(X.imag)})
+        exc[float(h)] = X
         d = np.array([math.cos(beta), math.sin(beta)])
         D = np.zeros((w.size, 6))
         for n, width in (((1, 0), beam), ((-1, 0), beam), ((0, 1), length), ((0, -1), length)):
@@ -113,14 +115,8 @@ def box_table(length: float, beam: float, draft: float, depth: float, omega,
             if facing > 0:
                 D[:, 0] -= n[0] * 0.5 * RHO * G * reflected * facing ** 2 * width
                 D[:, 1] -= n[1] * 0.5 * RHO * G * reflected * facing ** 2 * width
-        mean.append({"heading_deg": float(h), "values": _rows(D)})
-    return {"source": "table", "omega": [round(float(v), 6) for v in w],
-            "added_mass": [_rows(m) for m in A], "damping": [_rows(m) for m in B],
-            "excitation": exc, "mean_drift": mean}
-
-
-def _rows(arr) -> list:
-    return [[float(f"{v:.6g}") + 0.0 for v in row] for row in np.atleast_2d(arr)]
+        mean[float(h)] = D
+    return table_mapping(w, A, B, exc, mean)
 
 
 def main(argv=None) -> None:

@@ -27,6 +27,8 @@ import math
 
 import numpy as np
 
+from moorsolve.dynamics.hydro import table_mapping
+
 RHO, G = 1025.0, 9.80665
 
 
@@ -61,21 +63,15 @@ def cylinder_table(radius: float, draft: float, omega, headings_deg) -> dict:
         :, None, None]
     ka4 = (k * a) ** 4
     drift = 2.0 / 3.0 * RHO * G * a * ka4 / (1 + ka4)
-    exc, mean = [], []
+    exc, mean = {}, {}
     for h in headings_deg:
         X = force(math.radians(h))
-        exc.append({"heading_deg": float(h), "re": _rows(X.real), "im": _rows(X.imag)})
+        exc[float(h)] = X
         D = np.zeros((w.size, 6))
         D[:, 0] = math.cos(math.radians(h)) * drift
         D[:, 1] = math.sin(math.radians(h)) * drift
-        mean.append({"heading_deg": float(h), "values": _rows(D)})
-    return {"source": "table", "omega": [round(float(v), 6) for v in w],
-            "added_mass": [_rows(m) for m in A], "damping": [_rows(m) for m in B],
-            "excitation": exc, "mean_drift": mean}
-
-
-def _rows(arr) -> list:
-    return [[float(f"{v:.6g}") + 0.0 for v in row] for row in np.atleast_2d(arr)]
+        mean[float(h)] = D
+    return table_mapping(w, A, B, exc, mean)
 
 
 def main(argv=None) -> None:

@@ -102,3 +102,35 @@ class BodyHydro:
         for k, t in self._heading_weights(self.d_headings, beta_deg, "mean_drift"):
             out = out + t * self._interp_omega(self.D[k], w)
         return out
+
+
+def table_mapping(omega, added_mass, damping, excitation: dict, mean_drift: dict | None = None,
+                  digits: int = 6) -> dict:
+    """A body's ``hydrodynamics: {source: table, ...}`` case-file mapping from arrays (the
+    inverse of what :class:`BodyHydro` reads), each number to ``digits`` significant digits.
+
+    Parameters
+    ----------
+    omega : array_like (n,)
+        Frequencies [rad/s].
+    added_mass, damping : array_like (n, 6, 6)
+        Per frequency [kg, kg m, kg m^2] and [N s/m, ...].
+    excitation : dict
+        Heading [deg] to the complex first-order force per unit amplitude (n, 6) [N/m, N m/m],
+        phase ``e^{+i w t}``.
+    mean_drift : dict, optional
+        Heading [deg] to the mean drift force per amplitude squared (n, 6) [N/m^2].
+    """
+    def rows(arr) -> list:
+        # "+ 0.0" turns a -0.0 into 0.0 (a case file reads better without signed zeros).
+        return [[float(f"{v:.{digits}g}") + 0.0 for v in row] for row in np.atleast_2d(arr)]
+
+    out = {"source": "table", "omega": [round(float(v), digits) for v in omega],
+           "added_mass": [rows(m) for m in np.asarray(added_mass, float)],
+           "damping": [rows(m) for m in np.asarray(damping, float)],
+           "excitation": [{"heading_deg": float(h), "re": rows(np.real(x)),
+                           "im": rows(np.imag(x))} for h, x in excitation.items()]}
+    if mean_drift:
+        out["mean_drift"] = [{"heading_deg": float(h), "values": rows(d)}
+                             for h, d in mean_drift.items()]
+    return out
