@@ -4,14 +4,13 @@ The same equations as :func:`.line_dynamics.line_response` with the spectral (st
 drag linearisation, each sea state with its own linearised drag, solved together: the
 line's matrices are block tridiagonal in its nodes (a node couples only with its
 neighbours), so every frequency of every sea state is one block Thomas sweep over the
-nodes, vectorised over all of them (``n_states x n_omega`` 3x3 systems per node) instead of
-a banded solve per frequency. Constrained degrees of freedom (the ends, nodes held on the
+nodes (:func:`.block_thomas.solve_block_tridiagonal`, shared with
+:class:`.line_stack.LineStack`), vectorised over all of them (``n_states x n_omega`` 3x3
+systems per node) instead of a banded solve per frequency. Constrained degrees of freedom (the ends, nodes held on the
 seabed) are kept in the sweep as identity rows with zero right-hand side, their coupling
 to the free ones moved to the right-hand side, which is exactly the reduced system.
 
-Block elimination without pivoting is safe here: each diagonal block carries the node's
-positive axial and geometric stiffness, mass and damping, and the tests check the sweep
-against the banded solve of :mod:`.line_dynamics`.
+The tests check the sweep against the banded solve of :mod:`.line_dynamics`.
 """
 
 from __future__ import annotations
@@ -19,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
+from .block_thomas import solve_block_tridiagonal
 from .line_dynamics import _SPECTRAL_FACTOR
 from .line_model import LineModel
 from .line_stack import LineStack, element_blocks
@@ -38,58 +38,6 @@ def _blocks(model: LineModel):
     Md = np.where(outer, stack.M[0], 0.0)
     Ku = np.where(mask[:-1, :, None] & mask[1:, None, :], -ke, 0.0)
     return Kd, Md, Ku, mask, outer, stack, ke
-
-
-def _inv3(A):
-    """Inverses of 3x3 matrices stored component-first, ``A`` (3, 3, N), by the adjugate:
-    every operation a vector operation over the N systems."""
-    a, b, c = A[0]
-    d, e, f = A[1]
-    g, h, k = A[2]
-    co = np.array([[e * k - f * h, c * h - b * k, b * f - c * e],
-                   [f * g - d * k, a * k - c * g, c * d - a * f],
-                   [d * h - e * g, b * g - a * h, a * e - b * d]])
-    det = a * co[0, 0] + b * co[1, 0] + c * co[2, 0]
-    if not np.all(np.isfinite(det)) or np.any(det == 0):
-        raise np.linalg.LinAlgError("singular block")
-    return co / det
-
-
-def _left(C, X):
-    """``C X`` for a constant real 3x3 ``C`` and component-first ``X`` (3, ..., N)."""
-    return np.array([C[i, 0] * X[0] + C[i, 1] * X[1] + C[i, 2] * X[2] for i in range(3)])
-
-
-def _right(X, C):
-    """``X C`` for component-first ``X`` (3, 3, N) and a constant real 3x3 ``C``."""
-    return np.array([[X[i, 0] * C[0, j] + X[i, 1] * C[1, j] + X[i, 2] * C[2, j]
-                      for j in range(3)] for i in range(3)])
-
-
-def _apply(X, y):
-    """``X y`` for component-first ``X`` (3, 3, N) and ``y`` (3, N)."""
-    return np.array([X[i, 0] * y[0] + X[i, 1] * y[1] + X[i, 2] * y[2] for i in range(3)])
-
-
-def _thomas(D, U, rhs):
-    """Solve the block tridiagonal systems with diagonal blocks ``D`` (n, 3, 3, N), upper
-    blocks ``U`` (n-1, 3, 3) (lower ``U^T``: symmetric coupling) and right-hand sides
-    ``rhs`` (n, 3, N), components first so that each step is a vector operation over the
-    N systems."""
-    n = D.shape[0]
-    inv = np.empty_like(D)
-    rp = np.empty_like(rhs)
-    inv[0] = _inv3(D[0])
-    rp[0] = rhs[0]
-    for i in range(1, n):
-        W = _left(U[i - 1].T, inv[i - 1])
-        inv[i] = _inv3(D[i] - _right(W, U[i - 1]))
-        rp[i] = rhs[i] - _apply(W, rp[i - 1])
-    x = np.empty_like(rhs)
-    x[n - 1] = _apply(inv[n - 1], rp[n - 1])
-    for i in range(n - 2, -1, -1):
-        x[i] = _apply(inv[i], rp[i] - _left(U[i], x[i + 1]))
-    return x
 
 
 def spectral_tensions(model: LineModel, omega, motion_b, spectra, *, motion_a=None,
@@ -144,7 +92,11 @@ def spectral_tensions(model: LineModel, omega, motion_b, spectra, *, motion_a=No
         B = bn[:, :, None, None] * Pn + bt[:, :, None, None] * Pt     # (ns, n, 3, 3)
         D = base_c + 1j * omega * B.transpose(1, 2, 3, 0)[..., None]  # (n, 3, 3, ns, nw)
         try:
-            x = _thomas(D.reshape(n, 3, 3, N), Ku, rhs_c)
+            # Unrefined: on thousands of systems the sweep's cost is its arithmetic, which
+            # refinement doubles, for 6e-9 of the answer (against a dense solve) that the
+            # drag linearisation's tolerance dwarfs.
+            x = solve_block_tridiagonal(D.reshape(n, 3, 3, N), Ku[..., None],
+                                        Ku.transpose(0, 2, 1)[..., None], rhs_c, refine=0)
         except np.linalg.LinAlgError:
             raise ConvergenceError("the line's dynamic stiffness is singular at one of the "
                                    "frequencies") from None

@@ -4,8 +4,10 @@
 Each node of a lumped-mass line couples only with its two neighbours, so a line's dynamic
 stiffness ``K - omega^2 M + i omega B`` is block tridiagonal with 3x3 blocks. The lines of a
 scene are stacked (padded with inert nodes to the longest one) and every line and every
-frequency is eliminated at once, node by node down the lines (the block Thomas algorithm):
-a few dozen batched 3x3 solves instead of one banded solve per line and frequency.
+frequency is eliminated at once, node by node down the lines: one block Thomas sweep
+(:func:`.block_thomas.solve_block_tridiagonal`) instead of one banded solve per line and
+frequency. Masking a prescribed row's coupling leaves the lower blocks different from the
+upper ones' transposes, so the sweep takes both.
 
 A prescribed displacement (the ends, a grounded node held vertically, a grounded run
 without tension held where it lies) keeps its row as the identity's, with its motion on the
@@ -17,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ConvergenceError
+from .block_thomas import solve_block_tridiagonal
 
 __all__ = ["LineStack"]
 
@@ -106,31 +109,18 @@ class LineStack:
         rhs = np.zeros((L, nw, N, 3), complex)
         rhs[:, :, 0] = u_a
         rhs[np.arange(L), :, self.sizes - 1] = u_b
-        C = np.zeros((L, nw, N - 1, 3, 3), complex)
-        d = np.zeros((L, nw, N, 3), complex)
+        # Components first, (nodes, 3, 3, lines, n_omega), for the sweep down the nodes.
+        upper = self.K_upper.transpose(1, 2, 3, 0)[..., None]
+        lower = self.K_lower.transpose(1, 2, 3, 0)[..., None]
         try:
-            for i in range(N):
-                den, r = Z[:, :, i], rhs[:, :, i]
-                if i > 0:
-                    low = self.K_lower[:, None, i - 1]
-                    den = den - low @ C[:, :, i - 1]
-                    r = r - (low @ d[:, :, i - 1, :, None])[..., 0]
-                if i < N - 1:
-                    up = np.broadcast_to(self.K_upper[:, None, i], (L, nw, 3, 3))
-                    sol = np.linalg.solve(den, np.concatenate([up, r[..., None]], -1))
-                    C[:, :, i], d[:, :, i] = sol[..., :3], sol[..., 3]
-                else:
-                    d[:, :, i] = np.linalg.solve(den, r[..., None])[..., 0]
+            u = solve_block_tridiagonal(Z.transpose(2, 3, 4, 0, 1), upper, lower,
+                                        rhs.transpose(2, 3, 0, 1))
         except np.linalg.LinAlgError:
             raise ConvergenceError(
                 "the line's dynamic stiffness is singular at one of the frequencies (a node "
                 "with neither tension nor mass to hold it, or omega = 0 on a line without "
                 "tension)") from None
-        u = np.empty((L, nw, N, 3), complex)
-        u[:, :, -1] = d[:, :, -1]
-        for i in range(N - 2, -1, -1):
-            u[:, :, i] = d[:, :, i] - (C[:, :, i] @ u[:, :, i + 1, :, None])[..., 0]
-        return u
+        return u.transpose(2, 3, 0, 1)
 
     def split_velocity(self, v):
         """Magnitudes of the normal and tangential parts of node velocities ``v``

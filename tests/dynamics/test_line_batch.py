@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import moorsolve
-from moorsolve.dynamics.line_batch import _inv3, _thomas, spectral_tensions
+from moorsolve.dynamics.line_batch import spectral_tensions
 from moorsolve.dynamics.line_dynamics import line_response
 from moorsolve.dynamics.line_model import line_model
 from moorsolve.dynamics.spectra import jonswap
@@ -34,25 +34,3 @@ def test_batch_equals_the_banded_solve_per_sea_state(buoy_line, moving_anchor):
         scale = np.max(np.abs(ref.tension_b))
         assert np.max(np.abs(t_b[k] - ref.tension_b)) < 1e-6 * scale
         assert np.max(np.abs(t_a[k] - ref.tension_a)) < 1e-6 * np.max(np.abs(ref.tension_a))
-
-
-def test_block_sweep_solves_a_random_block_tridiagonal_system():
-    rng = np.random.default_rng(2)
-    n, N = 6, 5
-    U = rng.normal(size=(n - 1, 3, 3))
-    D = rng.normal(size=(n, 3, 3, N)) + 1j * rng.normal(size=(n, 3, 3, N))
-    D += 8 * np.eye(3)[None, :, :, None]
-    rhs = rng.normal(size=(n, 3, N)) + 0j
-    x = _thomas(D, U, rhs)
-    for k in range(N):
-        A = np.zeros((3 * n, 3 * n), complex)
-        for i in range(n):
-            A[3 * i:3 * i + 3, 3 * i:3 * i + 3] = D[i, :, :, k]
-            if i < n - 1:
-                A[3 * i:3 * i + 3, 3 * i + 3:3 * i + 6] = U[i]
-                A[3 * i + 3:3 * i + 6, 3 * i:3 * i + 3] = U[i].T
-        assert np.allclose(A @ x[:, :, k].ravel(), rhs[:, :, k].ravel(), atol=1e-12)
-    M = rng.normal(size=(3, 3, N)) + 1j * rng.normal(size=(3, 3, N))
-    inv = _inv3(M)
-    for k in range(N):
-        assert np.allclose(inv[:, :, k] @ M[:, :, k], np.eye(3), atol=1e-12)
