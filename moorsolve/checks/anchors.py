@@ -143,7 +143,7 @@ def _to_padeye(design, leg, tension: float, angle: float) -> PadeyeLoad:
 
 
 def anchor_items(condition: str, condition_kind: str, leg, mean_leg, leg_result, checks,
-                 crit: Criterion) -> list:
+                 crit: Criterion, tension: float | None = None) -> list:
     """The anchor capacity item of one leg (an empty list where its kind has no design).
 
     Parameters
@@ -157,6 +157,10 @@ def anchor_items(condition: str, condition_kind: str, leg, mean_leg, leg_result,
     checks : Checks
     crit : Criterion
         The line-tension criterion of the condition (its analysis, and DNV's load factors).
+    tension : float, optional
+        The anchor end's largest tension [N] where the lines' own dynamics give it (mean
+        plus dynamic part); else the tension of ``leg_result`` at the anchor. The angle is
+        ``leg_result``'s either way.
     """
     kind = (leg.anchor_type or checks.anchor).kind
     if kind == "deadweight" or not checks.anchors:
@@ -176,6 +180,8 @@ def anchor_items(condition: str, condition_kind: str, leg, mean_leg, leg_result,
                           criterion=f"{crit.standard} has no {kind} anchor factors in "
                                     "moorsolve's table: check with another standard")]
     T, theta = _mudline(leg_result)
+    if tension is not None:
+        T = tension
     load = _to_padeye(design, leg, T, theta)
     if row.standard == "api-rp-2sk":
         design_load = load

@@ -51,6 +51,21 @@ def _ends(lr) -> tuple:
     return (("anchor", lr.anchor_tension_N), ("fairlead", lr.fairlead_tension_N))
 
 
+def end_dynamic_part(sea_end, standard: str) -> float:
+    """The dynamic part of one end's tension [N] as ``standard`` combines it: API RP 2SK's
+    larger of LF_sig + WF_max and LF_max + WF_sig, DNV's sigma_T sqrt(2 ln N)."""
+    if standard == "api-rp-2sk":
+        return max(sea_end.lf_significant_N + sea_end.wf_max_N,
+                   sea_end.lf_max_N + sea_end.wf_significant_N)
+    return sea_end.t_dyn_N
+
+
+def anchor_t_max(mean_leg, sea, standard: str) -> float:
+    """The anchor end's largest tension in the sea state [N]: its mean plus its dynamic
+    part (:func:`end_dynamic_part`), the load an anchor check takes with line dynamics."""
+    return mean_leg.anchor_tension_N + end_dynamic_part(sea.anchor, standard)
+
+
 def dynamic_tension(mean_leg, sea, *, standard: str, condition: str,
                     consequence_class: int) -> tuple:
     """``(end, DesignTension, EndSeaTension)`` of one line with its dynamics, at the end
@@ -70,10 +85,7 @@ def dynamic_tension(mean_leg, sea, *, standard: str, condition: str,
     found = []
     for end, t_mean in _ends(mean_leg):
         s = getattr(sea, end)
-        if standard == "api-rp-2sk":
-            t_dyn = max(s.lf_significant_N + s.wf_max_N, s.lf_max_N + s.wf_significant_N)
-        else:
-            t_dyn = s.t_dyn_N
+        t_dyn = end_dynamic_part(s, standard)
         d = design_tension(standard=standard, condition=condition, t_mean=t_mean,
                            t_dyn=t_dyn, mbl=mean_leg.mbl_N,
                            consequence_class=consequence_class, method="dynamic")

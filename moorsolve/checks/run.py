@@ -44,7 +44,7 @@ from .berth import is_hawser
 from .criteria import criterion, standard_rows
 from .design_offset import design_offset_solve, mean_tension, sea_method
 from .drift import drift_findings, hold_drifting
-from .dynamic import dynamic_tension, quasi_static_tension
+from .dynamic import anchor_t_max, dynamic_tension, quasi_static_tension
 from .fibre import fibre_items
 from .items import (CheckItem, fender_item, guide_item, hawser_item, tension_item,
                     uplift_item)
@@ -188,7 +188,9 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol,
         # The item checks the same tension the line's design figures carry.
         items.append(tension_item(name, lr, crit, design, where))
         if leg.a.on_seabed:     # else end A is not an anchor (a bridle leg, a shared line)
-            items += _seabed_items(case, checks, kind, name, leg, lm, lr, crit)
+            t_anchor = (anchor_t_max(lm, tensions[leg.name], checks.standard)
+                        if tensions is not None and leg.name in tensions else None)
+            items += _seabed_items(case, checks, kind, name, leg, lm, lr, crit, t_anchor)
             items += fibre_items(name, leg, lr)
     limit = (checks.offset_limit if kind == "intact"
              else damaged_value(checks.offset_limit_damaged, checks.offset_limit))
@@ -216,14 +218,15 @@ def _condition(case: Case, checks: Checks, removed: str | None, tol,
                            sea=None if held is None else held, tensions=tensions)
 
 
-def _seabed_items(case, checks, kind, name, leg, lm, lr, crit) -> list:
+def _seabed_items(case, checks, kind, name, leg, lm, lr, crit, t_anchor=None) -> list:
     """The anchor's uplift and capacity (where its design is given) and the grounded length
     of a line anchored on the seabed; ``lm`` the line at the mean position, ``lr`` where it
-    is checked."""
+    is checked, ``t_anchor`` the anchor end's largest tension from the lines' dynamics
+    (None: ``lr``'s)."""
     anchor = leg.anchor_type or checks.anchor
     # A suction anchor's H-V envelope takes the uplift.
     items = [] if anchor.kind == "suction" else [uplift_item(name, lr, anchor)]
-    items += anchor_items(name, kind, leg, lm, lr, checks, crit)
+    items += anchor_items(name, kind, leg, lm, lr, checks, crit, tension=t_anchor)
     minimum = (checks.min_grounded_length if kind == "intact"
                else damaged_value(checks.min_grounded_length_damaged,
                                   checks.min_grounded_length))

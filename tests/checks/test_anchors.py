@@ -308,3 +308,28 @@ def test_design_offset_method_checks_the_anchor_at_the_design_offset():
         assert item.utilisation == pytest.approx(max(
             1.6 * item.detail["padeye_horizontal_N"] / 200e3,
             2.0 * item.detail["padeye_vertical_N"] / 150e3), rel=1e-12)
+
+
+def test_with_line_dynamics_the_anchor_takes_its_ends_dynamic_tension():
+    # DNV-OS-E301 with the lines' own dynamics: the anchor's load is the anchor end's mean
+    # tension plus its characteristic dynamic part (sigma_T sqrt(2 ln N) at that end), not
+    # the quasi-static tension at the design offset.
+    import yaml
+    from pathlib import Path
+    data = yaml.safe_load((Path(__file__).parents[2] / "cases" / "buoy_sea.yaml").read_text())
+    data["checks"] = dict(data.get("checks") or {}, standard="dnv-os-e301", damaged=False,
+                          anchors={"drag": {"capacity": "2 MN"}})
+    report = run_checks(moorsolve.load_case(data))
+    c = report.conditions[0]
+    assert c.method == "dynamic"
+    items = [i for i in c.items if i.check == "anchor capacity"]
+    assert len(items) == 3
+    for item in items:
+        sea = c.tensions[item.leg].anchor
+        t_mean = c.result.leg(item.leg).anchor_tension_N
+        assert sea.t_dyn_N > 0
+        assert item.detail["mudline_tension_N"] == pytest.approx(t_mean + sea.t_dyn_N,
+                                                                 rel=1e-12)
+        # 1.10 T_mean + 1.50 T_dyn against UHC / 1.3 (drag, consequence class 1)
+        assert item.detail["design_N"] == pytest.approx(1.10 * t_mean + 1.50 * sea.t_dyn_N,
+                                                        rel=1e-12)
